@@ -1,0 +1,27 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COMMON_ATOMIC_FILE_H_
+#define DCS_COMMON_ATOMIC_FILE_H_
+
+// Whole-file writes that readers never see half done and that survive a crash: write a
+// temporary file in the same directory, fsync it, rename it over the target, fsync the
+// directory. Thread-safe for distinct paths.
+
+#include <string>
+#include "absl/strings/string_view.h"
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+
+namespace dcs {
+
+// Replaces `path` with `contents`. On failure (a full disk, a missing directory) the old file
+// is untouched and the error names the path and the reason: RESOURCE_EXHAUSTED for a full
+// disk or quota, NOT_FOUND for a missing directory, PERMISSION_DENIED, else INTERNAL.
+absl::Status WriteFileAtomically(const std::string& path, absl::string_view contents);
+
+// The whole contents of `path`. NOT_FOUND if it does not exist.
+absl::StatusOr<std::string> ReadFile(const std::string& path);
+
+}  // namespace dcs
+
+#endif  // DCS_COMMON_ATOMIC_FILE_H_

@@ -1,0 +1,17 @@
+// Copyright 2026 The DCS Authors.
+#include "services/address.h"
+
+#include "absl/strings/str_cat.h"
+
+namespace dcs::services {
+
+std::string HostOf(absl::string_view address) {
+  // The last colon: an IPv6 host is bracketed, so its colons come before the port's.
+  return std::string(address.substr(0, address.rfind(':')));
+}
+
+std::string WithPort(absl::string_view address, int port) {
+  return absl::StrCat(HostOf(address), ":", port);
+}
+
+}  // namespace dcs::services

@@ -1,0 +1,84 @@
+// Copyright 2026 The DCS Authors.
+#include "services/coordinator_service.h"
+
+#include <utility>
+
+#include "absl/time/clock.h"
+#include "services/cluster_proto.h"
+#include "services/grpc_status.h"
+#include "services/log.h"
+#include "services/time_proto.h"
+
+namespace dcs::services {
+namespace {
+
+prometheus::Family<prometheus::Counter>& RegistrationsFamily(prometheus::Registry& metrics) {
+  return prometheus::BuildCounter()
+      .Name("dcs_worker_registrations_total")
+      .Help("Worker registrations accepted by the coordinator, by role.")
+      .Register(metrics);
+}
+
+grpc::ServerUnaryReactor* Finish(grpc::CallbackServerContext* context,
+                                 const absl::Status& status) {
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  reactor->Finish(ToGrpcStatus(status));
+  return reactor;
+}
+
+}  // namespace
+
+CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, BuildInfo build,
+                                       absl::Time start_time, prometheus::Registry& metrics)
+    : registry_(registry),
+      build_(BuildInfoToProto(build)),
+      start_time_(start_time),
+      learner_registrations_(RegistrationsFamily(metrics).Add({{"role", "learner"}})),
+      actor_registrations_(RegistrationsFamily(metrics).Add({{"role", "actor"}})) {}
+
+grpc::ServerUnaryReactor* CoordinatorService::RegisterWorker(
+    grpc::CallbackServerContext* context, const v1::RegisterWorkerRequest* request,
+    v1::RegisterWorkerResponse* response) {
+  absl::StatusOr<coordinator::WorkerInfo> info = WorkerInfoFromProto(request->worker());
+  if (!info.ok()) return Finish(context, info.status());
+  const coordinator::WorkerRole role = info->role;
+  const std::string address = info->address;
+  absl::StatusOr<std::string> id = registry_.Register(*std::move(info), absl::Now());
+  if (!id.ok()) return Finish(context, id.status());
+
+  (role == coordinator::WorkerRole::kLearner ? learner_registrations_ : actor_registrations_)
+      .Increment();
+  Log(LogLevel::kInfo, "worker registered",
+      {{"worker_id", *id}, {"role", coordinator::WorkerRoleName(role)}, {"address", address}});
+  response->set_worker_id(*id);
+  *response->mutable_heartbeat_interval() =
+      DurationToProto(registry_.options().heartbeat_interval);
+  return Finish(context, absl::OkStatus());
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::Heartbeat(grpc::CallbackServerContext* context,
+                                                        const v1::HeartbeatRequest* request,
+                                                        v1::HeartbeatResponse* /*response*/) {
+  return Finish(context, registry_.Heartbeat(request->worker_id(), absl::Now()));
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::UnregisterWorker(
+    grpc::CallbackServerContext* context, const v1::UnregisterWorkerRequest* request,
+    v1::UnregisterWorkerResponse* /*response*/) {
+  absl::Status status = registry_.Unregister(request->worker_id(), absl::Now());
+  if (status.ok()) Log(LogLevel::kInfo, "worker left", {{"worker_id", request->worker_id()}});
+  return Finish(context, status);
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::GetClusterStatus(
+    grpc::CallbackServerContext* context, const v1::GetClusterStatusRequest* /*request*/,
+    v1::GetClusterStatusResponse* response) {
+  *response->mutable_coordinator_build() = build_;
+  *response->mutable_coordinator_start_time() = TimeToProto(start_time_);
+  for (const coordinator::WorkerRecord& record : registry_.List(absl::Now())) {
+    *response->add_workers() = WorkerToProto(record);
+  }
+  return Finish(context, absl::OkStatus());
+}
+
+}  // namespace dcs::services

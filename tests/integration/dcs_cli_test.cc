@@ -1,0 +1,185 @@
+// Copyright 2026 The DCS Authors.
+//
+// The `dcs` client as a user runs it: up (detached and in the foreground), status, health,
+// down, version, --help; Ctrl-C and a dying process leave nothing behind.
+
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <string>
+
+#include <google/protobuf/util/json_util.h>
+
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+#include "common/atomic_file.h"
+#include "dcs/v1/coordinator_service.pb.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "services/child_process.h"
+#include "services/exit_codes.h"
+#include "services/local_cluster.h"
+#include "tests/integration/test_util.h"
+#include "tests/testing/net.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::integration {
+namespace {
+
+using dcs::testing::MakeTempDir;
+using dcs::testing::PickFreePort;
+using ::testing::HasSubstr;
+using ::testing::SizeIs;
+
+RunResult Dcs(const std::vector<std::string>& args) { return RunProgram(BinaryPath("dcs"), args); }
+
+void ExpectAllStopped(const services::ClusterState& state) {
+  for (const services::ClusterProcess& process : state.processes) {
+    EXPECT_FALSE(services::IsProcessRunning(process.pid, process.executable)) << process.name;
+  }
+}
+
+// Starts `dcs up` in the foreground and waits until it reports the cluster up.
+struct ForegroundUp {
+  services::ChildProcess dcs;
+  std::string output_path;
+  services::ClusterState state;
+};
+std::optional<ForegroundUp> StartForegroundUp(const std::string& data_dir) {
+  const std::string output = absl::StrCat(MakeTempDir(), "/up.log");
+  absl::StatusOr<services::ChildProcess> dcs = services::ChildProcess::Start(
+      {.path = BinaryPath("dcs"),
+       .args = {"up", "--actors=2", absl::StrCat("--data-dir=", data_dir)},
+       .output_path = output});
+  EXPECT_TRUE(dcs.ok()) << dcs.status();
+  if (!dcs.ok()) return std::nullopt;
+  const absl::Time deadline = absl::Now() + absl::Seconds(30);
+  while (absl::Now() < deadline) {
+    if (ReadFile(output).value_or("").find("press Ctrl-C") != std::string::npos) {
+      absl::StatusOr<services::ClusterState> state = services::ReadClusterState(data_dir);
+      EXPECT_TRUE(state.ok()) << state.status();
+      if (!state.ok()) return std::nullopt;
+      return ForegroundUp{*std::move(dcs), output, *std::move(state)};
+    }
+    absl::SleepFor(absl::Milliseconds(50));
+  }
+  ADD_FAILURE() << "dcs up did not come up: " << ReadFile(output).value_or("");
+  return std::nullopt;
+}
+
+TEST(DcsCliTest, UpDetachedThenStatusThenDown) {
+  const std::string data_dir = MakeTempDir();
+  const RunResult up = Dcs({"up", "--detach", "--actors=2", "--data-dir", data_dir});
+  ASSERT_EQ(up.exit_code, 0) << up.output;
+  absl::StatusOr<services::ClusterState> state = services::ReadClusterState(data_dir);
+  ASSERT_TRUE(state.ok()) << state.status();
+  ASSERT_THAT(state->processes, SizeIs(4));
+
+  const RunResult status = Dcs({"status", "--data-dir", data_dir});
+  EXPECT_EQ(status.exit_code, 0) << status.output;
+  EXPECT_THAT(status.output, HasSubstr(state->coordinator_address));
+  for (size_t i = 1; i < state->processes.size(); ++i) {
+    EXPECT_THAT(status.output, HasSubstr(state->processes[i].grpc_address));
+  }
+
+  const RunResult json = Dcs({"status", "-o", "json", "--data-dir", data_dir});
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  v1::GetClusterStatusResponse parsed;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(json.output, &parsed).ok())
+      << json.output;
+  ASSERT_THAT(parsed.workers(), SizeIs(3));
+  for (const v1::Worker& worker : parsed.workers()) {
+    EXPECT_EQ(worker.state(), v1::WORKER_STATE_ALIVE) << worker.worker_id();
+  }
+
+  const RunResult health = Dcs({"health", "--addr", state->coordinator_address});
+  EXPECT_EQ(health.exit_code, 0) << health.output;
+  EXPECT_THAT(health.output, HasSubstr("SERVING"));
+
+  const RunResult again = Dcs({"up", "--detach", "--data-dir", data_dir});
+  EXPECT_EQ(again.exit_code, services::kExitFailure);
+  EXPECT_THAT(again.output, HasSubstr("already runs"));
+
+  const RunResult down = Dcs({"down", "--data-dir", data_dir});
+  EXPECT_EQ(down.exit_code, 0) << down.output;
+  ExpectAllStopped(*state);
+  EXPECT_FALSE(std::filesystem::exists(absl::StrCat(data_dir, "/cluster.yaml")));
+}
+
+TEST(DcsCliTest, CtrlCStopsTheForegroundClusterLeavingNothingBehind) {
+  const std::string data_dir = MakeTempDir();
+  std::optional<ForegroundUp> up = StartForegroundUp(data_dir);
+  ASSERT_TRUE(up.has_value());
+  ASSERT_THAT(up->state.processes, SizeIs(4));
+
+  ::kill(up->dcs.pid(), SIGINT);
+  std::optional<int> status = up->dcs.Wait(absl::Seconds(30));
+  ASSERT_TRUE(status.has_value()) << "dcs up did not stop";
+  EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == 0)
+      << services::DescribeExit(*status) << "\n" << ReadFile(up->output_path).value_or("");
+  ExpectAllStopped(up->state);
+}
+
+TEST(DcsCliTest, DownStopsAForegroundClusterThroughItsSupervisor) {
+  const std::string data_dir = MakeTempDir();
+  std::optional<ForegroundUp> up = StartForegroundUp(data_dir);
+  ASSERT_TRUE(up.has_value());
+
+  const RunResult down = Dcs({"down", "--data-dir", data_dir});
+  EXPECT_EQ(down.exit_code, 0) << down.output;
+  std::optional<int> status = up->dcs.Wait(absl::Seconds(30));
+  ASSERT_TRUE(status.has_value()) << "dcs up did not stop";
+  EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == 0) << services::DescribeExit(*status);
+  ExpectAllStopped(up->state);
+}
+
+TEST(DcsCliTest, AProcessThatDiesStopsTheForegroundClusterWithAnError) {
+  const std::string data_dir = MakeTempDir();
+  std::optional<ForegroundUp> up = StartForegroundUp(data_dir);
+  ASSERT_TRUE(up.has_value());
+  const services::ClusterProcess& learner = up->state.processes[1];
+  ASSERT_EQ(learner.name, "learner");
+
+  ::kill(learner.pid, SIGKILL);
+  std::optional<int> status = up->dcs.Wait(absl::Seconds(30));
+  ASSERT_TRUE(status.has_value()) << "dcs up did not notice";
+  EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == services::kExitFailure)
+      << services::DescribeExit(*status);
+  EXPECT_THAT(ReadFile(up->output_path).value_or(""), HasSubstr("learner killed by SIGKILL"));
+  ExpectAllStopped(up->state);
+}
+
+TEST(DcsCliTest, StatusOfAnUnreachableCoordinatorIsOneLineAndUnavailableExit) {
+  const RunResult status =
+      Dcs({"status", "--addr", absl::StrCat("127.0.0.1:", PickFreePort()), "--timeout=2s"});
+  EXPECT_EQ(status.exit_code, services::kExitUnavailable);
+  ASSERT_THAT(Lines(status.output), SizeIs(1)) << status.output;
+  EXPECT_THAT(status.output, HasSubstr("UNAVAILABLE"));
+}
+
+TEST(DcsCliTest, DownWithoutAClusterSaysSo) {
+  const RunResult down = Dcs({"down", "--data-dir", MakeTempDir()});
+  EXPECT_EQ(down.exit_code, services::kExitFailure);
+  ASSERT_THAT(Lines(down.output), SizeIs(1)) << down.output;
+  EXPECT_THAT(down.output, HasSubstr("no local cluster"));
+}
+
+TEST(DcsCliTest, EveryCommandHasHelp) {
+  for (const char* command : {"up", "down", "status", "health", "version"}) {
+    const RunResult help = Dcs({command, "--help"});
+    EXPECT_EQ(help.exit_code, 0) << command;
+    EXPECT_THAT(help.output, HasSubstr(absl::StrCat("dcs ", command))) << help.output;
+  }
+}
+
+TEST(DcsCliTest, VersionListsTheLinkedLibraries) {
+  const RunResult version = Dcs({"version"});
+  EXPECT_EQ(version.exit_code, 0);
+  for (const char* library : {"grpc", "protobuf", "libtorch", "box2d", "sqlite", "eigen"}) {
+    EXPECT_THAT(version.output, HasSubstr(library));
+  }
+}
+
+}  // namespace
+}  // namespace dcs::integration

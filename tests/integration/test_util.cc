@@ -1,0 +1,36 @@
+// Copyright 2026 The DCS Authors.
+#include "tests/integration/test_util.h"
+
+#include <sys/wait.h>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+#include "common/atomic_file.h"
+#include "services/child_process.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::integration {
+
+std::string BinDir() { return DCS_BIN_DIR; }
+
+std::string BinaryPath(const std::string& name) { return absl::StrCat(BinDir(), "/", name); }
+
+RunResult RunProgram(const std::string& path, const std::vector<std::string>& args,
+              absl::Duration timeout) {
+  const std::string output_path = absl::StrCat(dcs::testing::MakeTempDir(), "/output");
+  absl::StatusOr<services::ChildProcess> child =
+      services::ChildProcess::Start({.path = path, .args = args, .output_path = output_path});
+  if (!child.ok()) return {.exit_code = -1, .output = child.status().ToString()};
+  std::optional<int> status = child->Wait(timeout);
+  const int wait_status = status ? *status : child->Stop(absl::ZeroDuration());
+  RunResult result;
+  result.exit_code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
+  result.output = ReadFile(output_path).value_or("");
+  return result;
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  return absl::StrSplit(text, '\n', absl::SkipEmpty());
+}
+
+}  // namespace dcs::integration

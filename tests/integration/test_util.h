@@ -1,0 +1,35 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_TESTS_INTEGRATION_TEST_UTIL_H_
+#define DCS_TESTS_INTEGRATION_TEST_UTIL_H_
+
+// Helpers for tests that run real DCS processes on loopback. Thread-compatible.
+// Temporary directories, HTTP GETs and free ports are in tests/testing/.
+
+#include <string>
+#include <vector>
+
+#include "absl/time/time.h"
+
+namespace dcs::integration {
+
+// The directory holding this build's dcs, dcs-coordinator, dcs-learner and dcs-actor.
+std::string BinDir();
+
+// `name` in BinDir().
+std::string BinaryPath(const std::string& name);
+
+struct RunResult {
+  int exit_code = -1;  // -1 if killed by a signal (or at the timeout)
+  std::string output;  // stdout and stderr, interleaved as written
+};
+
+// Runs `path args...` to completion; kills it after `timeout`.
+RunResult RunProgram(const std::string& path, const std::vector<std::string>& args,
+              absl::Duration timeout = absl::Seconds(60));
+
+// The lines of `text`, without empty ones.
+std::vector<std::string> Lines(const std::string& text);
+
+}  // namespace dcs::integration
+
+#endif  // DCS_TESTS_INTEGRATION_TEST_UTIL_H_
