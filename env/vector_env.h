@@ -1,0 +1,149 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_ENV_VECTOR_ENV_H_
+#define DCS_ENV_VECTOR_ENV_H_
+
+// N dynamic-context environment slots stepped as one batch, with struct-of-arrays buffers:
+// the shape actors and evaluation consume. Row i of every buffer belongs to slot i.
+//
+// Auto-reset, as Stable-Baselines3's vectorised environments do it: when slot i's episode ends
+// (terminated or truncated), its last observation and context go to final_observations() and
+// final_contexts() (needed to bootstrap the value of a time-limit cut) and the slot resets at
+// once, so observations() holds the next episode's first observation. Rows of slots that did
+// not finish leave their final_* rows unspecified.
+//
+// The batch counts environment steps (N per Step); multi-stage schedules switch stage by that
+// count (env/staged_schedule.h). Confined to one thread.
+
+#include <cstdint>
+#include <cstring>
+#include <span>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "env/dynamic_context_env.h"
+
+namespace dcs::env {
+
+template <typename Env>
+class VectorEnv {
+ public:
+  using Observation = typename Env::Observation;
+  using ActionElement = typename Env::ActionElement;
+  static constexpr int kObservationSize = Env::kObservationSize;
+  static constexpr int kActionSize = Env::kActionSize;
+
+  // One options per slot; every slot must observe the same number of context values.
+  // Errors as DynamicContextEnv::Create, naming the slot.
+  static absl::StatusOr<VectorEnv> Create(std::vector<DynamicContextOptions> slots);
+
+  int size() const { return static_cast<int>(slots_.size()); }
+  int context_size() const { return context_size_; }
+  int64_t global_steps() const { return global_steps_; }
+
+  // Starts an episode in every slot.
+  void Reset();
+
+  // One step of every slot; `actions` holds size() x kActionSize elements, row by row.
+  void Step(std::span<const ActionElement> actions);
+
+  std::span<const Observation> observations() const { return observations_; }
+  std::span<const float> contexts() const { return contexts_; }
+  std::span<const float> rewards() const { return rewards_; }
+  std::span<const uint8_t> terminated() const { return terminated_; }
+  std::span<const uint8_t> truncated() const { return truncated_; }
+  std::span<const Observation> final_observations() const { return final_observations_; }
+  std::span<const float> final_contexts() const { return final_contexts_; }
+
+  DynamicContextEnv<Env>& slot(int i) { return slots_[i]; }
+
+ private:
+  VectorEnv(std::vector<DynamicContextEnv<Env>> slots, int context_size)
+      : slots_(std::move(slots)),
+        context_size_(context_size),
+        observations_(slots_.size() * kObservationSize),
+        contexts_(slots_.size() * context_size),
+        rewards_(slots_.size()),
+        terminated_(slots_.size()),
+        truncated_(slots_.size()),
+        final_observations_(slots_.size() * kObservationSize),
+        final_contexts_(slots_.size() * context_size) {}
+
+  std::span<Observation, kObservationSize> ObservationRow(std::vector<Observation>& rows, int i) {
+    return std::span<Observation, kObservationSize>(rows.data() + i * kObservationSize,
+                                                    kObservationSize);
+  }
+  std::span<float> ContextRow(std::vector<float>& rows, int i) {
+    return std::span<float>(rows).subspan(i * context_size_, context_size_);
+  }
+
+  std::vector<DynamicContextEnv<Env>> slots_;
+  const int context_size_;
+  int64_t global_steps_ = 0;
+  std::vector<Observation> observations_;
+  std::vector<float> contexts_;
+  std::vector<float> rewards_;
+  std::vector<uint8_t> terminated_;
+  std::vector<uint8_t> truncated_;
+  std::vector<Observation> final_observations_;
+  std::vector<float> final_contexts_;
+};
+
+// Implementation details.
+
+template <typename Env>
+absl::StatusOr<VectorEnv<Env>> VectorEnv<Env>::Create(std::vector<DynamicContextOptions> slots) {
+  if (slots.empty()) return absl::InvalidArgumentError("a vector of environments needs a slot");
+  std::vector<DynamicContextEnv<Env>> envs;
+  envs.reserve(slots.size());
+  for (size_t i = 0; i < slots.size(); ++i) {
+    absl::StatusOr<DynamicContextEnv<Env>> env =
+        DynamicContextEnv<Env>::Create(std::move(slots[i]));
+    if (!env.ok()) {
+      return absl::InvalidArgumentError(absl::StrCat("slot ", i, ": ", env.status().message()));
+    }
+    envs.push_back(*std::move(env));
+  }
+  const int context_size = envs[0].context_size();
+  for (size_t i = 1; i < envs.size(); ++i) {
+    if (envs[i].context_size() != context_size) {
+      return absl::InvalidArgumentError(absl::StrCat(
+          "slot ", i, " observes ", envs[i].context_size(), " context values, slot 0 ",
+          context_size, ": every slot must observe the same"));
+    }
+  }
+  return VectorEnv(std::move(envs), context_size);
+}
+
+template <typename Env>
+void VectorEnv<Env>::Reset() {
+  for (int i = 0; i < size(); ++i) {
+    slots_[i].Reset(global_steps_, ObservationRow(observations_, i), ContextRow(contexts_, i));
+  }
+}
+
+template <typename Env>
+void VectorEnv<Env>::Step(std::span<const ActionElement> actions) {
+  for (int i = 0; i < size(); ++i) {
+    const std::span<Observation, kObservationSize> observation = ObservationRow(observations_, i);
+    const std::span<float> context = ContextRow(contexts_, i);
+    const StepResult result = slots_[i].Step(
+        std::span<const ActionElement, kActionSize>(actions.data() + i * kActionSize,
+                                                    kActionSize),
+        observation, context);
+    rewards_[i] = static_cast<float>(result.reward);
+    terminated_[i] = result.terminated;
+    truncated_[i] = result.truncated;
+    if (result.done()) {
+      std::memcpy(ObservationRow(final_observations_, i).data(), observation.data(),
+                  sizeof(Observation) * kObservationSize);
+      std::memcpy(ContextRow(final_contexts_, i).data(), context.data(),
+                  sizeof(float) * context_size_);
+      slots_[i].Reset(global_steps_ + size(), observation, context);
+    }
+  }
+  global_steps_ += size();
+}
+
+}  // namespace dcs::env
+
+#endif  // DCS_ENV_VECTOR_ENV_H_
