@@ -1,0 +1,233 @@
+// Copyright 2026 The DCS Authors.
+#include "services/env_commands.h"
+
+#include <array>
+#include <charconv>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+#include "common/atomic_file.h"
+#include "common/random.h"
+#include "common/status_macros.h"
+#include "coordinator/line_plot.h"
+#include "coordinator/schedule_preview.h"
+#include "coordinator/schedule_yaml.h"
+#include "env/cartpole.h"
+#include "services/command_line.h"
+#include "services/exit_codes.h"
+#include "services/text_table.h"
+
+namespace dcs::services {
+namespace {
+
+enum class TraceFormat { kTable, kCsv };
+
+struct TraceFlags {
+  std::string env = "cartpole";
+  std::vector<std::string> set;  // name=value
+  std::string init;               // x,x_dot,theta,theta_dot
+  uint64_t seed = 0;
+  std::string actions;  // comma-separated
+  TraceFormat format = TraceFormat::kTable;
+};
+
+struct PreviewFlags {
+  std::string spec;  // a YAML file, a family name, or "all"
+  std::string range = "0.35,0.75";
+  coordinator::PreviewOptions options;
+  std::string out;
+  std::string svg;
+};
+
+// Comma-separated numbers; INVALID_ARGUMENT naming `what` and the bad entry.
+absl::StatusOr<std::vector<double>> ParseNumbers(absl::string_view text, absl::string_view what) {
+  std::vector<double> numbers;
+  for (absl::string_view item : absl::StrSplit(text, ',')) {
+    double value = 0;
+    if (!absl::SimpleAtod(item, &value)) {
+      return absl::InvalidArgumentError(
+          absl::StrCat(what, ": '", item, "' is not a number (expected a,b,c,...)"));
+    }
+    numbers.push_back(value);
+  }
+  return numbers;
+}
+
+// Shortest text that reads back as the same double (the trace is compared bit for bit).
+std::string RoundTrip(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
+}
+
+absl::StatusOr<env::CartPole> CartPoleFromFlags(const TraceFlags& flags) {
+  const env::ContextSpace& space = env::CartPole::Features();
+  std::vector<double> context = space.Defaults();
+  for (const std::string& assignment : flags.set) {
+    const std::vector<std::string> parts = absl::StrSplit(assignment, absl::MaxSplits('=', 1));
+    double value = 0;
+    if (parts.size() != 2 || !absl::SimpleAtod(parts[1], &value)) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--set: expected name=value, got '", assignment, "'"));
+    }
+    DCS_ASSIGN_OR_RETURN(const int index, space.IndexOf(parts[0]));
+    context[index] = value;
+  }
+  DCS_RETURN_IF_ERROR(env::CartPole::ValidateContext(context));
+  env::CartPole cartpole;
+  for (int i = 0; i < space.size(); ++i) cartpole.SetFeature(i, context[i]);
+  return cartpole;
+}
+
+int RunTrace(const TraceFlags& flags) {
+  if (flags.env != "cartpole") {
+    return FailCommand(absl::InvalidArgumentError(
+        absl::StrCat("unknown environment '", flags.env, "' (known: cartpole)")));
+  }
+  absl::StatusOr<env::CartPole> cartpole = CartPoleFromFlags(flags);
+  if (!cartpole.ok()) return FailCommand(cartpole.status());
+  absl::StatusOr<std::vector<double>> actions = ParseNumbers(flags.actions, "--actions");
+  if (!actions.ok()) return FailCommand(actions.status());
+  for (double action : *actions) {
+    if (action != 0 && action != 1) {
+      return FailCommand(absl::InvalidArgumentError(
+          absl::StrCat("--actions: cartpole's actions are 0 (left) and 1 (right), got ",
+                       action)));
+    }
+  }
+  std::array<float, env::CartPole::kObservationSize> observation;
+  if (flags.init.empty()) {
+    Random random(flags.seed);  // Gymnasium's reset(seed=...)
+    cartpole->Reset(random, observation);
+  } else {
+    absl::StatusOr<std::vector<double>> init = ParseNumbers(flags.init, "--init");
+    if (!init.ok()) return FailCommand(init.status());
+    if (init->size() != 4) {
+      return FailCommand(absl::InvalidArgumentError(
+          absl::StrCat("--init: expected x,x_dot,theta,theta_dot, got ", init->size(),
+                       " values")));
+    }
+    cartpole->ResetTo({(*init)[0], (*init)[1], (*init)[2], (*init)[3]}, observation);
+  }
+
+  std::vector<std::vector<std::string>> rows = {
+      {"t", "action", "x", "x_dot", "theta", "theta_dot", "reward", "terminated", "truncated"}};
+  auto add_row = [&](int t, int action, const env::StepResult& result) {
+    const env::CartPoleState& s = cartpole->state();
+    rows.push_back({absl::StrCat(t), absl::StrCat(action), RoundTrip(s.x), RoundTrip(s.x_dot),
+                    RoundTrip(s.theta), RoundTrip(s.theta_dot), RoundTrip(result.reward),
+                    absl::StrCat(int{result.terminated}), absl::StrCat(int{result.truncated})});
+  };
+  add_row(0, -1, {});
+  for (size_t t = 0; t < actions->size(); ++t) {
+    const std::array<int32_t, 1> action = {static_cast<int32_t>((*actions)[t])};
+    add_row(static_cast<int>(t + 1), action[0], cartpole->Step(action, observation));
+  }
+  if (flags.format == TraceFormat::kCsv) {
+    for (const auto& row : rows) std::cout << absl::StrJoin(row, ",") << "\n";
+  } else {
+    std::cout << RenderTable(rows);
+  }
+  std::cout << std::flush;
+  return kExitOk;
+}
+
+absl::StatusOr<std::vector<coordinator::PreviewPanel>> PreviewPanels(const std::string& spec) {
+  if (!std::filesystem::exists(spec)) return coordinator::FamilyPreviewPanels(spec);
+  DCS_ASSIGN_OR_RETURN(const std::string text, ReadFile(spec));
+  DCS_ASSIGN_OR_RETURN(const std::vector<env::ScheduleConfig> configs,
+                       coordinator::ParseScheduleConfigsYaml(text, spec));
+  std::vector<coordinator::PreviewPanel> panels;
+  for (size_t i = 0; i < configs.size(); ++i) {
+    panels.push_back({.title = absl::StrCat(configs[i].family, configs.size() > 1 ? " #" : "",
+                                            configs.size() > 1 ? absl::StrCat(i + 1) : ""),
+                      .curves = {{.label = configs[i].family, .config = configs[i]}}});
+  }
+  return panels;
+}
+
+absl::Status Preview(PreviewFlags flags) {
+  DCS_ASSIGN_OR_RETURN(const std::vector<double> range, ParseNumbers(flags.range, "--range"));
+  if (range.size() != 2) {
+    return absl::InvalidArgumentError("--range: expected lo,hi (the training range)");
+  }
+  flags.options.lo = range[0];
+  flags.options.hi = range[1];
+  DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::PreviewPanel> panels,
+                       PreviewPanels(flags.spec));
+  DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::PreviewTrajectory> trajectories,
+                       coordinator::RunPreview(panels, flags.options));
+  DCS_RETURN_IF_ERROR(WriteFileAtomically(
+      flags.out, coordinator::PreviewCsv(panels, trajectories, flags.options)));
+  std::cerr << "wrote " << trajectories.size() << " trajectories to " << flags.out << std::endl;
+  if (!flags.svg.empty()) {
+    DCS_ASSIGN_OR_RETURN(
+        const std::string svg,
+        coordinator::RenderSvg(coordinator::PreviewFigure(panels, trajectories, flags.options)));
+    DCS_RETURN_IF_ERROR(WriteFileAtomically(flags.svg, svg));
+    std::cerr << "wrote the figure to " << flags.svg << std::endl;
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+std::vector<CliCommand> AddEnvCommands(CLI::App& dcs) {
+  CLI::App* env_group = dcs.add_subcommand("env", "Environments: debugging tools");
+  env_group->require_subcommand(1);
+  auto trace_flags = std::make_shared<TraceFlags>();
+  CLI::App* trace = env_group->add_subcommand(
+      "trace", "Print an environment's state after every step of an action sequence");
+  trace->add_option("--env", trace_flags->env, "the environment")->capture_default_str();
+  trace->add_option("--set", trace_flags->set,
+                    "a context feature's value, name=value (repeatable), e.g. length=1.3");
+  trace->add_option("--init", trace_flags->init,
+                    "the initial state x,x_dot,theta,theta_dot (default: a seeded reset)");
+  trace->add_option("--seed", trace_flags->seed, "the reset's seed, as Gymnasium's reset(seed)")
+      ->capture_default_str();
+  trace->add_option("--actions", trace_flags->actions, "the actions, e.g. 0,1,1,0")->required();
+  AddChoiceOption(*trace, "--format", &trace_flags->format,
+                  {{"table", TraceFormat::kTable}, {"csv", TraceFormat::kCsv}},
+                  "table, or csv with round-trip precision");
+
+  CLI::App* schedule_group = dcs.add_subcommand("schedule", "Schedules: previews");
+  schedule_group->require_subcommand(1);
+  auto preview_flags = std::make_shared<PreviewFlags>();
+  CLI::App* preview = schedule_group->add_subcommand(
+      "preview", "Write schedule trajectories over a few episodes as CSV (and an SVG figure)");
+  preview->add_option("--spec", preview_flags->spec,
+                      "a YAML file of schedule configs, a family name, or 'all'")
+      ->required();
+  preview->add_option("--range", preview_flags->range, "the training range lo,hi")
+      ->capture_default_str();
+  preview->add_option("--pool-size", preview_flags->options.pool_size,
+                      "episode-initial values: pool-N over the range")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
+  preview->add_option("--episodes", preview_flags->options.episodes, "episodes per schedule")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  preview->add_option("--steps", preview_flags->options.steps, "transitions per episode")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  preview->add_option("--seed", preview_flags->options.seed, "the preview's seed")
+      ->capture_default_str();
+  preview->add_option("--out", preview_flags->out, "the CSV file to write")->required();
+  preview->add_option("--svg", preview_flags->svg, "also draw the figure into this SVG file");
+
+  return {
+      {trace, [trace_flags] { return RunTrace(*trace_flags); }},
+      {preview,
+       [preview_flags] {
+         const absl::Status status = Preview(*preview_flags);
+         return status.ok() ? kExitOk : FailCommand(status);
+       }},
+  };
+}
+
+}  // namespace dcs::services
