@@ -1,12 +1,12 @@
 // Copyright 2026 The DCS Authors.
 #include "coordinator/schedule_preview.h"
 
-#include <charconv>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "common/random.h"
+#include "common/round_trip.h"
 #include "common/status_macros.h"
 #include "env/context_pool.h"
 #include "env/schedule.h"
@@ -69,13 +69,6 @@ std::vector<PreviewPanel> AllFamilyPanels() {
 
 double Normalized(double value, const PreviewOptions& options) {
   return 2 * (value - options.lo) / (options.hi - options.lo) - 1;
-}
-
-// Shortest text that reads back as the same double.
-std::string RoundTrip(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
 }
 
 }  // namespace

@@ -85,11 +85,9 @@ class ParamReader {
 
   // An interval U{lo..hi} in steps: whole numbers with 1 <= lo <= hi.
   absl::Status Interval(const std::string& name, StepRange fallback, StepRange* out) {
+    Allow(name);
     *out = fallback;
-    if (!Has(name)) {
-      Take(name);
-      return absl::OkStatus();
-    }
+    if (!Has(name)) return absl::OkStatus();
     double lo = 0;
     double hi = 0;
     DCS_RETURN_IF_ERROR(Pair(name, &lo, &hi));
@@ -155,10 +153,8 @@ class ParamReader {
 
   // An optional value within the schedule's bounds.
   absl::Status OptionalValue(const std::string& name, std::optional<double>* out) {
-    if (!Has(name)) {
-      Take(name);
-      return absl::OkStatus();
-    }
+    Allow(name);
+    if (!Has(name)) return absl::OkStatus();
     double value = 0;
     DCS_RETURN_IF_ERROR(Number(name, std::nullopt, min_, max_, &value));
     *out = value;

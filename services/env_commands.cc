@@ -2,7 +2,6 @@
 #include "services/env_commands.h"
 
 #include <array>
-#include <charconv>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -13,6 +12,7 @@
 #include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
 #include "common/random.h"
+#include "common/round_trip.h"
 #include "common/status_macros.h"
 #include "coordinator/line_plot.h"
 #include "coordinator/schedule_preview.h"
@@ -56,13 +56,6 @@ absl::StatusOr<std::vector<double>> ParseNumbers(absl::string_view text, absl::s
     numbers.push_back(value);
   }
   return numbers;
-}
-
-// Shortest text that reads back as the same double (the trace is compared bit for bit).
-std::string RoundTrip(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
 }
 
 absl::StatusOr<env::CartPole> CartPoleFromFlags(const TraceFlags& flags) {
@@ -144,9 +137,10 @@ absl::StatusOr<std::vector<coordinator::PreviewPanel>> PreviewPanels(const std::
                        coordinator::ParseScheduleConfigsYaml(text, spec));
   std::vector<coordinator::PreviewPanel> panels;
   for (size_t i = 0; i < configs.size(); ++i) {
-    panels.push_back({.title = absl::StrCat(configs[i].family, configs.size() > 1 ? " #" : "",
-                                            configs.size() > 1 ? absl::StrCat(i + 1) : ""),
-                      .curves = {{.label = configs[i].family, .config = configs[i]}}});
+    const std::string& family = configs[i].family;
+    panels.push_back(
+        {.title = configs.size() > 1 ? absl::StrCat(family, " #", i + 1) : family,
+         .curves = {{.label = family, .config = configs[i]}}});
   }
   return panels;
 }

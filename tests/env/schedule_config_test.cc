@@ -16,6 +16,7 @@
 #include "env/schedule_spec.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/env/schedule_test_config.h"
 
 namespace dcs::env {
 namespace {
@@ -25,14 +26,6 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-using Params = std::map<std::string, ScheduleParam>;
-
-ScheduleConfig Config(std::string family, Params params = {}) {
-  ScheduleConfig config;
-  config.family = std::move(family);
-  config.params = std::move(params);
-  return config;
-}
 
 // The parameters of a successfully parsed config, as family P.
 template <typename P>

@@ -25,6 +25,7 @@
 #include "env/schedule_spec.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/env/schedule_test_config.h"
 
 namespace dcs::env {
 namespace {
@@ -33,14 +34,6 @@ using ::testing::AllOf;
 using ::testing::Ge;
 using ::testing::Le;
 
-using Params = std::map<std::string, ScheduleParam>;
-
-ScheduleConfig Config(std::string family, Params params = {}) {
-  ScheduleConfig config;
-  config.family = std::move(family);
-  config.params = std::move(params);
-  return config;
-}
 
 ScheduleSpec Spec(const ScheduleConfig& config, double min_value, double max_value,
                   uint32_t seed = 7) {
