@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "absl/strings/str_cat.h"
 #include "common/status_macros.h"
@@ -100,6 +101,36 @@ StepResult CartPole::Step(std::span<const int32_t, kActionSize> action,
   result.truncated = ++elapsed_steps_ >= kMaxEpisodeSteps;
   WriteObservation(observation);
   return result;
+}
+
+void CartPole::Render(Canvas& canvas) const {
+  // Gymnasium draws with y up and flips the image; here y is down from the start.
+  constexpr double kScale = kRenderWidth / (2 * kXThreshold);  // 125 px per metre
+  constexpr double kCartY = kRenderHeight - 100.0;               // the track line
+  const double cart_x = state_.x * kScale + kRenderWidth / 2.0;
+  canvas.Clear({255, 255, 255});
+  canvas.FillRect(0, kCartY, kRenderWidth, kCartY + 1, {0, 0, 0});
+  canvas.FillRect(cart_x - 25, kCartY - 15, cart_x + 25, kCartY + 15, {0, 0, 0});
+
+  // The pole: 10 px wide, from 5 px below the axle to its tip, turned by theta (clockwise on
+  // screen for a positive angle, which leans the pole to the right).
+  const double pivot_y = kCartY - 7.5;
+  const double pole_length = kScale * 2 * features_[kLength];
+  const double c = std::cos(state_.theta);
+  const double s = std::sin(state_.theta);
+  auto turned = [&](double along, double across) {
+    return PixelPoint{cart_x + across * c + along * s, pivot_y + across * s - along * c};
+  };
+  const PixelPoint pole[] = {turned(-5, -5), turned(-5, 5), turned(pole_length - 5, 5),
+                             turned(pole_length - 5, -5)};
+  canvas.FillPolygon(pole, {202, 152, 101});
+
+  PixelPoint axle[16];
+  for (int i = 0; i < 16; ++i) {
+    const double angle = 2 * std::numbers::pi * i / 16;
+    axle[i] = {cart_x + 5 * std::cos(angle), pivot_y + 5 * std::sin(angle)};
+  }
+  canvas.FillPolygon(axle, {129, 132, 203});
 }
 
 void CartPole::WriteObservation(std::span<float, kObservationSize> observation) const {

@@ -25,6 +25,7 @@
 #include "absl/status/status.h"
 #include "common/random.h"
 #include "env/context_feature.h"
+#include "env/raster.h"
 #include "env/step_result.h"
 
 namespace dcs::env {
@@ -39,6 +40,7 @@ struct CartPoleState {
 class CartPole final {
  public:
   // The shape every DCS environment declares (env/dynamic_context_env.h uses it).
+  static constexpr absl::string_view kName = "cartpole";
   using Observation = float;
   using ActionElement = int32_t;  // 0 pushes left, 1 pushes right
   static constexpr int kObservationSize = 4;
@@ -86,6 +88,13 @@ class CartPole final {
                   std::span<float, kObservationSize> observation);
 
   const CartPoleState& state() const { return state_; }
+
+  // Draws the scene as Gymnasium's render does (spec/envs.md §1.5): a 600x400 frame, 125 px
+  // per metre, the cart in black on its track, the pole in brown and the axle in lilac.
+  static constexpr int kRenderWidth = 600;
+  static constexpr int kRenderHeight = 400;
+  // REQUIRES: canvas is kRenderWidth x kRenderHeight.
+  void Render(Canvas& canvas) const;
 
  private:
   void WriteObservation(std::span<float, kObservationSize> observation) const;

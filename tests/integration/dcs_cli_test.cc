@@ -12,6 +12,8 @@
 #include <google/protobuf/util/json_util.h>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/str_split.h"
 #include "absl/time/clock.h"
 #include "common/atomic_file.h"
 #include "dcs/v1/coordinator_service.pb.h"
@@ -171,6 +173,48 @@ TEST(DcsCliTest, EveryCommandHasHelp) {
     EXPECT_EQ(help.exit_code, 0) << command;
     EXPECT_THAT(help.output, HasSubstr(absl::StrCat("dcs ", command))) << help.output;
   }
+}
+
+TEST(DcsCliTest, RolloutPrintsTheReturnStatisticsOfABaselinePolicy) {
+  const RunResult rollout =
+      Dcs({"env", "rollout", "--env", "cartpole", "--episodes", "20", "--seed", "3"});
+  ASSERT_EQ(rollout.exit_code, 0) << rollout.output;
+  // A random CartPole policy lasts about 22 steps (Gymnasium's figure); one row of statistics.
+  const std::vector<std::string> lines = Lines(rollout.output);
+  ASSERT_THAT(lines, SizeIs(2)) << rollout.output;
+  std::vector<std::string> cells = absl::StrSplit(lines[1], ' ', absl::SkipEmpty());
+  ASSERT_THAT(cells, SizeIs(7)) << lines[1];
+  EXPECT_EQ(cells[0], "cartpole");
+  EXPECT_EQ(cells[2], "20");
+  const double mean = std::stod(cells[3]);
+  EXPECT_GT(mean, 12);
+  EXPECT_LT(mean, 40);
+  // The same seed gives the same episodes.
+  EXPECT_EQ(Dcs({"env", "rollout", "--env", "cartpole", "--episodes", "20", "--seed", "3"}).output,
+            rollout.output);
+
+  const RunResult unknown = Dcs({"env", "rollout", "--env", "cartpole", "--policy", "smart"});
+  EXPECT_EQ(unknown.exit_code, services::kExitDataError);
+  EXPECT_THAT(unknown.output, HasSubstr("no baseline policy 'smart'"));
+}
+
+TEST(DcsCliTest, RenderWritesOnePngFramePerStep) {
+  const std::string dir = MakeTempDir();
+  const RunResult render = Dcs({"env", "render", "--env", "cartpole", "--steps", "5", "--seed",
+                                "1", "--set", "length=1.0", "--out", dir});
+  ASSERT_EQ(render.exit_code, 0) << render.output;
+  // Frames of the reset and of each step (a random episode lasts longer than 5 steps).
+  for (int frame = 0; frame <= 5; ++frame) {
+    const std::string path = absl::StrFormat("%s/frame_%05d.png", dir, frame);
+    const std::string bytes = ReadFile(path).value_or("");
+    ASSERT_GT(bytes.size(), 8u) << path;
+    EXPECT_EQ(bytes.substr(1, 3), "PNG") << path;
+  }
+  EXPECT_FALSE(std::filesystem::exists(absl::StrFormat("%s/frame_%05d.png", dir, 6)));
+  const RunResult bad = Dcs({"env", "render", "--env", "cartpole", "--set", "length=99",
+                             "--out", dir});
+  EXPECT_EQ(bad.exit_code, services::kExitDataError);
+  EXPECT_THAT(bad.output, HasSubstr("length"));
 }
 
 TEST(DcsCliTest, VersionListsTheLinkedLibraries) {
