@@ -1,0 +1,143 @@
+// Copyright 2026 The DCS Authors.
+#include "learner/actor_critic.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace dcs::learner {
+namespace {
+
+// SB3's init_weights: orthogonal weights with `gain`, zero biases, for Linear and Conv2d.
+void InitWeights(torch::nn::Module& module, double gain) {
+  torch::NoGradGuard no_grad;
+  for (auto& child : module.modules(/*include_self=*/true)) {
+    if (auto* linear = child->as<torch::nn::Linear>()) {
+      torch::nn::init::orthogonal_(linear->weight, gain);
+      linear->bias.zero_();
+    } else if (auto* conv = child->as<torch::nn::Conv2d>()) {
+      torch::nn::init::orthogonal_(conv->weight, gain);
+      conv->bias.zero_();
+    }
+  }
+}
+
+// Linear -> tanh for each width.
+torch::nn::Sequential TanhMlp(int inputs, const std::vector<int>& widths) {
+  torch::nn::Sequential mlp;
+  for (int width : widths) {
+    mlp->push_back(torch::nn::Linear(inputs, width));
+    mlp->push_back(torch::nn::Tanh());
+    inputs = width;
+  }
+  return mlp;
+}
+
+int OutputsOf(const std::vector<int>& widths, int inputs) {
+  return widths.empty() ? inputs : widths.back();
+}
+
+}  // namespace
+
+ActorCriticImpl::ActorCriticImpl(const PolicySpec& spec, const PpoConfig& config)
+    : spec_(spec) {
+  const double sqrt2 = std::numbers::sqrt2;
+  int features = spec.flat_input_size();
+  if (spec.has_image()) {
+    // NatureCNN: 8x8/4, 4x4/2, 3x3/1 convolutions with ReLU, then Linear -> ReLU.
+    cnn_ = torch::nn::Sequential(
+        torch::nn::Conv2d(torch::nn::Conv2dOptions(spec.image_channels, 32, 8).stride(4)),
+        torch::nn::ReLU(),
+        torch::nn::Conv2d(torch::nn::Conv2dOptions(32, 64, 4).stride(2)), torch::nn::ReLU(),
+        torch::nn::Conv2d(torch::nn::Conv2dOptions(64, 64, 3).stride(1)), torch::nn::ReLU(),
+        torch::nn::Flatten());
+    torch::NoGradGuard no_grad;
+    const int64_t flattened =
+        cnn_->forward(torch::zeros({1, spec.image_channels, spec.image_height, spec.image_width}))
+            .size(1);
+    cnn_->push_back(torch::nn::Linear(flattened, config.cnn_features));
+    cnn_->push_back(torch::nn::ReLU());
+    register_module("cnn", cnn_);
+    InitWeights(*cnn_, sqrt2);
+    features = config.cnn_features + spec.context_size;
+  }
+  pi_ = register_module("pi", TanhMlp(features, config.pi_layers));
+  vf_ = register_module("vf", TanhMlp(features, config.vf_layers));
+  InitWeights(*pi_, sqrt2);
+  InitWeights(*vf_, sqrt2);
+  const int action_outputs = spec.discrete() ? spec.num_actions : spec.action_size;
+  action_net_ = register_module(
+      "action_net", torch::nn::Linear(OutputsOf(config.pi_layers, features), action_outputs));
+  value_net_ =
+      register_module("value_net", torch::nn::Linear(OutputsOf(config.vf_layers, features), 1));
+  InitWeights(*action_net_, 0.01);
+  InitWeights(*value_net_, 1.0);
+  if (!spec.discrete()) {
+    log_std_ = register_parameter(
+        "log_std", torch::full({spec.action_size}, config.log_std_init, torch::kFloat32));
+  }
+}
+
+torch::Tensor ActorCriticImpl::Features(const ObservationBatch& batch) {
+  if (!spec_.has_image()) return batch.flat;
+  torch::Tensor image_features = cnn_->forward(batch.images);
+  if (spec_.context_size == 0) return image_features;
+  return torch::cat({image_features, batch.flat}, 1);
+}
+
+torch::Tensor ActorCriticImpl::ActionHead(const ObservationBatch& batch) {
+  return action_net_->forward(pi_->forward(Features(batch)));
+}
+
+torch::Tensor ActorCriticImpl::Value(const ObservationBatch& batch) {
+  return value_net_->forward(vf_->forward(Features(batch))).squeeze(1);
+}
+
+ActorCriticImpl::Evaluation ActorCriticImpl::EvaluateActions(const ObservationBatch& batch,
+                                                             const torch::Tensor& actions) {
+  const torch::Tensor features = Features(batch);
+  const torch::Tensor head = action_net_->forward(pi_->forward(features));
+  Evaluation evaluation;
+  evaluation.values = value_net_->forward(vf_->forward(features)).squeeze(1);
+  if (spec_.discrete()) {
+    // torch.distributions.Categorical(logits): normalised by logsumexp.
+    const torch::Tensor log_p = torch::log_softmax(head, 1);
+    evaluation.log_probs = log_p.gather(1, actions.to(torch::kLong)).squeeze(1);
+    evaluation.entropy = -(log_p.exp() * log_p).sum(1);
+  } else {
+    // A diagonal Gaussian, summed over action dimensions.
+    static const double kHalfLog2Pi = 0.5 * std::log(2 * std::numbers::pi);
+    const torch::Tensor z = (actions - head) * torch::exp(-log_std_);
+    evaluation.log_probs = (-0.5 * z * z - log_std_ - kHalfLog2Pi).sum(1);
+    evaluation.entropy = (0.5 + kHalfLog2Pi + log_std_).sum().expand({head.size(0)});
+  }
+  return evaluation;
+}
+
+actor::MlpWeights ActorCriticImpl::ExportActor() const {
+  actor::MlpWeights weights;
+  weights.num_actions = spec_.num_actions;
+  auto add = [&weights](const torch::nn::Linear& linear, bool tanh) {
+    const torch::Tensor w = linear->weight.detach().contiguous();
+    const torch::Tensor b = linear->bias.detach().contiguous();
+    weights.layers.push_back({.inputs = static_cast<int>(w.size(1)),
+                              .outputs = static_cast<int>(w.size(0)),
+                              .weight = std::vector<float>(w.data_ptr<float>(),
+                                                           w.data_ptr<float>() + w.numel()),
+                              .bias = std::vector<float>(b.data_ptr<float>(),
+                                                         b.data_ptr<float>() + b.numel()),
+                              .tanh = tanh});
+  };
+  for (const auto& child : pi_->children()) {
+    if (auto linear = std::dynamic_pointer_cast<torch::nn::LinearImpl>(child)) {
+      add(torch::nn::Linear(linear), true);
+    }
+  }
+  add(action_net_, false);
+  if (!spec_.discrete()) {
+    const torch::Tensor s = log_std_.detach().contiguous();
+    weights.log_std.assign(s.data_ptr<float>(), s.data_ptr<float>() + s.numel());
+  }
+  return weights;
+}
+
+}  // namespace dcs::learner

@@ -1,0 +1,71 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_LEARNER_ACTOR_CRITIC_H_
+#define DCS_LEARNER_ACTOR_CRITIC_H_
+
+// Stable-Baselines3's ActorCriticPolicy in libtorch (spec/ppo.md §3): separate policy and
+// value MLPs with tanh (default [64, 64] each) on the features, a linear action head
+// (categorical logits, or a Gaussian mean with a state-independent log-std) and a linear
+// value head; orthogonal initialisation with SB3's gains (sqrt 2 for the feature extractor
+// and the MLPs, 0.01 for the action head, 1 for the value head) and zero biases.
+// Features: the flat observation and context as they are; or, for an image observation,
+// SB3's CombinedExtractor: NatureCNN (256 features) on the image / 255, then the context
+// appended.
+//
+// Internal to learner/: only learner translation units include libtorch headers.
+// Confined to one thread (libtorch is pinned to one thread per run).
+
+#include <torch/torch.h>
+
+#include <vector>
+
+#include "actor/mlp_policy.h"
+#include "learner/ppo_config.h"
+
+namespace dcs::learner {
+
+// A batch of observations as tensors: `flat` [B, flat_input_size] float; `images`
+// [B, channels, height, width] float in [0, 1] (undefined without an image).
+struct ObservationBatch {
+  torch::Tensor flat;
+  torch::Tensor images;
+};
+
+class ActorCriticImpl : public torch::nn::Module {
+ public:
+  // REQUIRES: spec and config valid. Initialises from torch's global generator (seed it first).
+  ActorCriticImpl(const PolicySpec& spec, const PpoConfig& config);
+
+  // The action head's output: logits [B, num_actions] or the Gaussian mean [B, action_size].
+  torch::Tensor ActionHead(const ObservationBatch& batch);
+  // V(s) [B].
+  torch::Tensor Value(const ObservationBatch& batch);
+
+  struct Evaluation {
+    torch::Tensor values;     // [B]
+    torch::Tensor log_probs;  // [B], summed over action dimensions
+    torch::Tensor entropy;    // [B]
+  };
+  // SB3's evaluate_actions: `actions` [B, action_size] (discrete: the index as float).
+  Evaluation EvaluateActions(const ObservationBatch& batch, const torch::Tensor& actions);
+
+  // The actor half for Eigen inference on actors. REQUIRES: no image observation.
+  actor::MlpWeights ExportActor() const;
+
+  const torch::Tensor& log_std() const { return log_std_; }
+
+ private:
+  torch::Tensor Features(const ObservationBatch& batch);
+
+  const PolicySpec spec_;
+  torch::nn::Sequential cnn_{nullptr};  // NatureCNN, image observations only
+  torch::nn::Sequential pi_;
+  torch::nn::Sequential vf_;
+  torch::nn::Linear action_net_{nullptr};
+  torch::nn::Linear value_net_{nullptr};
+  torch::Tensor log_std_;  // continuous actions only
+};
+TORCH_MODULE(ActorCritic);
+
+}  // namespace dcs::learner
+
+#endif  // DCS_LEARNER_ACTOR_CRITIC_H_

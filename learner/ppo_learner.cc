@@ -1,0 +1,339 @@
+// Copyright 2026 The DCS Authors.
+#include "learner/ppo_learner.h"
+
+#include <torch/torch.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "common/random.h"
+#include "common/status_macros.h"
+#include "learner/actor_critic.h"
+#include "learner/gae.h"
+
+namespace dcs::learner {
+namespace {
+
+// A tensor viewing `values` (not copied: it lives only as long as `values`).
+template <typename T>
+torch::Tensor View(const std::vector<T>& values, std::vector<int64_t> shape,
+                   torch::ScalarType type) {
+  return torch::from_blob(const_cast<T*>(values.data()), shape, type);
+}
+
+absl::Status CheckSize(size_t actual, size_t expected, absl::string_view what) {
+  if (actual == expected) return absl::OkStatus();
+  return absl::InvalidArgumentError(
+      absl::StrCat("rollout: ", what, " has ", actual, " values, expected ", expected));
+}
+
+absl::Status CheckFinite(const std::vector<float>& values, int per_transition, int num_envs,
+                         absl::string_view what) {
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      const size_t transition = i / per_transition;
+      return absl::InvalidArgumentError(absl::StrCat("rollout: ", what, " of step ",
+                                                     transition / num_envs, ", slot ",
+                                                     transition % num_envs, " is ", values[i]));
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+struct PpoLearner::Impl {
+  PolicySpec spec;
+  PpoConfig config;
+  int n_envs = 1;
+  uint64_t seed = 0;
+  ActorCritic network{nullptr};
+  std::unique_ptr<torch::optim::Adam> optimizer;
+  int64_t updates = 0;
+
+  // The observations of `count` transitions as tensors.
+  ObservationBatch Batch(const std::vector<float>& inputs, const std::vector<uint8_t>& images,
+                         int64_t count) const {
+    ObservationBatch batch;
+    batch.flat = View(inputs, {count, spec.flat_input_size()}, torch::kFloat32);
+    if (spec.has_image()) {
+      // Channel-last bytes to channel-first floats in [0, 1] (SB3's VecTransposeImage, / 255).
+      batch.images = View(images, {count, spec.image_height, spec.image_width,
+                                   spec.image_channels},
+                          torch::kUInt8)
+                         .permute({0, 3, 1, 2})
+                         .to(torch::kFloat32)
+                         .div(255.0);
+    }
+    return batch;
+  }
+
+  absl::Status Validate(const Rollout& r) const {
+    if (r.num_envs != n_envs || r.num_steps < 1) {
+      return absl::InvalidArgumentError(absl::StrCat("rollout: ", r.num_steps, " steps of ",
+                                                     r.num_envs, " slots, expected ", n_envs,
+                                                     " slots"));
+    }
+    const size_t n = static_cast<size_t>(r.num_steps) * r.num_envs;
+    const size_t image = static_cast<size_t>(spec.image_height) * spec.image_width *
+                         spec.image_channels;
+    DCS_RETURN_IF_ERROR(CheckSize(r.inputs.size(), n * spec.flat_input_size(), "inputs"));
+    DCS_RETURN_IF_ERROR(CheckSize(r.images.size(), n * image, "images"));
+    DCS_RETURN_IF_ERROR(CheckSize(r.actions.size(), n * spec.action_size, "actions"));
+    DCS_RETURN_IF_ERROR(CheckSize(r.rewards.size(), n, "rewards"));
+    DCS_RETURN_IF_ERROR(CheckSize(r.episode_starts.size(), n, "episode starts"));
+    DCS_RETURN_IF_ERROR(
+        CheckSize(r.last_inputs.size(), static_cast<size_t>(n_envs) * spec.flat_input_size(),
+                  "last inputs"));
+    DCS_RETURN_IF_ERROR(
+        CheckSize(r.last_images.size(), static_cast<size_t>(n_envs) * image, "last images"));
+    DCS_RETURN_IF_ERROR(CheckSize(r.last_dones.size(), n_envs, "last dones"));
+    for (const Rollout::Truncation& cut : r.truncations) {
+      if (cut.step < 0 || cut.step >= r.num_steps || cut.env < 0 || cut.env >= n_envs) {
+        return absl::InvalidArgumentError(absl::StrCat("rollout: a truncation at step ",
+                                                       cut.step, ", slot ", cut.env,
+                                                       " is outside the rollout"));
+      }
+      DCS_RETURN_IF_ERROR(
+          CheckSize(cut.input.size(), spec.flat_input_size(), "a truncation's input"));
+      DCS_RETURN_IF_ERROR(CheckSize(cut.image.size(), image, "a truncation's image"));
+      DCS_RETURN_IF_ERROR(CheckFinite(cut.input, spec.flat_input_size(), 1,
+                                      "a truncation's final observation"));
+    }
+    if (spec.flat_input_size() > 0) {
+      DCS_RETURN_IF_ERROR(CheckFinite(r.inputs, spec.flat_input_size(), n_envs, "observation"));
+      DCS_RETURN_IF_ERROR(
+          CheckFinite(r.last_inputs, spec.flat_input_size(), 1, "last observation"));
+    }
+    DCS_RETURN_IF_ERROR(CheckFinite(r.actions, spec.action_size, n_envs, "action"));
+    return CheckFinite(r.rewards, 1, n_envs, "reward");
+  }
+
+  absl::StatusOr<UpdateStats> Update(const Rollout& r);
+};
+
+absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const Rollout& r) {
+  const int64_t n = static_cast<int64_t>(r.num_steps) * r.num_envs;
+  const ObservationBatch all = Batch(r.inputs, r.images, n);
+  const torch::Tensor actions = View(r.actions, {n, spec.action_size}, torch::kFloat32);
+  const auto gamma = static_cast<float>(config.gamma);
+
+  // Values and log-probabilities at collection time (the policy has not changed since).
+  torch::Tensor old_values;
+  torch::Tensor old_log_probs;
+  std::vector<float> rewards = r.rewards;
+  std::vector<float> last_values(r.num_envs);
+  {
+    torch::NoGradGuard no_grad;
+    ActorCriticImpl::Evaluation evaluation = network->EvaluateActions(all, actions);
+    old_values = evaluation.values.contiguous();
+    old_log_probs = evaluation.log_probs.contiguous();
+    // A time-limit cut continues in expectation: r += gamma * V(final observation).
+    for (const Rollout::Truncation& cut : r.truncations) {
+      const float value = network->Value(Batch(cut.input, cut.image, 1)).item<float>();
+      rewards[static_cast<size_t>(cut.step) * r.num_envs + cut.env] += gamma * value;
+    }
+    const torch::Tensor last = network->Value(Batch(r.last_inputs, r.last_images, r.num_envs));
+    std::copy(last.data_ptr<float>(), last.data_ptr<float>() + r.num_envs, last_values.begin());
+  }
+
+  std::vector<float> values(old_values.data_ptr<float>(), old_values.data_ptr<float>() + n);
+  std::vector<float> advantages(n);
+  std::vector<float> returns(n);
+  ComputeGae({r.num_steps, r.num_envs, rewards, values, r.episode_starts, last_values,
+              r.last_dones},
+             gamma, static_cast<float>(config.gae_lambda), advantages, returns);
+  const torch::Tensor advantage_tensor = View(advantages, {n}, torch::kFloat32);
+  const torch::Tensor return_tensor = View(returns, {n}, torch::kFloat32);
+
+  UpdateStats stats;
+  double policy_loss_sum = 0;
+  double value_loss_sum = 0;
+  double entropy_loss_sum = 0;
+  double clip_fraction_sum = 0;
+  double approx_kl_sum = 0;
+  int minibatches = 0;
+  std::vector<int64_t> order(n);
+  const auto parameters = network->parameters();
+  for (int epoch = 0; epoch < config.n_epochs && !stats.stopped_early; ++epoch) {
+    // A fresh permutation each epoch (Fisher-Yates), from a stream of (update, epoch).
+    std::iota(order.begin(), order.end(), 0);
+    Random random(StreamSeed(seed, "minibatch", {static_cast<uint64_t>(updates),
+                                                 static_cast<uint64_t>(epoch)}));
+    for (int64_t i = n - 1; i > 0; --i) std::swap(order[i], order[random.Integers(0, i + 1)]);
+
+    for (int64_t start = 0; start < n; start += config.batch_size) {
+      const int64_t size = std::min<int64_t>(config.batch_size, n - start);
+      const torch::Tensor index =
+          torch::from_blob(order.data() + start, {size}, torch::kLong);
+      ObservationBatch batch{.flat = all.flat.index_select(0, index)};
+      if (spec.has_image()) batch.images = all.images.index_select(0, index);
+      ActorCriticImpl::Evaluation evaluation =
+          network->EvaluateActions(batch, actions.index_select(0, index));
+
+      torch::Tensor advantage = advantage_tensor.index_select(0, index);
+      if (config.normalize_advantage && size > 1) {
+        advantage = (advantage - advantage.mean()) / (advantage.std() + 1e-8);
+      }
+      const torch::Tensor ratio =
+          torch::exp(evaluation.log_probs - old_log_probs.index_select(0, index));
+      const auto clip = config.clip_range;
+      const torch::Tensor policy_loss =
+          -torch::min(advantage * ratio, advantage * torch::clamp(ratio, 1 - clip, 1 + clip))
+               .mean();
+      torch::Tensor predicted = evaluation.values;
+      if (config.clip_range_vf.has_value()) {
+        const torch::Tensor old = old_values.index_select(0, index);
+        predicted = old + torch::clamp(evaluation.values - old, -*config.clip_range_vf,
+                                       *config.clip_range_vf);
+      }
+      const torch::Tensor value_loss =
+          torch::mse_loss(predicted, return_tensor.index_select(0, index));
+      const torch::Tensor entropy_loss = -evaluation.entropy.mean();
+      const torch::Tensor loss =
+          policy_loss + config.ent_coef * entropy_loss + config.vf_coef * value_loss;
+
+      double approx_kl;
+      {
+        torch::NoGradGuard no_grad;
+        approx_kl = ((ratio - 1) - torch::log(ratio)).mean().item<double>();
+        clip_fraction_sum += ((ratio - 1).abs() > clip).to(torch::kFloat32).mean().item<double>();
+      }
+      policy_loss_sum += policy_loss.item<double>();
+      value_loss_sum += value_loss.item<double>();
+      entropy_loss_sum += entropy_loss.item<double>();
+      approx_kl_sum += approx_kl;
+      ++minibatches;
+      stats.loss = loss.item<double>();
+      if (config.target_kl.has_value() && approx_kl > 1.5 * *config.target_kl) {
+        stats.stopped_early = true;  // before this minibatch's step, as SB3
+        break;
+      }
+      if (!std::isfinite(stats.loss)) {
+        return absl::InternalError(absl::StrCat("the loss became ", stats.loss, " in update ",
+                                                updates, ", epoch ", epoch,
+                                                "; the minibatch was not applied"));
+      }
+      optimizer->zero_grad();
+      loss.backward();
+      torch::nn::utils::clip_grad_norm_(parameters, config.max_grad_norm);
+      optimizer->step();
+      ++stats.gradient_steps;
+    }
+  }
+  ++updates;
+
+  stats.policy_loss = policy_loss_sum / minibatches;
+  stats.value_loss = value_loss_sum / minibatches;
+  stats.entropy_loss = entropy_loss_sum / minibatches;
+  stats.clip_fraction = clip_fraction_sum / minibatches;
+  stats.approx_kl = approx_kl_sum / minibatches;
+  // 1 - Var(returns - values) / Var(returns), NaN when the returns do not vary (as SB3).
+  const torch::Tensor residual = return_tensor - old_values;
+  const double return_variance = return_tensor.var(/*unbiased=*/false).item<double>();
+  stats.explained_variance =
+      return_variance == 0 ? std::nan("")
+                           : 1 - residual.var(/*unbiased=*/false).item<double>() / return_variance;
+  if (!spec.discrete()) stats.std = torch::exp(network->log_std()).mean().item<double>();
+  return stats;
+}
+
+PpoLearner::PpoLearner(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+PpoLearner::~PpoLearner() = default;
+
+absl::StatusOr<std::unique_ptr<PpoLearner>> PpoLearner::Create(const PolicySpec& spec,
+                                                               const PpoConfig& config,
+                                                               int n_envs, uint64_t seed) {
+  DCS_RETURN_IF_ERROR(ValidatePolicySpec(spec));
+  DCS_RETURN_IF_ERROR(ValidatePpoConfig(config, n_envs));
+  auto impl = std::make_unique<Impl>();
+  impl->spec = spec;
+  impl->config = config;
+  impl->n_envs = n_envs;
+  impl->seed = seed;
+  try {
+    // Initial weights are the only draws from libtorch's own generator.
+    torch::manual_seed(StreamSeed(seed, "init").GenerateState64(1)[0]);
+    impl->network = ActorCritic(spec, config);
+    impl->optimizer = std::make_unique<torch::optim::Adam>(
+        impl->network->parameters(),
+        torch::optim::AdamOptions(config.learning_rate).eps(config.adam_eps));
+  } catch (const c10::Error& e) {
+    return absl::InternalError(absl::StrCat("cannot build the policy network: ",
+                                            e.what_without_backtrace()));
+  }
+  return std::unique_ptr<PpoLearner>(new PpoLearner(std::move(impl)));
+}
+
+absl::StatusOr<UpdateStats> PpoLearner::Update(const Rollout& rollout) {
+  DCS_RETURN_IF_ERROR(impl_->Validate(rollout));
+  try {
+    return impl_->Update(rollout);
+  } catch (const c10::Error& e) {
+    return absl::InternalError(absl::StrCat("PPO update failed: ", e.what_without_backtrace()));
+  }
+}
+
+int64_t PpoLearner::updates() const { return impl_->updates; }
+
+actor::MlpWeights PpoLearner::ActorWeights() const { return impl_->network->ExportActor(); }
+
+std::vector<float> PpoLearner::Parameters() const {
+  std::vector<float> flat;
+  for (const torch::Tensor& parameter : impl_->network->parameters()) {
+    const torch::Tensor p = parameter.detach().contiguous();
+    flat.insert(flat.end(), p.data_ptr<float>(), p.data_ptr<float>() + p.numel());
+  }
+  return flat;
+}
+
+absl::StatusOr<std::string> PpoLearner::SaveState() const {
+  try {
+    torch::serialize::OutputArchive archive;
+    impl_->network->save(archive);
+    torch::serialize::OutputArchive optimizer;
+    impl_->optimizer->save(optimizer);
+    archive.write("optimizer", optimizer);
+    archive.write("updates", torch::tensor(impl_->updates));
+    archive.write("seed", torch::tensor(static_cast<int64_t>(impl_->seed)));
+    std::ostringstream bytes;
+    archive.save_to(bytes);
+    return bytes.str();
+  } catch (const c10::Error& e) {
+    return absl::InternalError(absl::StrCat("cannot save the learner: ",
+                                            e.what_without_backtrace()));
+  }
+}
+
+absl::Status PpoLearner::LoadState(absl::string_view bytes) {
+  try {
+    std::istringstream stream{std::string(bytes)};
+    torch::serialize::InputArchive archive;
+    archive.load_from(stream);
+    torch::Tensor seed;
+    archive.read("seed", seed);
+    if (static_cast<uint64_t>(seed.item<int64_t>()) != impl_->seed) {
+      // The minibatch streams derive from the seed: another run's state would diverge.
+      return absl::FailedPreconditionError(
+          absl::StrCat("the learner state is of seed ", seed.item<int64_t>(),
+                       ", this learner's seed is ", impl_->seed));
+    }
+    impl_->network->load(archive);
+    torch::serialize::InputArchive optimizer;
+    archive.read("optimizer", optimizer);
+    impl_->optimizer->load(optimizer);
+    torch::Tensor updates;
+    archive.read("updates", updates);
+    impl_->updates = updates.item<int64_t>();
+  } catch (const std::exception& e) {
+    // libtorch throws c10::Error, and std::runtime_error for some malformed archives.
+    return absl::DataLossError(absl::StrCat("the learner state does not load: ", e.what()));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace dcs::learner

@@ -1,0 +1,81 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_LEARNER_PPO_LEARNER_H_
+#define DCS_LEARNER_PPO_LEARNER_H_
+
+// PPO as Stable-Baselines3 implements it (spec/ppo.md), in libtorch behind a torch-free
+// interface: Update() takes one rollout, computes values and log-probabilities of the
+// collected actions, bootstraps time-limit cuts, runs GAE, then n_epochs of minibatch updates
+// (advantages normalised per minibatch, clipped surrogate, unclipped MSE value loss, entropy
+// bonus, global gradient-norm clipping, Adam with eps 1e-5).
+//
+// Deterministic: initial weights come from StreamSeed(seed, "init") and minibatch orders from
+// StreamSeed(seed, "minibatch", {update, epoch}); with libtorch pinned to one thread
+// (learner/torch_runtime.h) the same seed and rollouts give the same weights bit for bit.
+// Confined to one thread.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "actor/mlp_policy.h"
+#include "learner/ppo_config.h"
+#include "learner/rollout.h"
+
+namespace dcs::learner {
+
+// Means over every minibatch of the update, as SB3 logs them.
+struct UpdateStats {
+  double policy_loss = 0;
+  double value_loss = 0;
+  double entropy_loss = 0;
+  double approx_kl = 0;
+  double clip_fraction = 0;
+  double loss = 0;  // of the last minibatch, as SB3 logs it
+  double explained_variance = 0;
+  double std = 0;  // mean of exp(log_std); 0 for discrete policies
+  int gradient_steps = 0;
+  bool stopped_early = false;  // target_kl reached
+};
+
+class PpoLearner {
+ public:
+  // INVALID_ARGUMENT for an invalid spec or config.
+  static absl::StatusOr<std::unique_ptr<PpoLearner>> Create(const PolicySpec& spec,
+                                                           const PpoConfig& config, int n_envs,
+                                                           uint64_t seed);
+  ~PpoLearner();
+  PpoLearner(const PpoLearner&) = delete;
+  PpoLearner& operator=(const PpoLearner&) = delete;
+
+  // Learns from one rollout. INVALID_ARGUMENT if its shapes do not fit the spec, config and
+  // n_envs, or an input or reward is not finite (naming the step and slot): the weights are
+  // untouched. INTERNAL if the loss becomes non-finite; that minibatch is not applied.
+  absl::StatusOr<UpdateStats> Update(const Rollout& rollout);
+
+  // The number of updates so far: the policy version.
+  int64_t updates() const;
+
+  // The actor network, for Eigen inference. REQUIRES: no image observation.
+  actor::MlpWeights ActorWeights() const;
+
+  // Every parameter, flattened in a fixed order (tests compare runs with it).
+  std::vector<float> Parameters() const;
+
+  // Weights, optimiser state, the update count and the seed, as bytes; and back. Load:
+  // DATA_LOSS if the bytes are corrupt or hold a different network; FAILED_PRECONDITION if they
+  // come from a learner with another seed (its minibatch orders would differ).
+  absl::StatusOr<std::string> SaveState() const;
+  absl::Status LoadState(absl::string_view bytes);
+
+ private:
+  struct Impl;
+  explicit PpoLearner(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dcs::learner
+
+#endif  // DCS_LEARNER_PPO_LEARNER_H_

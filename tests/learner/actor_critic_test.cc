@@ -1,0 +1,126 @@
+// Copyright 2026 The DCS Authors.
+#include "learner/actor_critic.h"
+
+#include <torch/torch.h>
+
+#include <cmath>
+#include <vector>
+
+#include "actor/mlp_policy.h"
+#include "common/random.h"
+#include "gtest/gtest.h"
+
+namespace dcs::learner {
+namespace {
+
+PolicySpec CartPoleSpec() {
+  return {.observation_size = 4, .context_size = 1, .num_actions = 2, .action_size = 1};
+}
+
+PolicySpec WalkerSpec() {
+  return {.observation_size = 24,
+          .context_size = 1,
+          .num_actions = 0,
+          .action_size = 4,
+          .action_low = {-1, -1, -1, -1},
+          .action_high = {1, 1, 1, 1}};
+}
+
+// The actor's Eigen network computes the same function as the learner's torch network.
+void ExpectEigenMatchesTorch(const PolicySpec& spec) {
+  torch::manual_seed(7);
+  ActorCritic network(spec, PpoConfig{});
+  absl::StatusOr<actor::MlpPolicy> policy = actor::MlpPolicy::Create(network->ExportActor());
+  ASSERT_TRUE(policy.ok()) << policy.status();
+  ASSERT_EQ(policy->input_size(), spec.flat_input_size());
+  Random random(3);
+  const int head = spec.discrete() ? spec.num_actions : spec.action_size;
+  for (int sample = 0; sample < 200; ++sample) {
+    std::vector<float> input(spec.flat_input_size());
+    for (float& x : input) x = static_cast<float>(random.Uniform(-3, 3));
+    std::vector<float> eigen(head);
+    policy->Forward(input, eigen);
+    torch::NoGradGuard no_grad;
+    const torch::Tensor torch_head = network->ActionHead(
+        {.flat = torch::from_blob(input.data(), {1, spec.flat_input_size()})});
+    for (int i = 0; i < head; ++i) {
+      EXPECT_NEAR(eigen[i], torch_head[0][i].item<float>(), 1e-5) << "sample " << sample;
+    }
+  }
+}
+
+TEST(ActorCriticTest, EigenInferenceMatchesTorchForCategoricalPolicies) {
+  ExpectEigenMatchesTorch(CartPoleSpec());
+}
+
+TEST(ActorCriticTest, EigenInferenceMatchesTorchForGaussianPolicies) {
+  ExpectEigenMatchesTorch(WalkerSpec());
+}
+
+TEST(ActorCriticTest, InitialisesWithSb3Gains) {
+  // Orthogonal rows scaled by the gain: W W^T = gain^2 I for a wide layer (64 x 5 is tall, so
+  // use W^T W = gain^2 I on the 64 x 64 hidden layer), 0.01 for the action head, zero biases.
+  torch::manual_seed(1);
+  ActorCritic network(CartPoleSpec(), PpoConfig{});
+  const actor::MlpWeights weights = network->ExportActor();
+  ASSERT_EQ(weights.layers.size(), 3u);  // 5 -> 64 -> 64 -> 2
+  const actor::DenseLayer& hidden = weights.layers[1];
+  ASSERT_EQ(hidden.inputs, 64);
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      double dot = 0;
+      for (int k = 0; k < 64; ++k) dot += hidden.weight[a * 64 + k] * hidden.weight[b * 64 + k];
+      EXPECT_NEAR(dot, a == b ? 2.0 : 0.0, 1e-4);
+    }
+  }
+  const actor::DenseLayer& head = weights.layers[2];
+  double row = 0;
+  for (int k = 0; k < 64; ++k) row += head.weight[k] * head.weight[k];
+  EXPECT_NEAR(std::sqrt(row), 0.01, 1e-5);
+  for (const actor::DenseLayer& layer : weights.layers) {
+    for (float b : layer.bias) EXPECT_EQ(b, 0.0f);
+  }
+}
+
+TEST(ActorCriticTest, GaussianLogProbAndEntropyAreSummedOverDimensions) {
+  torch::manual_seed(2);
+  const PolicySpec spec = WalkerSpec();
+  ActorCritic network(spec, PpoConfig{.log_std_init = -0.5});
+  const torch::Tensor input = torch::zeros({1, spec.flat_input_size()});
+  const torch::Tensor mean = network->ActionHead({.flat = input}).detach();
+  const torch::Tensor action = mean + 0.3;
+  const ActorCriticImpl::Evaluation evaluation =
+      network->EvaluateActions({.flat = input}, action);
+  // Each dimension: N(mean, e^-0.5) at mean + 0.3.
+  const double sigma = std::exp(-0.5);
+  const double per_dim =
+      -0.5 * (0.3 / sigma) * (0.3 / sigma) - std::log(sigma) - 0.5 * std::log(2 * M_PI);
+  EXPECT_NEAR(evaluation.log_probs.item<double>(), 4 * per_dim, 1e-5);
+  EXPECT_NEAR(evaluation.entropy.item<double>(), 4 * (0.5 + 0.5 * std::log(2 * M_PI) - 0.5),
+              1e-5);
+}
+
+TEST(ActorCriticTest, ImagePoliciesRunNatureCnnOnTheImageAndAppendTheContext) {
+  torch::manual_seed(4);
+  const PolicySpec spec{.image_height = 96,
+                        .image_width = 96,
+                        .image_channels = 3,
+                        .context_size = 2,
+                        .num_actions = 0,
+                        .action_size = 3,
+                        .action_low = {-1, 0, 0},
+                        .action_high = {1, 1, 1}};
+  ActorCritic network(spec, PpoConfig{});
+  const ObservationBatch batch{.flat = torch::zeros({5, 2}), .images = torch::rand({5, 3, 96, 96})};
+  const ActorCriticImpl::Evaluation evaluation =
+      network->EvaluateActions(batch, torch::zeros({5, 3}));
+  EXPECT_EQ(evaluation.values.sizes(), torch::IntArrayRef({5}));
+  EXPECT_EQ(evaluation.log_probs.sizes(), torch::IntArrayRef({5}));
+  // The context reaches the heads: changing it changes the value.
+  const ObservationBatch other{.flat = torch::ones({5, 2}), .images = batch.images};
+  torch::NoGradGuard no_grad;
+  EXPECT_FALSE(torch::equal(network->Value(batch), network->Value(other)));
+}
+
+}  // namespace
+}  // namespace dcs::learner
