@@ -3,6 +3,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <tuple>
+
+#include "absl/strings/str_cat.h"
 
 namespace dcs::learner {
 namespace {
@@ -21,22 +24,16 @@ void InitWeights(torch::nn::Module& module, double gain) {
   }
 }
 
-// Linear -> tanh for each width.
-torch::nn::Sequential TanhMlp(int inputs, const std::vector<int>& widths) {
-  torch::nn::Sequential mlp;
-  for (int width : widths) {
-    mlp->push_back(torch::nn::Linear(inputs, width));
-    mlp->push_back(torch::nn::Tanh());
-    inputs = width;
-  }
-  return mlp;
-}
-
 int OutputsOf(const std::vector<int>& widths, int inputs) {
   return widths.empty() ? inputs : widths.back();
 }
 
 }  // namespace
+
+torch::Tensor ActorCriticImpl::TanhMlp::Forward(torch::Tensor x) {
+  for (torch::nn::Linear& layer : layers) x = torch::tanh(layer->forward(x));
+  return x;
+}
 
 ActorCriticImpl::ActorCriticImpl(const PolicySpec& spec, const PpoConfig& config)
     : spec_(spec) {
@@ -60,10 +57,16 @@ ActorCriticImpl::ActorCriticImpl(const PolicySpec& spec, const PpoConfig& config
     InitWeights(*cnn_, sqrt2);
     features = config.cnn_features + spec.context_size;
   }
-  pi_ = register_module("pi", TanhMlp(features, config.pi_layers));
-  vf_ = register_module("vf", TanhMlp(features, config.vf_layers));
-  InitWeights(*pi_, sqrt2);
-  InitWeights(*vf_, sqrt2);
+  for (auto [mlp, widths, name] : {std::tuple{&pi_, &config.pi_layers, "pi"},
+                                   std::tuple{&vf_, &config.vf_layers, "vf"}}) {
+    int inputs = features;
+    for (size_t i = 0; i < widths->size(); ++i) {
+      mlp->layers.push_back(register_module(absl::StrCat(name, "_", i),
+                                            torch::nn::Linear(inputs, (*widths)[i])));
+      InitWeights(*mlp->layers.back(), sqrt2);
+      inputs = (*widths)[i];
+    }
+  }
   const int action_outputs = spec.discrete() ? spec.num_actions : spec.action_size;
   action_net_ = register_module(
       "action_net", torch::nn::Linear(OutputsOf(config.pi_layers, features), action_outputs));
@@ -85,29 +88,32 @@ torch::Tensor ActorCriticImpl::Features(const ObservationBatch& batch) {
 }
 
 torch::Tensor ActorCriticImpl::ActionHead(const ObservationBatch& batch) {
-  return action_net_->forward(pi_->forward(Features(batch)));
+  return action_net_->forward(pi_.Forward(Features(batch)));
 }
 
 torch::Tensor ActorCriticImpl::Value(const ObservationBatch& batch) {
-  return value_net_->forward(vf_->forward(Features(batch))).squeeze(1);
+  return value_net_->forward(vf_.Forward(Features(batch))).squeeze(1);
 }
 
 ActorCriticImpl::Evaluation ActorCriticImpl::EvaluateActions(const ObservationBatch& batch,
-                                                             const torch::Tensor& actions) {
+                                                             const torch::Tensor& actions,
+                                                             bool entropy_gradient) {
   const torch::Tensor features = Features(batch);
-  const torch::Tensor head = action_net_->forward(pi_->forward(features));
+  const torch::Tensor head = action_net_->forward(pi_.Forward(features));
   Evaluation evaluation;
-  evaluation.values = value_net_->forward(vf_->forward(features)).squeeze(1);
+  evaluation.values = value_net_->forward(vf_.Forward(features)).squeeze(1);
   if (spec_.discrete()) {
     // torch.distributions.Categorical(logits): normalised by logsumexp.
     const torch::Tensor log_p = torch::log_softmax(head, 1);
-    evaluation.log_probs = log_p.gather(1, actions.to(torch::kLong)).squeeze(1);
+    evaluation.log_probs = log_p.gather(1, actions).squeeze(1);
+    torch::AutoGradMode entropy_mode(entropy_gradient);
     evaluation.entropy = -(log_p.exp() * log_p).sum(1);
   } else {
     // A diagonal Gaussian, summed over action dimensions.
     static const double kHalfLog2Pi = 0.5 * std::log(2 * std::numbers::pi);
     const torch::Tensor z = (actions - head) * torch::exp(-log_std_);
     evaluation.log_probs = (-0.5 * z * z - log_std_ - kHalfLog2Pi).sum(1);
+    torch::AutoGradMode entropy_mode(entropy_gradient);
     evaluation.entropy = (0.5 + kHalfLog2Pi + log_std_).sum().expand({head.size(0)});
   }
   return evaluation;
@@ -127,11 +133,7 @@ actor::MlpWeights ActorCriticImpl::ExportActor() const {
                                                          b.data_ptr<float>() + b.numel()),
                               .tanh = tanh});
   };
-  for (const auto& child : pi_->children()) {
-    if (auto linear = std::dynamic_pointer_cast<torch::nn::LinearImpl>(child)) {
-      add(torch::nn::Linear(linear), true);
-    }
-  }
+  for (const torch::nn::Linear& layer : pi_.layers) add(layer, true);
   add(action_net_, false);
   if (!spec_.discrete()) {
     const torch::Tensor s = log_std_.detach().contiguous();

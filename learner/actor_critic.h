@@ -45,8 +45,17 @@ class ActorCriticImpl : public torch::nn::Module {
     torch::Tensor log_probs;  // [B], summed over action dimensions
     torch::Tensor entropy;    // [B]
   };
-  // SB3's evaluate_actions: `actions` [B, action_size] (discrete: the index as float).
-  Evaluation EvaluateActions(const ObservationBatch& batch, const torch::Tensor& actions);
+  // SB3's evaluate_actions: `actions` [B, action_size], float (discrete: [B, 1] indices as
+  // kLong, as ActionIndices makes them). Without
+  // `entropy_gradient` the entropy is computed outside autograd (for logging only: with
+  // ent_coef 0 it adds nothing to the gradient, and each recorded operation costs time).
+  Evaluation EvaluateActions(const ObservationBatch& batch, const torch::Tensor& actions,
+                             bool entropy_gradient = true);
+
+  // Discrete actions stored as floats, as EvaluateActions takes them: [B, 1] kLong.
+  static torch::Tensor ActionIndices(const torch::Tensor& actions) {
+    return actions.to(torch::kLong);
+  }
 
   // The actor half for Eigen inference on actors. REQUIRES: no image observation.
   actor::MlpWeights ExportActor() const;
@@ -57,9 +66,16 @@ class ActorCriticImpl : public torch::nn::Module {
   torch::Tensor Features(const ObservationBatch& batch);
 
   const PolicySpec spec_;
+  // Linear layers each followed by tanh, called directly: torch::nn::Sequential's type-erased
+  // dispatch costs more than these layers compute.
+  struct TanhMlp {
+    std::vector<torch::nn::Linear> layers;
+    torch::Tensor Forward(torch::Tensor x);
+  };
+
   torch::nn::Sequential cnn_{nullptr};  // NatureCNN, image observations only
-  torch::nn::Sequential pi_;
-  torch::nn::Sequential vf_;
+  TanhMlp pi_;
+  TanhMlp vf_;
   torch::nn::Linear action_net_{nullptr};
   torch::nn::Linear value_net_{nullptr};
   torch::Tensor log_std_;  // continuous actions only

@@ -44,6 +44,18 @@ absl::Status CheckFinite(const std::vector<float>& values, int per_transition, i
   return absl::OkStatus();
 }
 
+// (x - mean) / (std + 1e-8) with the unbiased std, in place; a single value is left as is.
+void NormalizeMinibatch(std::span<float> values) {
+  if (values.size() < 2) return;
+  double sum = 0;
+  for (float v : values) sum += v;
+  const double mean = sum / static_cast<double>(values.size());
+  double squares = 0;
+  for (float v : values) squares += (v - mean) * (v - mean);
+  const double std = std::sqrt(squares / static_cast<double>(values.size() - 1));
+  for (float& v : values) v = static_cast<float>((v - mean) / (std + 1e-8));
+}
+
 }  // namespace
 
 struct PpoLearner::Impl {
@@ -52,8 +64,36 @@ struct PpoLearner::Impl {
   int n_envs = 1;
   uint64_t seed = 0;
   ActorCritic network{nullptr};
+  // Every parameter is a view into flat_parameters and its gradient a view into
+  // flat_gradients, so Adam and the gradient-norm clip each run on one tensor rather than one
+  // per layer: libtorch's per-operation overhead dominates networks this small. Elementwise the
+  // arithmetic is the same.
+  torch::Tensor flat_parameters;
+  torch::Tensor flat_gradients;
   std::unique_ptr<torch::optim::Adam> optimizer;
   int64_t updates = 0;
+
+  // Makes the network's parameters views into flat_parameters (copying their values) and their
+  // gradients views into flat_gradients. Again after loading, which replaces the tensors.
+  void Flatten() {
+    torch::NoGradGuard no_grad;
+    std::vector<torch::Tensor> parameters = network->parameters();
+    int64_t total = 0;
+    for (const torch::Tensor& p : parameters) total += p.numel();
+    if (!flat_parameters.defined()) {
+      flat_parameters = torch::zeros({total});
+      flat_gradients = torch::zeros({total});
+      flat_parameters.mutable_grad() = flat_gradients;
+    }
+    int64_t offset = 0;
+    for (torch::Tensor& p : parameters) {
+      const int64_t size = p.numel();
+      flat_parameters.narrow(0, offset, size).copy_(p.detach().reshape({-1}));
+      p.set_data(flat_parameters.narrow(0, offset, size).view(p.sizes()));
+      p.mutable_grad() = flat_gradients.narrow(0, offset, size).view(p.sizes());
+      offset += size;
+    }
+  }
 
   // The observations of `count` transitions as tensors.
   ObservationBatch Batch(const std::vector<float>& inputs, const std::vector<uint8_t>& images,
@@ -119,7 +159,8 @@ struct PpoLearner::Impl {
 absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const Rollout& r) {
   const int64_t n = static_cast<int64_t>(r.num_steps) * r.num_envs;
   const ObservationBatch all = Batch(r.inputs, r.images, n);
-  const torch::Tensor actions = View(r.actions, {n, spec.action_size}, torch::kFloat32);
+  torch::Tensor actions = View(r.actions, {n, spec.action_size}, torch::kFloat32);
+  if (spec.discrete()) actions = ActorCriticImpl::ActionIndices(actions);
   const auto gamma = static_cast<float>(config.gamma);
 
   // Values and log-probabilities at collection time (the policy has not changed since).
@@ -147,91 +188,110 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const Rollout& r) {
   ComputeGae({r.num_steps, r.num_envs, rewards, values, r.episode_starts, last_values,
               r.last_dones},
              gamma, static_cast<float>(config.gae_lambda), advantages, returns);
-  const torch::Tensor advantage_tensor = View(advantages, {n}, torch::kFloat32);
   const torch::Tensor return_tensor = View(returns, {n}, torch::kFloat32);
 
   UpdateStats stats;
-  double policy_loss_sum = 0;
-  double value_loss_sum = 0;
-  double entropy_loss_sum = 0;
-  double clip_fraction_sum = 0;
-  double approx_kl_sum = 0;
+  // Sums over minibatches, kept as tensors and read once at the end.
+  torch::Tensor policy_loss_sum = torch::zeros({});
+  torch::Tensor value_loss_sum = torch::zeros({});
+  torch::Tensor entropy_loss_sum = torch::zeros({});
+  torch::Tensor clip_fraction_sum = torch::zeros({});
+  torch::Tensor approx_kl_sum = torch::zeros({});
   int minibatches = 0;
   std::vector<int64_t> order(n);
-  const auto parameters = network->parameters();
+  const double clip = config.clip_range;
   for (int epoch = 0; epoch < config.n_epochs && !stats.stopped_early; ++epoch) {
-    // A fresh permutation each epoch (Fisher-Yates), from a stream of (update, epoch).
+    // A fresh permutation each epoch (Fisher-Yates), from a stream of (update, epoch); the
+    // epoch's data is gathered once in that order and each minibatch is a slice of it.
     std::iota(order.begin(), order.end(), 0);
     Random random(StreamSeed(seed, "minibatch", {static_cast<uint64_t>(updates),
                                                  static_cast<uint64_t>(epoch)}));
     for (int64_t i = n - 1; i > 0; --i) std::swap(order[i], order[random.Integers(0, i + 1)]);
+    const torch::Tensor permutation = torch::from_blob(order.data(), {n}, torch::kLong);
+    const torch::Tensor flat = all.flat.index_select(0, permutation);
+    const torch::Tensor images =
+        spec.has_image() ? all.images.index_select(0, permutation) : torch::Tensor();
+    const torch::Tensor epoch_actions = actions.index_select(0, permutation);
+    // Advantages in the epoch's order, normalised per minibatch (mean 0, unbiased std 1, +1e-8
+    // as SB3) here rather than by torch: they carry no gradient.
+    std::vector<float> epoch_advantage_values(n);
+    for (int64_t i = 0; i < n; ++i) epoch_advantage_values[i] = advantages[order[i]];
+    if (config.normalize_advantage) {
+      for (int64_t start = 0; start < n; start += config.batch_size) {
+        NormalizeMinibatch(std::span<float>(epoch_advantage_values)
+                               .subspan(start, std::min<int64_t>(config.batch_size, n - start)));
+      }
+    }
+    const torch::Tensor epoch_advantages = View(epoch_advantage_values, {n}, torch::kFloat32);
+    const torch::Tensor epoch_returns = return_tensor.index_select(0, permutation);
+    const torch::Tensor epoch_log_probs = old_log_probs.index_select(0, permutation);
+    const torch::Tensor epoch_values = old_values.index_select(0, permutation);
 
     for (int64_t start = 0; start < n; start += config.batch_size) {
       const int64_t size = std::min<int64_t>(config.batch_size, n - start);
-      const torch::Tensor index =
-          torch::from_blob(order.data() + start, {size}, torch::kLong);
-      ObservationBatch batch{.flat = all.flat.index_select(0, index)};
-      if (spec.has_image()) batch.images = all.images.index_select(0, index);
-      ActorCriticImpl::Evaluation evaluation =
-          network->EvaluateActions(batch, actions.index_select(0, index));
-
-      torch::Tensor advantage = advantage_tensor.index_select(0, index);
-      if (config.normalize_advantage && size > 1) {
-        advantage = (advantage - advantage.mean()) / (advantage.std() + 1e-8);
-      }
+      ObservationBatch batch{.flat = flat.narrow(0, start, size)};
+      if (spec.has_image()) batch.images = images.narrow(0, start, size);
+      ActorCriticImpl::Evaluation evaluation = network->EvaluateActions(
+          batch, epoch_actions.narrow(0, start, size), config.ent_coef > 0);
+      const torch::Tensor advantage = epoch_advantages.narrow(0, start, size);
       const torch::Tensor ratio =
-          torch::exp(evaluation.log_probs - old_log_probs.index_select(0, index));
-      const auto clip = config.clip_range;
+          torch::exp(evaluation.log_probs - epoch_log_probs.narrow(0, start, size));
       const torch::Tensor policy_loss =
           -torch::min(advantage * ratio, advantage * torch::clamp(ratio, 1 - clip, 1 + clip))
                .mean();
       torch::Tensor predicted = evaluation.values;
       if (config.clip_range_vf.has_value()) {
-        const torch::Tensor old = old_values.index_select(0, index);
+        const torch::Tensor old = epoch_values.narrow(0, start, size);
         predicted = old + torch::clamp(evaluation.values - old, -*config.clip_range_vf,
                                        *config.clip_range_vf);
       }
       const torch::Tensor value_loss =
-          torch::mse_loss(predicted, return_tensor.index_select(0, index));
+          torch::mse_loss(predicted, epoch_returns.narrow(0, start, size));
       const torch::Tensor entropy_loss = -evaluation.entropy.mean();
-      const torch::Tensor loss =
-          policy_loss + config.ent_coef * entropy_loss + config.vf_coef * value_loss;
+      torch::Tensor loss = policy_loss + config.vf_coef * value_loss;
+      if (config.ent_coef > 0) loss = loss + config.ent_coef * entropy_loss;
 
-      double approx_kl;
       {
         torch::NoGradGuard no_grad;
-        approx_kl = ((ratio - 1) - torch::log(ratio)).mean().item<double>();
-        clip_fraction_sum += ((ratio - 1).abs() > clip).to(torch::kFloat32).mean().item<double>();
+        const torch::Tensor approx_kl = ((ratio - 1) - torch::log(ratio)).mean();
+        approx_kl_sum += approx_kl;
+        clip_fraction_sum += ((ratio - 1).abs() > clip).to(torch::kFloat32).mean();
+        policy_loss_sum += policy_loss;
+        value_loss_sum += value_loss;
+        entropy_loss_sum += entropy_loss;
+        ++minibatches;
+        if (config.target_kl.has_value() &&
+            approx_kl.item<double>() > 1.5 * *config.target_kl) {
+          stats.stopped_early = true;  // before this minibatch's step, as SB3
+          break;
+        }
       }
-      policy_loss_sum += policy_loss.item<double>();
-      value_loss_sum += value_loss.item<double>();
-      entropy_loss_sum += entropy_loss.item<double>();
-      approx_kl_sum += approx_kl;
-      ++minibatches;
       stats.loss = loss.item<double>();
-      if (config.target_kl.has_value() && approx_kl > 1.5 * *config.target_kl) {
-        stats.stopped_early = true;  // before this minibatch's step, as SB3
-        break;
-      }
       if (!std::isfinite(stats.loss)) {
         return absl::InternalError(absl::StrCat("the loss became ", stats.loss, " in update ",
                                                 updates, ", epoch ", epoch,
                                                 "; the minibatch was not applied"));
       }
-      optimizer->zero_grad();
+      flat_gradients.zero_();
       loss.backward();
-      torch::nn::utils::clip_grad_norm_(parameters, config.max_grad_norm);
+      {
+        // torch.nn.utils.clip_grad_norm_ over every parameter: one norm of the flat gradient.
+        torch::NoGradGuard no_grad;
+        const torch::Tensor scale =
+            torch::clamp_max(config.max_grad_norm / (flat_gradients.norm() + 1e-6), 1.0);
+        flat_gradients.mul_(scale);
+      }
       optimizer->step();
       ++stats.gradient_steps;
     }
   }
   ++updates;
 
-  stats.policy_loss = policy_loss_sum / minibatches;
-  stats.value_loss = value_loss_sum / minibatches;
-  stats.entropy_loss = entropy_loss_sum / minibatches;
-  stats.clip_fraction = clip_fraction_sum / minibatches;
-  stats.approx_kl = approx_kl_sum / minibatches;
+  stats.policy_loss = policy_loss_sum.item<double>() / minibatches;
+  stats.value_loss = value_loss_sum.item<double>() / minibatches;
+  stats.entropy_loss = entropy_loss_sum.item<double>() / minibatches;
+  stats.clip_fraction = clip_fraction_sum.item<double>() / minibatches;
+  stats.approx_kl = approx_kl_sum.item<double>() / minibatches;
   // 1 - Var(returns - values) / Var(returns), NaN when the returns do not vary (as SB3).
   const torch::Tensor residual = return_tensor - old_values;
   const double return_variance = return_tensor.var(/*unbiased=*/false).item<double>();
@@ -259,8 +319,9 @@ absl::StatusOr<std::unique_ptr<PpoLearner>> PpoLearner::Create(const PolicySpec&
     // Initial weights are the only draws from libtorch's own generator.
     torch::manual_seed(StreamSeed(seed, "init").GenerateState64(1)[0]);
     impl->network = ActorCritic(spec, config);
+    impl->Flatten();
     impl->optimizer = std::make_unique<torch::optim::Adam>(
-        impl->network->parameters(),
+        std::vector<torch::Tensor>{impl->flat_parameters},
         torch::optim::AdamOptions(config.learning_rate).eps(config.adam_eps));
   } catch (const c10::Error& e) {
     return absl::InternalError(absl::StrCat("cannot build the policy network: ",
@@ -323,6 +384,7 @@ absl::Status PpoLearner::LoadState(absl::string_view bytes) {
                        ", this learner's seed is ", impl_->seed));
     }
     impl_->network->load(archive);
+    impl_->Flatten();
     torch::serialize::InputArchive optimizer;
     archive.read("optimizer", optimizer);
     impl_->optimizer->load(optimizer);
