@@ -71,33 +71,9 @@ void MlpPolicy::Forward(std::span<const float> input, std::span<float> output) {
 void MlpPolicy::Act(std::span<const float> input, bool deterministic, Random& random,
                     std::span<float> action) {
   const Eigen::VectorXf& head = Run(input);
-  const int size = static_cast<int>(head.size());
-  if (!discrete()) {
-    for (int i = 0; i < size; ++i) {
-      action[i] = deterministic ? head[i]
-                                : head[i] + std_[i] * static_cast<float>(random.Normal(0, 1));
-    }
-    return;
-  }
-  int best = 0;
-  head.maxCoeff(&best);
-  if (deterministic) {
-    action[0] = static_cast<float>(best);
-    return;
-  }
-  // Inverse-CDF sampling from softmax(logits), shifted by the maximum for stability.
-  double total = 0;
-  for (int i = 0; i < size; ++i) total += std::exp(static_cast<double>(head[i] - head[best]));
-  double u = random.Uniform01() * total;
-  int chosen = size - 1;
-  for (int i = 0; i < size; ++i) {
-    u -= std::exp(static_cast<double>(head[i] - head[best]));
-    if (u < 0) {
-      chosen = i;
-      break;
-    }
-  }
-  action[0] = static_cast<float>(chosen);
+  SampleAction(std::span<const float>(head.data(), head.size()),
+               std::span<const float>(std_.data(), std_.size()), num_actions_, deterministic,
+               random, action);
 }
 
 }  // namespace dcs::actor

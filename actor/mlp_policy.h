@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "absl/status/statusor.h"
+#include "actor/policy.h"
 #include "common/random.h"
 
 namespace dcs::actor {
@@ -35,7 +36,7 @@ struct MlpWeights {
   int num_actions = 0;         // discrete: the number of actions; continuous: 0
 };
 
-class MlpPolicy {
+class MlpPolicy final : public Policy {
  public:
   // INVALID_ARGUMENT if the layers do not chain or a size is wrong.
   static absl::StatusOr<MlpPolicy> Create(const MlpWeights& weights);
@@ -53,6 +54,11 @@ class MlpPolicy {
   // unclipped; or its mode when `deterministic` (argmax, or the mean).
   void Act(std::span<const float> input, bool deterministic, Random& random,
            std::span<float> action);
+  // Policy: as above; an MLP policy has no image.
+  void Act(std::span<const float> input, std::span<const uint8_t> /*image*/, bool deterministic,
+           Random& random, std::span<float> action) override {
+    Act(input, deterministic, random, action);
+  }
 
  private:
   MlpPolicy() = default;

@@ -94,6 +94,10 @@ class DynamicContextEnv {
   // Transitions taken in the current episode.
   int64_t episode_steps() const { return steps_; }
 
+  // Makes the next Reset start episode `episode` (a resumed run replays a slot's running
+  // episode: the same episode number gives the same initial context, state and schedule).
+  void SetNextEpisode(int64_t episode) { episode_ = episode - 1; }
+
   // Records every transition into `recorder` (not owned; nullptr stops recording).
   void set_recorder(TrajectoryRecorder* recorder) { recorder_ = recorder; }
 

@@ -56,6 +56,16 @@ class VectorEnv {
 
   DynamicContextEnv<Env>& slot(int i) { return slots_[i]; }
 
+  // Puts slot `i` back where a run left it: episode `episode`, reset at global step
+  // `reset_step`, then `actions` (kActionSize elements each) applied in order. Environments
+  // are deterministic, so this reproduces the slot's state exactly; its observation and
+  // context rows are rewritten. REQUIRES: the actions do not end the episode.
+  void ReplaySlot(int i, int64_t episode, int64_t reset_step,
+                  std::span<const ActionElement> actions);
+
+  // Sets the environment-step count (a resumed run continues its count).
+  void set_global_steps(int64_t steps) { global_steps_ = steps; }
+
  private:
   VectorEnv(std::vector<DynamicContextEnv<Env>> slots, int context_size)
       : slots_(std::move(slots)),
@@ -112,6 +122,19 @@ absl::StatusOr<VectorEnv<Env>> VectorEnv<Env>::Create(std::vector<DynamicContext
     }
   }
   return VectorEnv(std::move(envs), context_size);
+}
+
+template <typename Env>
+void VectorEnv<Env>::ReplaySlot(int i, int64_t episode, int64_t reset_step,
+                                std::span<const ActionElement> actions) {
+  const std::span<Observation, kObservationSize> observation = ObservationRow(observations_, i);
+  const std::span<float> context = ContextRow(contexts_, i);
+  slots_[i].SetNextEpisode(episode);
+  slots_[i].Reset(reset_step, observation, context);
+  for (size_t at = 0; at + kActionSize <= actions.size(); at += kActionSize) {
+    slots_[i].Step(std::span<const ActionElement, kActionSize>(actions.data() + at, kActionSize),
+                   observation, context);
+  }
 }
 
 template <typename Env>

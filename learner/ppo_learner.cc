@@ -44,6 +44,17 @@ absl::Status CheckFinite(const std::vector<float>& values, int per_transition, i
   return absl::OkStatus();
 }
 
+// `count` channel-last images as channel-first floats in [0, 1] (SB3's VecTransposeImage and
+// division by 255).
+torch::Tensor ImageTensor(const uint8_t* bytes, int64_t count, const PolicySpec& spec) {
+  return torch::from_blob(const_cast<uint8_t*>(bytes),
+                          {count, spec.image_height, spec.image_width, spec.image_channels},
+                          torch::kUInt8)
+      .permute({0, 3, 1, 2})
+      .to(torch::kFloat32)
+      .div(255.0);
+}
+
 // (x - mean) / (std + 1e-8) with the unbiased std, in place; a single value is left as is.
 void NormalizeMinibatch(std::span<float> values) {
   if (values.size() < 2) return;
@@ -100,19 +111,11 @@ struct PpoLearner::Impl {
                          int64_t count) const {
     ObservationBatch batch;
     batch.flat = View(inputs, {count, spec.flat_input_size()}, torch::kFloat32);
-    if (spec.has_image()) {
-      // Channel-last bytes to channel-first floats in [0, 1] (SB3's VecTransposeImage, / 255).
-      batch.images = View(images, {count, spec.image_height, spec.image_width,
-                                   spec.image_channels},
-                          torch::kUInt8)
-                         .permute({0, 3, 1, 2})
-                         .to(torch::kFloat32)
-                         .div(255.0);
-    }
+    if (spec.has_image()) batch.images = ImageTensor(images.data(), count, spec);
     return batch;
   }
 
-  absl::Status Validate(const Rollout& r) const {
+  absl::Status Validate(const actor::Rollout& r) const {
     if (r.num_envs != n_envs || r.num_steps < 1) {
       return absl::InvalidArgumentError(absl::StrCat("rollout: ", r.num_steps, " steps of ",
                                                      r.num_envs, " slots, expected ", n_envs,
@@ -132,7 +135,7 @@ struct PpoLearner::Impl {
     DCS_RETURN_IF_ERROR(
         CheckSize(r.last_images.size(), static_cast<size_t>(n_envs) * image, "last images"));
     DCS_RETURN_IF_ERROR(CheckSize(r.last_dones.size(), n_envs, "last dones"));
-    for (const Rollout::Truncation& cut : r.truncations) {
+    for (const actor::Rollout::Truncation& cut : r.truncations) {
       if (cut.step < 0 || cut.step >= r.num_steps || cut.env < 0 || cut.env >= n_envs) {
         return absl::InvalidArgumentError(absl::StrCat("rollout: a truncation at step ",
                                                        cut.step, ", slot ", cut.env,
@@ -153,10 +156,10 @@ struct PpoLearner::Impl {
     return CheckFinite(r.rewards, 1, n_envs, "reward");
   }
 
-  absl::StatusOr<UpdateStats> Update(const Rollout& r);
+  absl::StatusOr<UpdateStats> Update(const actor::Rollout& r);
 };
 
-absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const Rollout& r) {
+absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   const int64_t n = static_cast<int64_t>(r.num_steps) * r.num_envs;
   const ObservationBatch all = Batch(r.inputs, r.images, n);
   torch::Tensor actions = View(r.actions, {n, spec.action_size}, torch::kFloat32);
@@ -174,7 +177,7 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const Rollout& r) {
     old_values = evaluation.values.contiguous();
     old_log_probs = evaluation.log_probs.contiguous();
     // A time-limit cut continues in expectation: r += gamma * V(final observation).
-    for (const Rollout::Truncation& cut : r.truncations) {
+    for (const actor::Rollout::Truncation& cut : r.truncations) {
       const float value = network->Value(Batch(cut.input, cut.image, 1)).item<float>();
       rewards[static_cast<size_t>(cut.step) * r.num_envs + cut.env] += gamma * value;
     }
@@ -330,7 +333,7 @@ absl::StatusOr<std::unique_ptr<PpoLearner>> PpoLearner::Create(const PolicySpec&
   return std::unique_ptr<PpoLearner>(new PpoLearner(std::move(impl)));
 }
 
-absl::StatusOr<UpdateStats> PpoLearner::Update(const Rollout& rollout) {
+absl::StatusOr<UpdateStats> PpoLearner::Update(const actor::Rollout& rollout) {
   DCS_RETURN_IF_ERROR(impl_->Validate(rollout));
   try {
     return impl_->Update(rollout);
@@ -342,6 +345,22 @@ absl::StatusOr<UpdateStats> PpoLearner::Update(const Rollout& rollout) {
 int64_t PpoLearner::updates() const { return impl_->updates; }
 
 actor::MlpWeights PpoLearner::ActorWeights() const { return impl_->network->ExportActor(); }
+
+void PpoLearner::Act(std::span<const float> inputs, std::span<const uint8_t> image,
+                     bool deterministic, Random& random, std::span<float> action) {
+  const PolicySpec& spec = impl_->spec;
+  torch::NoGradGuard no_grad;
+  ObservationBatch batch{.flat = torch::from_blob(const_cast<float*>(inputs.data()),
+                                                  {1, spec.flat_input_size()}, torch::kFloat32)};
+  if (spec.has_image()) batch.images = ImageTensor(image.data(), 1, spec);
+  const torch::Tensor head = impl_->network->ActionHead(batch).contiguous();
+  torch::Tensor std;
+  if (!spec.discrete()) std = torch::exp(impl_->network->log_std()).contiguous();
+  actor::SampleAction(std::span<const float>(head.data_ptr<float>(), head.numel()),
+                      spec.discrete() ? std::span<const float>()
+                                      : std::span<const float>(std.data_ptr<float>(), std.numel()),
+                      spec.num_actions, deterministic, random, action);
+}
 
 std::vector<float> PpoLearner::Parameters() const {
   std::vector<float> flat;

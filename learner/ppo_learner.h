@@ -21,8 +21,9 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "actor/mlp_policy.h"
+#include "actor/policy.h"
 #include "learner/ppo_config.h"
-#include "learner/rollout.h"
+#include "actor/rollout.h"
 
 namespace dcs::learner {
 
@@ -40,26 +41,30 @@ struct UpdateStats {
   bool stopped_early = false;  // target_kl reached
 };
 
-class PpoLearner {
+class PpoLearner final : public actor::Policy {
  public:
   // INVALID_ARGUMENT for an invalid spec or config.
   static absl::StatusOr<std::unique_ptr<PpoLearner>> Create(const PolicySpec& spec,
                                                            const PpoConfig& config, int n_envs,
                                                            uint64_t seed);
-  ~PpoLearner();
+  ~PpoLearner() override;
   PpoLearner(const PpoLearner&) = delete;
   PpoLearner& operator=(const PpoLearner&) = delete;
 
   // Learns from one rollout. INVALID_ARGUMENT if its shapes do not fit the spec, config and
   // n_envs, or an input or reward is not finite (naming the step and slot): the weights are
   // untouched. INTERNAL if the loss becomes non-finite; that minibatch is not applied.
-  absl::StatusOr<UpdateStats> Update(const Rollout& rollout);
+  absl::StatusOr<UpdateStats> Update(const actor::Rollout& rollout);
 
   // The number of updates so far: the policy version.
   int64_t updates() const;
 
   // The actor network, for Eigen inference. REQUIRES: no image observation.
   actor::MlpWeights ActorWeights() const;
+
+  // actor::Policy, with the torch network: how image policies act (they have no Eigen copy).
+  void Act(std::span<const float> inputs, std::span<const uint8_t> image, bool deterministic,
+           Random& random, std::span<float> action) override;
 
   // Every parameter, flattened in a fixed order (tests compare runs with it).
   std::vector<float> Parameters() const;

@@ -19,9 +19,9 @@ PolicySpec CartPoleSpec() {
   return {.observation_size = 4, .context_size = 1, .num_actions = 2, .action_size = 1};
 }
 
-Rollout RandomRollout(int steps, uint64_t seed) {
+actor::Rollout RandomRollout(int steps, uint64_t seed) {
   Random random(seed);
-  Rollout rollout{.num_steps = steps, .num_envs = 1};
+  actor::Rollout rollout{.num_steps = steps, .num_envs = 1};
   for (int t = 0; t < steps; ++t) {
     for (int i = 0; i < 5; ++i) rollout.inputs.push_back(static_cast<float>(random.Uniform(-1, 1)));
     rollout.actions.push_back(static_cast<float>(random.Integers(0, 2)));
@@ -36,7 +36,7 @@ Rollout RandomRollout(int steps, uint64_t seed) {
 void BM_PpoUpdateCartPole(benchmark::State& state) {
   PinTorchThreads(1).IgnoreError();
   std::unique_ptr<PpoLearner> learner = *PpoLearner::Create(CartPoleSpec(), PpoConfig{}, 1, 0);
-  const Rollout rollout = RandomRollout(2048, 1);
+  const actor::Rollout rollout = RandomRollout(2048, 1);
   for (auto _ : state) {
     absl::StatusOr<UpdateStats> stats = learner->Update(rollout);
     benchmark::DoNotOptimize(stats);

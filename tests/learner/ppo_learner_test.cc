@@ -26,10 +26,10 @@ PpoConfig SmallConfig() { return {.n_steps = kSteps, .batch_size = 64, .n_epochs
 
 // A two-armed bandit as a rollout: random observations, actions sampled from the learner's
 // current policy, reward 1 for action 1; episodes of 32 steps.
-Rollout BanditRollout(PpoLearner& learner, uint64_t seed) {
+actor::Rollout BanditRollout(PpoLearner& learner, uint64_t seed) {
   actor::MlpPolicy policy = *actor::MlpPolicy::Create(learner.ActorWeights());
   Random random(seed);
-  Rollout rollout{.num_steps = kSteps, .num_envs = 1};
+  actor::Rollout rollout{.num_steps = kSteps, .num_envs = 1};
   for (int t = 0; t < kSteps; ++t) {
     std::vector<float> input(5);
     for (float& x : input) x = static_cast<float>(random.Uniform(-1, 1));
@@ -85,7 +85,7 @@ TEST_F(PpoLearnerTest, SameSeedAndRolloutsGiveTheSameWeightsBitForBit) {
   EXPECT_EQ(a->Parameters(), b->Parameters());
   EXPECT_NE(a->Parameters(), other->Parameters());
   for (int update = 0; update < 3; ++update) {
-    const Rollout rollout = BanditRollout(*a, 100 + update);
+    const actor::Rollout rollout = BanditRollout(*a, 100 + update);
     ASSERT_TRUE(a->Update(rollout).ok());
     ASSERT_TRUE(b->Update(rollout).ok());
   }
@@ -95,7 +95,7 @@ TEST_F(PpoLearnerTest, SameSeedAndRolloutsGiveTheSameWeightsBitForBit) {
 TEST_F(PpoLearnerTest, NonFiniteRewardsAndObservationsAreRefusedAndTouchNothing) {
   std::unique_ptr<PpoLearner> learner = NewLearner(2);
   const std::vector<float> before = learner->Parameters();
-  Rollout rollout = BanditRollout(*learner, 7);
+  actor::Rollout rollout = BanditRollout(*learner, 7);
   rollout.rewards[37] = std::numeric_limits<float>::quiet_NaN();
   absl::Status status = learner->Update(rollout).status();
   EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
@@ -111,7 +111,7 @@ TEST_F(PpoLearnerTest, NonFiniteRewardsAndObservationsAreRefusedAndTouchNothing)
 
 TEST_F(PpoLearnerTest, MisshapenRolloutsAreRefused) {
   std::unique_ptr<PpoLearner> learner = NewLearner(2);
-  Rollout rollout = BanditRollout(*learner, 7);
+  actor::Rollout rollout = BanditRollout(*learner, 7);
   rollout.actions.pop_back();
   EXPECT_THAT(learner->Update(rollout).status().message(), HasSubstr("actions"));
   rollout = BanditRollout(*learner, 7);
@@ -124,7 +124,7 @@ TEST_F(PpoLearnerTest, TruncatedStepsBootstrapTheFinalObservationsValue) {
   // learned: the cut adds gamma * V(final observation) to that step's reward.
   std::unique_ptr<PpoLearner> plain = NewLearner(3);
   std::unique_ptr<PpoLearner> cut = NewLearner(3);
-  Rollout rollout = BanditRollout(*plain, 11);
+  actor::Rollout rollout = BanditRollout(*plain, 11);
   ASSERT_TRUE(plain->Update(rollout).ok());
   rollout.truncations.push_back(
       {.step = kSteps - 1, .env = 0, .input = std::vector<float>(5, 3.0f)});
@@ -145,7 +145,7 @@ TEST_F(PpoLearnerTest, SavedStateResumesExactly) {
   EXPECT_EQ(resumed->updates(), 2);
   // Adam's moments came along: the next updates agree too.
   for (int update = 2; update < 4; ++update) {
-    const Rollout rollout = BanditRollout(*straight, 200 + update);
+    const actor::Rollout rollout = BanditRollout(*straight, 200 + update);
     ASSERT_TRUE(straight->Update(rollout).ok());
     ASSERT_TRUE(resumed->Update(rollout).ok());
   }

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_LEARNER_ROLLOUT_H_
-#define DCS_LEARNER_ROLLOUT_H_
+#ifndef DCS_ACTOR_ROLLOUT_H_
+#define DCS_ACTOR_ROLLOUT_H_
 
 // One rollout of experience as actors deliver it: num_steps transitions of num_envs
 // environment slots, struct-of-arrays, time-major ([t][e] is step t of slot e). Actors send only
@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace dcs::learner {
+namespace dcs::actor {
 
 struct Rollout {
   int num_steps = 0;
@@ -39,6 +39,6 @@ struct Rollout {
   std::vector<uint8_t> last_dones;  // [e]
 };
 
-}  // namespace dcs::learner
+}  // namespace dcs::actor
 
-#endif  // DCS_LEARNER_ROLLOUT_H_
+#endif  // DCS_ACTOR_ROLLOUT_H_

@@ -1,0 +1,162 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_ACTOR_EVALUATION_H_
+#define DCS_ACTOR_EVALUATION_H_
+
+// The paper's evaluation protocol (spec/schedules.md §9): the deterministic policy on static
+// contexts (no pool, no schedule) in three splits, ID, OOD-low and OOD-high, a fixed number of
+// episodes per context; per context the mean and standard deviation of the episode return; per
+// split the mean and the minimum of the context means; avg_combined, the mean of every context's
+// mean. Episode i of context c resets from StreamSeed(seed, "eval", {c}) and i whatever the
+// checkpoint or worker, so every evaluation of a run sees the same episodes.
+// Thread-compatible.
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "actor/policy.h"
+#include "actor/rollout_collector.h"
+#include "common/random.h"
+#include "common/status_macros.h"
+#include "env/dynamic_context_env.h"
+
+namespace dcs::actor {
+
+enum class Split { kId, kOodLow, kOodHigh };
+
+// "id", "ood_low", "ood_high".
+const char* SplitName(Split split);
+
+struct EvaluationContext {
+  Split split = Split::kId;
+  double value = 0;  // the varied feature's value
+};
+
+struct ContextResult {
+  EvaluationContext context;
+  double mean = 0;
+  double std = 0;  // population standard deviation over the episodes
+  std::vector<double> returns;
+  double seconds = 0;
+};
+
+struct EvaluationResult {
+  int64_t step = 0;  // environment steps of training when evaluated
+  std::vector<ContextResult> contexts;
+  // Per split, the mean and minimum of its contexts' means (NaN for a split without contexts).
+  double split_mean[3] = {0, 0, 0};
+  double split_min[3] = {0, 0, 0};
+  double avg_combined = 0;  // the mean over every context
+};
+
+// Fills the summary (per-context mean and std; split means and minima; avg_combined) of
+// `result` from its contexts' returns.
+void Summarize(EvaluationResult& result);
+
+// Runs the protocol for `Env`: `base` gives the context, observation mode and observed features
+// (its pools and schedules are ignored); `feature` is set to each evaluation value.
+// INVALID_ARGUMENT if an evaluation value is not valid for the feature.
+template <typename Env>
+absl::StatusOr<EvaluationResult> Evaluate(Policy& policy, const env::DynamicContextOptions& base,
+                                          int feature,
+                                          const std::vector<EvaluationContext>& contexts,
+                                          int episodes, uint64_t seed);
+
+// Implementation details.
+
+inline void Summarize(EvaluationResult& result) {
+  double combined = 0;
+  for (ContextResult& r : result.contexts) {
+    double sum = 0;
+    for (double value : r.returns) sum += value;
+    r.mean = sum / static_cast<double>(r.returns.size());
+    double squares = 0;
+    for (double value : r.returns) squares += (value - r.mean) * (value - r.mean);
+    r.std = std::sqrt(squares / static_cast<double>(r.returns.size()));
+    combined += r.mean;
+  }
+  for (int split = 0; split < 3; ++split) {
+    double sum = 0;
+    double minimum = std::numeric_limits<double>::infinity();
+    int count = 0;
+    for (const ContextResult& r : result.contexts) {
+      if (static_cast<int>(r.context.split) != split) continue;
+      sum += r.mean;
+      minimum = std::min(minimum, r.mean);
+      ++count;
+    }
+    result.split_mean[split] = count > 0 ? sum / count : std::nan("");
+    result.split_min[split] = count > 0 ? minimum : std::nan("");
+  }
+  result.avg_combined = combined / static_cast<double>(result.contexts.size());
+}
+
+inline const char* SplitName(Split split) {
+  switch (split) {
+    case Split::kId: return "id";
+    case Split::kOodLow: return "ood_low";
+    case Split::kOodHigh: return "ood_high";
+  }
+  return "id";
+}
+
+template <typename Env>
+absl::StatusOr<EvaluationResult> Evaluate(Policy& policy, const env::DynamicContextOptions& base,
+                                          int feature,
+                                          const std::vector<EvaluationContext>& contexts,
+                                          int episodes, uint64_t seed) {
+  EvaluationResult result;
+  std::vector<typename Env::Observation> observation(Env::kObservationSize);
+  const std::span<typename Env::Observation, Env::kObservationSize> obs(observation.data(),
+                                                                        Env::kObservationSize);
+  std::vector<float> action(Env::kActionSize);
+  std::vector<typename Env::ActionElement> env_action(Env::kActionSize);
+  std::vector<float> input;
+  std::vector<uint8_t> image;
+  Random unused(0);  // deterministic acting draws nothing
+  for (size_t c = 0; c < contexts.size(); ++c) {
+    const auto start = std::chrono::steady_clock::now();
+    env::DynamicContextOptions options{.context = base.context,
+                                       .observe = base.observe,
+                                       .observed_features = base.observed_features,
+                                       .run_seed = StreamSeed(seed, "eval", {c}).GenerateState64(
+                                           1)[0]};
+    if (options.context.empty()) options.context = Env::Features().Defaults();
+    options.context[feature] = contexts[c].value;
+    DCS_ASSIGN_OR_RETURN(env::DynamicContextEnv<Env> environment,
+                         env::DynamicContextEnv<Env>::Create(std::move(options)));
+    std::vector<float> context(environment.context_size());
+    ContextResult context_result{.context = contexts[c]};
+    for (int episode = 0; episode < episodes; ++episode) {
+      environment.Reset(0, obs, context);
+      double total = 0;
+      while (true) {
+        input.clear();
+        image.clear();
+        AppendPolicyInput<Env>(obs, context, input, image);
+        policy.Act(input, image, /*deterministic=*/true, unused, action);
+        ToEnvAction<Env>(action, env_action);
+        const env::StepResult step = environment.Step(
+            std::span<const typename Env::ActionElement, Env::kActionSize>(env_action.data(),
+                                                                           Env::kActionSize),
+            obs, context);
+        total += step.reward;
+        if (step.done()) break;
+      }
+      context_result.returns.push_back(total);
+    }
+    context_result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.contexts.push_back(std::move(context_result));
+  }
+  Summarize(result);
+  return result;
+}
+
+}  // namespace dcs::actor
+
+#endif  // DCS_ACTOR_EVALUATION_H_

@@ -1,0 +1,189 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_ACTOR_ROLLOUT_COLLECTOR_H_
+#define DCS_ACTOR_ROLLOUT_COLLECTOR_H_
+
+// Collects rollouts from a vector of scheduled environments with a policy, as
+// Stable-Baselines3's collect_rollouts does (spec/ppo.md §5): each step the policy samples an
+// action per slot; the environment gets it clipped to the action bounds (continuous) while the
+// rollout keeps the unclipped sample; episode starts are flagged; a step cut by the time limit
+// and not terminated records its final observation for the learner to bootstrap.
+//
+// It also keeps, per slot, a journal of the running episode (its number, the global step of its
+// reset, the actions so far): with deterministic environments that is all a resumed run needs to
+// rebuild the slot exactly (VectorEnv::ReplaySlot).
+//
+// Randomness: slot s samples rollout r's actions from StreamSeed(run_seed, "actions", {s, r}).
+// Confined to one thread.
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "actor/policy.h"
+#include "actor/rollout.h"
+#include "common/random.h"
+#include "env/vector_env.h"
+
+namespace dcs::actor {
+
+// A slot's running episode, for replay on resume.
+struct SlotJournal {
+  int64_t episode = 0;            // the slot's episode number
+  int64_t reset_step = 0;         // global environment step at its reset
+  std::vector<float> actions;     // the actions sent to the environment so far
+  double episode_return = 0;
+};
+
+// A finished training episode.
+struct EpisodeSummary {
+  double episode_return = 0;
+  int64_t length = 0;
+};
+
+// The policy's input for one slot: [observation, context] as floats (image environments: the
+// context only, the observation going to `image`).
+template <typename Env>
+void AppendPolicyInput(std::span<const typename Env::Observation> observation,
+                       std::span<const float> context, std::vector<float>& flat,
+                       std::vector<uint8_t>& image) {
+  if constexpr (std::is_same_v<typename Env::Observation, uint8_t>) {
+    image.insert(image.end(), observation.begin(), observation.end());
+  } else {
+    flat.insert(flat.end(), observation.begin(), observation.end());
+  }
+  flat.insert(flat.end(), context.begin(), context.end());
+}
+
+// The action the environment receives for a policy action: an index, or clipped to the bounds.
+template <typename Env>
+void ToEnvAction(std::span<const float> action, std::span<typename Env::ActionElement> out) {
+  if constexpr (std::is_integral_v<typename Env::ActionElement>) {
+    out[0] = static_cast<typename Env::ActionElement>(action[0]);
+  } else {
+    for (int i = 0; i < Env::kActionSize; ++i) {
+      out[i] = std::clamp(action[i], static_cast<float>(Env::kActionLow[i]),
+                          static_cast<float>(Env::kActionHigh[i]));
+    }
+  }
+}
+
+template <typename Env>
+class RolloutCollector {
+ public:
+  // Borrows `envs` (must outlive the collector). Resets every slot unless `journals` (one per
+  // slot) is given, in which case each slot is replayed to where its journal left it.
+  RolloutCollector(env::VectorEnv<Env>& envs, uint64_t run_seed,
+                   std::vector<SlotJournal> journals = {})
+      : envs_(envs), run_seed_(run_seed), journals_(std::move(journals)) {
+    if (journals_.empty()) {
+      envs_.Reset();
+      journals_.resize(envs_.size());
+      for (int i = 0; i < envs_.size(); ++i) journals_[i].episode = envs_.slot(i).episode();
+    } else {
+      for (int i = 0; i < envs_.size(); ++i) Replay(i);
+    }
+    // A slot whose episode has no action yet shows its episode's first observation.
+    for (const SlotJournal& journal : journals_) {
+      episode_starts_.push_back(journal.actions.empty());
+    }
+  }
+
+  // Collects `n_steps` transitions of every slot with `policy` into `out` (replacing it) as
+  // rollout number `rollout_index`; appends the episodes that finished to `finished`.
+  void Collect(Policy& policy, int n_steps, int64_t rollout_index, Rollout& out,
+               std::vector<EpisodeSummary>& finished);
+
+  const std::vector<SlotJournal>& journals() const { return journals_; }
+
+ private:
+  void Replay(int slot);
+
+  env::VectorEnv<Env>& envs_;
+  const uint64_t run_seed_;
+  std::vector<SlotJournal> journals_;
+  std::vector<uint8_t> episode_starts_;  // the next observation starts an episode
+};
+
+// Implementation details.
+
+template <typename Env>
+void RolloutCollector<Env>::Replay(int slot) {
+  const SlotJournal& journal = journals_[slot];
+  std::vector<typename Env::ActionElement> actions(journal.actions.begin(), journal.actions.end());
+  envs_.ReplaySlot(slot, journal.episode, journal.reset_step, actions);
+}
+
+template <typename Env>
+void RolloutCollector<Env>::Collect(Policy& policy, int n_steps, int64_t rollout_index,
+                                    Rollout& out, std::vector<EpisodeSummary>& finished) {
+  constexpr int kObs = Env::kObservationSize;
+  constexpr int kAct = Env::kActionSize;
+  const int slots = envs_.size();
+  const int context_size = envs_.context_size();
+  out = Rollout{.num_steps = n_steps, .num_envs = slots};
+  std::vector<Random> randoms;
+  for (int i = 0; i < slots; ++i) {
+    randoms.emplace_back(StreamSeed(run_seed_, "actions",
+                                    {static_cast<uint64_t>(i),
+                                     static_cast<uint64_t>(rollout_index)}));
+  }
+  std::vector<float> input;
+  std::vector<uint8_t> image;
+  std::vector<float> action(kAct);
+  std::vector<typename Env::ActionElement> env_actions(static_cast<size_t>(slots) * kAct);
+  for (int t = 0; t < n_steps; ++t) {
+    for (int i = 0; i < slots; ++i) {
+      const auto observation = envs_.observations().subspan(static_cast<size_t>(i) * kObs, kObs);
+      const auto context = envs_.contexts().subspan(static_cast<size_t>(i) * context_size,
+                                                    context_size);
+      input.clear();
+      image.clear();
+      AppendPolicyInput<Env>(observation, context, input, image);
+      policy.Act(input, image, /*deterministic=*/false, randoms[i], action);
+      out.inputs.insert(out.inputs.end(), input.begin(), input.end());
+      out.images.insert(out.images.end(), image.begin(), image.end());
+      out.actions.insert(out.actions.end(), action.begin(), action.end());
+      out.episode_starts.push_back(episode_starts_[i]);
+      ToEnvAction<Env>(action, std::span(env_actions).subspan(static_cast<size_t>(i) * kAct,
+                                                              kAct));
+    }
+    const int64_t next_reset_step = envs_.global_steps() + slots;
+    envs_.Step(env_actions);
+    for (int i = 0; i < slots; ++i) {
+      const float reward = envs_.rewards()[i];
+      out.rewards.push_back(reward);
+      SlotJournal& journal = journals_[i];
+      journal.episode_return += reward;
+      journal.actions.insert(journal.actions.end(), env_actions.begin() + i * kAct,
+                             env_actions.begin() + (i + 1) * kAct);
+      const bool terminated = envs_.terminated()[i];
+      const bool truncated = envs_.truncated()[i];
+      episode_starts_[i] = terminated || truncated;
+      if (!episode_starts_[i]) continue;
+      if (truncated && !terminated) {
+        Rollout::Truncation cut{.step = t, .env = i};
+        AppendPolicyInput<Env>(
+            envs_.final_observations().subspan(static_cast<size_t>(i) * kObs, kObs),
+            envs_.final_contexts().subspan(static_cast<size_t>(i) * context_size, context_size),
+            cut.input, cut.image);
+        out.truncations.push_back(std::move(cut));
+      }
+      finished.push_back({.episode_return = journal.episode_return,
+                          .length = static_cast<int64_t>(journal.actions.size() / kAct)});
+      journal = SlotJournal{.episode = envs_.slot(i).episode(), .reset_step = next_reset_step};
+    }
+  }
+  for (int i = 0; i < slots; ++i) {
+    AppendPolicyInput<Env>(
+        envs_.observations().subspan(static_cast<size_t>(i) * kObs, kObs),
+        envs_.contexts().subspan(static_cast<size_t>(i) * context_size, context_size),
+        out.last_inputs, out.last_images);
+    out.last_dones.push_back(episode_starts_[i]);
+  }
+}
+
+}  // namespace dcs::actor
+
+#endif  // DCS_ACTOR_ROLLOUT_COLLECTOR_H_
