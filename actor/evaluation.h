@@ -45,7 +45,8 @@ struct ContextResult {
 };
 
 struct EvaluationResult {
-  int64_t step = 0;  // environment steps of training when evaluated
+  int64_t step = 0;     // environment steps of training when evaluated
+  int64_t updates = 0;  // PPO updates the evaluated policy had had (its version)
   std::vector<ContextResult> contexts;
   // Per split, the mean and minimum of its contexts' means (NaN for a split without contexts).
   double split_mean[3] = {0, 0, 0};

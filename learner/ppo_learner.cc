@@ -38,7 +38,8 @@ absl::Status CheckFinite(const std::vector<float>& values, int per_transition, i
       const size_t transition = i / per_transition;
       return absl::InvalidArgumentError(absl::StrCat("rollout: ", what, " of step ",
                                                      transition / num_envs, ", slot ",
-                                                     transition % num_envs, " is ", values[i]));
+                                                     transition % num_envs, " is not finite (",
+                                                     values[i], ")"));
     }
   }
   return absl::OkStatus();

@@ -1,17 +1,19 @@
 // Copyright 2026 The DCS Authors.
 #include "learner/run_checkpoint.h"
 
+#include <openssl/sha.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <iterator>
+#include <map>
 
-#include "absl/strings/numbers.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/strip.h"
 #include "common/atomic_file.h"
-#include "common/random.h"
 #include "common/round_trip.h"
 #include "common/status_macros.h"
 
@@ -21,6 +23,17 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kLatest[] = "latest";
+constexpr char kManifest[] = "MANIFEST";
+// The files of a checkpoint besides its manifest, in the order they are written.
+constexpr const char* kFiles[] = {"learner.bin", "run.yaml"};
+
+std::string Sha256Hex(absl::string_view bytes) {
+  unsigned char digest[SHA256_DIGEST_LENGTH];
+  SHA256(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), digest);
+  std::string hex;
+  for (unsigned char byte : digest) absl::StrAppendFormat(&hex, "%02x", byte);
+  return hex;
+}
 
 // Checkpoint names sort as numbers: fixed width.
 std::string CheckpointName(int64_t timesteps) { return absl::StrFormat("%012d", timesteps); }
@@ -35,13 +48,11 @@ void EmitNumbers(YAML::Emitter& out, const Values& values) {
   out << YAML::EndSeq;
 }
 
-std::string ToYaml(const RunState& state, uint64_t learner_checksum) {
+std::string ToYaml(const RunState& state) {
   YAML::Emitter out;
   out << YAML::BeginMap;
   out << YAML::Key << "timesteps" << YAML::Value << state.timesteps;
   out << YAML::Key << "rollouts" << YAML::Value << state.rollouts;
-  out << YAML::Key << "next_evaluation" << YAML::Value << state.next_evaluation;
-  out << YAML::Key << "learner_checksum" << YAML::Value << absl::StrCat(learner_checksum);
   out << YAML::Key << "recent_returns" << YAML::Value;
   EmitNumbers(out, state.recent_returns);
   out << YAML::Key << "journals" << YAML::Value << YAML::BeginSeq;
@@ -58,6 +69,7 @@ std::string ToYaml(const RunState& state, uint64_t learner_checksum) {
   out << YAML::Key << "evaluations" << YAML::Value << YAML::BeginSeq;
   for (const actor::EvaluationResult& evaluation : state.evaluations) {
     out << YAML::BeginMap << YAML::Key << "step" << YAML::Value << evaluation.step;
+    out << YAML::Key << "updates" << YAML::Value << evaluation.updates;
     out << YAML::Key << "contexts" << YAML::Value << YAML::BeginSeq;
     for (const actor::ContextResult& context : evaluation.contexts) {
       out << YAML::BeginMap;
@@ -80,23 +92,26 @@ actor::Split SplitFromName(const std::string& name) {
   return actor::Split::kId;
 }
 
-// Reads one checkpoint directory. DATA_LOSS for anything unreadable or inconsistent.
+// Reads one checkpoint directory. DATA_LOSS for a file that is missing, does not match the
+// manifest, or does not parse.
 absl::StatusOr<Checkpoint> ReadCheckpoint(const fs::path& dir) {
-  Checkpoint checkpoint{.name = dir.filename().string()};
-  DCS_ASSIGN_OR_RETURN(checkpoint.learner, ReadFile(dir / "learner.bin"));
-  DCS_ASSIGN_OR_RETURN(const std::string text, ReadFile(dir / "run.yaml"));
+  DCS_ASSIGN_OR_RETURN(const std::string manifest, ReadFile(dir / kManifest));
+  std::map<std::string, std::string> contents;
+  for (const char* file : kFiles) {
+    DCS_ASSIGN_OR_RETURN(contents[file], ReadFile(dir / file));
+    if (!absl::StrContains(manifest, absl::StrCat(Sha256Hex(contents[file]), "  ", file, "\n"))) {
+      return absl::DataLossError(absl::StrCat((dir / file).string(),
+                                              " does not match the checkpoint's MANIFEST ",
+                                              "(truncated or corrupt)"));
+    }
+  }
+  Checkpoint checkpoint{.name = dir.filename().string(), .learner = contents["learner.bin"]};
+  const std::string& text = contents["run.yaml"];
   try {
     const YAML::Node root = YAML::Load(text);
     RunState& state = checkpoint.state;
     state.timesteps = root["timesteps"].as<int64_t>();
     state.rollouts = root["rollouts"].as<int64_t>();
-    state.next_evaluation = root["next_evaluation"].as<int64_t>();
-    uint64_t checksum = 0;
-    if (!absl::SimpleAtoi(root["learner_checksum"].as<std::string>(), &checksum) ||
-        checksum != Fnv1a64(checkpoint.learner)) {
-      return absl::DataLossError(absl::StrCat(dir.string(), ": learner.bin does not match its ",
-                                              "checksum (truncated or corrupt)"));
-    }
     state.recent_returns = root["recent_returns"].as<std::vector<double>>();
     for (const YAML::Node& node : root["journals"]) {
       state.journals.push_back({.episode = node["episode"].as<int64_t>(),
@@ -105,7 +120,8 @@ absl::StatusOr<Checkpoint> ReadCheckpoint(const fs::path& dir) {
                                 .episode_return = node["episode_return"].as<double>()});
     }
     for (const YAML::Node& node : root["evaluations"]) {
-      actor::EvaluationResult evaluation{.step = node["step"].as<int64_t>()};
+      actor::EvaluationResult evaluation{.step = node["step"].as<int64_t>(),
+                                         .updates = node["updates"].as<int64_t>()};
       for (const YAML::Node& context : node["contexts"]) {
         evaluation.contexts.push_back(
             {.context = {.split = SplitFromName(context["split"].as<std::string>()),
@@ -134,9 +150,15 @@ absl::Status WriteCheckpoint(const std::string& run_dir, const RunState& state,
     return absl::PermissionDeniedError(
         absl::StrCat("cannot create ", (root / name).string(), ": ", error.message()));
   }
-  DCS_RETURN_IF_ERROR(WriteFileAtomically(root / name / "learner.bin", learner));
-  DCS_RETURN_IF_ERROR(
-      WriteFileAtomically(root / name / "run.yaml", ToYaml(state, Fnv1a64(learner))));
+  // The manifest (sha256sum's format: `sha256sum -c MANIFEST` checks it) after the files it
+  // vouches for.
+  const std::string contents[] = {learner, ToYaml(state)};
+  std::string manifest;
+  for (size_t i = 0; i < std::size(kFiles); ++i) {
+    DCS_RETURN_IF_ERROR(WriteFileAtomically(root / name / kFiles[i], contents[i]));
+    absl::StrAppend(&manifest, Sha256Hex(contents[i]), "  ", kFiles[i], "\n");
+  }
+  DCS_RETURN_IF_ERROR(WriteFileAtomically(root / name / kManifest, manifest));
   // The pointer last: until it moves, the previous checkpoint is the one a resume reads.
   DCS_RETURN_IF_ERROR(WriteFileAtomically(root / kLatest, name + "\n"));
 
@@ -156,8 +178,8 @@ absl::StatusOr<Checkpoint> ReadLatestCheckpoint(const std::string& run_dir) {
     return absl::NotFoundError(absl::StrCat("no checkpoint in ", root.string()));
   }
   const std::string newest(absl::StripAsciiWhitespace(*latest));
-  // The newest first, then older ones that `latest` does not name (a crash after writing a
-  // checkpoint but before moving the pointer leaves a newer, complete one).
+  // The one `latest` names, then older ones. A newer one is ignored: `latest` had not moved to
+  // it, so its writing was interrupted.
   std::vector<std::string> names;
   std::error_code error;
   for (const fs::directory_entry& entry : fs::directory_iterator(root, error)) {

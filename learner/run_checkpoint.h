@@ -9,7 +9,8 @@
 //
 // Layout, in the run's output directory (spec/operations.md §7.3):
 //   checkpoints/<timesteps>/learner.bin   PpoLearner::SaveState
-//   checkpoints/<timesteps>/run.yaml      counters, journals, evaluations, learner checksum
+//   checkpoints/<timesteps>/run.yaml      counters, journals, evaluations
+//   checkpoints/<timesteps>/MANIFEST      sha256 of both, written after them
 //   checkpoints/latest                    the newest <timesteps>, written last
 // Each file is written atomically (common/atomic_file.h); the newest `keep` checkpoints are
 // kept. Thread-compatible.
@@ -25,9 +26,8 @@
 namespace dcs::learner {
 
 struct RunState {
-  int64_t timesteps = 0;        // environment steps collected
-  int64_t rollouts = 0;         // rollouts collected (and updates made)
-  int64_t next_evaluation = 0;  // the next evaluation step
+  int64_t timesteps = 0;  // environment steps collected
+  int64_t rollouts = 0;   // rollouts collected (and updates made)
   std::vector<actor::SlotJournal> journals;
   std::vector<double> recent_returns;  // the last finished training episodes' returns
   std::vector<actor::EvaluationResult> evaluations;
