@@ -99,12 +99,12 @@ TEST_F(PpoLearnerTest, NonFiniteRewardsAndObservationsAreRefusedAndTouchNothing)
   rollout.rewards[37] = std::numeric_limits<float>::quiet_NaN();
   absl::Status status = learner->Update(rollout).status();
   EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(status.message(), HasSubstr("reward of step 37, slot 0 is nan"));
+  EXPECT_THAT(status.message(), HasSubstr("reward of step 37, slot 0 is not finite (nan)"));
 
   rollout = BanditRollout(*learner, 7);
   rollout.inputs[5 * 12 + 2] = std::numeric_limits<float>::infinity();
   status = learner->Update(rollout).status();
-  EXPECT_THAT(status.message(), HasSubstr("observation of step 12, slot 0 is inf"));
+  EXPECT_THAT(status.message(), HasSubstr("observation of step 12, slot 0 is not finite (inf)"));
   EXPECT_EQ(learner->Parameters(), before);
   EXPECT_EQ(learner->updates(), 0);
 }
