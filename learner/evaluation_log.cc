@@ -99,9 +99,7 @@ v1::EvaluationLog MakeEvaluationLog(const RunSpec& spec,
   return log;
 }
 
-absl::Status WriteEvaluationLog(const std::string& dir, const v1::EvaluationLog& log) {
-  const std::filesystem::path root(dir);
-  DCS_RETURN_IF_ERROR(WriteFileAtomically(root / "evaluations.csv", ToCsv(log)));
+absl::StatusOr<std::string> EvaluationLogJson(const v1::EvaluationLog& log) {
   google::protobuf::util::JsonPrintOptions options;
   options.add_whitespace = true;
   options.always_print_primitive_fields = true;
@@ -111,6 +109,13 @@ absl::Status WriteEvaluationLog(const std::string& dir, const v1::EvaluationLog&
     return absl::InternalError(absl::StrCat("cannot write the evaluation log as JSON: ",
                                             status.ToString()));
   }
+  return json;
+}
+
+absl::Status WriteEvaluationLog(const std::string& dir, const v1::EvaluationLog& log) {
+  const std::filesystem::path root(dir);
+  DCS_RETURN_IF_ERROR(WriteFileAtomically(root / "evaluations.csv", ToCsv(log)));
+  DCS_ASSIGN_OR_RETURN(const std::string json, EvaluationLogJson(log));
   return WriteFileAtomically(root / "evaluations.json", json);
 }
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "actor/evaluation.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "learner/run_spec.h"
@@ -27,6 +28,9 @@ namespace dcs::learner {
 v1::EvaluationLog MakeEvaluationLog(const RunSpec& spec,
                                     const std::vector<actor::EvaluationResult>& evaluations,
                                     const std::vector<int64_t>& stage_boundaries, bool complete);
+
+// `log` in protobuf's JSON mapping, indented.
+absl::StatusOr<std::string> EvaluationLogJson(const v1::EvaluationLog& log);
 
 // Writes evaluations.csv and evaluations.json into `dir`. Errors name the file
 // (RESOURCE_EXHAUSTED for a full disk); a file that fails keeps its previous contents.

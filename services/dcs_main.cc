@@ -8,6 +8,7 @@
 //   dcs version                this build and the libraries it links
 //   dcs env trace ...          an environment's state after every step of an action sequence
 //   dcs schedule preview ...   schedule trajectories as CSV and the paper's appendix figure
+//   dcs train --config F       one training run in this process, with the paper's evaluation
 // stdout carries data only; progress and errors go to stderr. Exit codes: README.md.
 
 #include <string>
@@ -21,6 +22,7 @@
 #include "services/env_commands.h"
 #include "services/exit_codes.h"
 #include "services/log.h"
+#include "services/train_command.h"
 
 namespace dcs::services {
 namespace {
@@ -43,14 +45,15 @@ int Main(int argc, char** argv) {
 
   std::vector<CliCommand> commands = AddClusterCommands(app, flags);
   for (CliCommand& command : AddEnvCommands(app)) commands.push_back(std::move(command));
+  for (CliCommand& command : AddTrainCommand(app, flags)) commands.push_back(std::move(command));
 
   if (std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   for (const CliCommand& command : commands) {
     if (command.app->parsed()) return command.run();
   }
   // Checked here rather than by CLI11, which would report it before an unknown flag.
-  PrintError("dcs", "a command is required: up, down, status, health, version, env or "
-                    "schedule (see --help)");
+  PrintError("dcs", "a command is required: up, down, status, health, version, env, "
+                    "schedule or train (see --help)");
   return kExitUsage;
 }
 

@@ -16,6 +16,7 @@ inline constexpr int kExitDataError = 65;    // INVALID_ARGUMENT: bad input data
 inline constexpr int kExitUnavailable = 69;  // UNAVAILABLE, DEADLINE_EXCEEDED (EX_UNAVAILABLE)
 inline constexpr int kExitNoPermission = 77; // UNAUTHENTICATED, PERMISSION_DENIED (EX_NOPERM)
 inline constexpr int kExitConfig = 78;       // unreadable or malformed config file (EX_CONFIG)
+inline constexpr int kExitInterrupted = 130; // stopped by SIGINT or SIGTERM, resumable (128 + 2)
 
 // The exit code for a program that fails with `status`. REQUIRES: !status.ok().
 int ExitCodeFor(const absl::Status& status);

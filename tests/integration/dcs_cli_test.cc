@@ -168,7 +168,7 @@ TEST(DcsCliTest, DownWithoutAClusterSaysSo) {
 }
 
 TEST(DcsCliTest, EveryCommandHasHelp) {
-  for (const char* command : {"up", "down", "status", "health", "version"}) {
+  for (const char* command : {"up", "down", "status", "health", "version", "train"}) {
     const RunResult help = Dcs({command, "--help"});
     EXPECT_EQ(help.exit_code, 0) << command;
     EXPECT_THAT(help.output, HasSubstr(absl::StrCat("dcs ", command))) << help.output;
