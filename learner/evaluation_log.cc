@@ -1,8 +1,6 @@
 // Copyright 2026 The DCS Authors.
 #include "learner/evaluation_log.h"
 
-#include <google/protobuf/util/json_util.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -11,6 +9,7 @@
 #include "common/atomic_file.h"
 #include "common/round_trip.h"
 #include "common/status_macros.h"
+#include "dcs/proto_json.h"
 
 namespace dcs::learner {
 namespace {
@@ -99,24 +98,10 @@ v1::EvaluationLog MakeEvaluationLog(const RunSpec& spec,
   return log;
 }
 
-absl::StatusOr<std::string> EvaluationLogJson(const v1::EvaluationLog& log) {
-  google::protobuf::util::JsonPrintOptions options;
-  options.add_whitespace = true;
-  options.always_print_primitive_fields = true;
-  std::string json;
-  if (const auto status = google::protobuf::util::MessageToJsonString(log, &json, options);
-      !status.ok()) {
-    return absl::InternalError(absl::StrCat("cannot write the evaluation log as JSON: ",
-                                            status.ToString()));
-  }
-  return json;
-}
-
 absl::Status WriteEvaluationLog(const std::string& dir, const v1::EvaluationLog& log) {
   const std::filesystem::path root(dir);
   DCS_RETURN_IF_ERROR(WriteFileAtomically(root / "evaluations.csv", ToCsv(log)));
-  DCS_ASSIGN_OR_RETURN(const std::string json, EvaluationLogJson(log));
-  return WriteFileAtomically(root / "evaluations.json", json);
+  return WriteFileAtomically(root / "evaluations.json", ProtoToJson(log));
 }
 
 }  // namespace dcs::learner

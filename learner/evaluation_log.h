@@ -6,7 +6,8 @@
 // best-anytime (spec/schedules.md §9.3), written to the run's output directory as
 //   evaluations.csv   one row per evaluation and context:
 //                     step,updates,split,value,episodes,mean,std,seconds
-//   evaluations.json  a dcs.v1.EvaluationLog (proto/dcs/v1/evaluation.proto) in protobuf's JSON
+//   evaluations.json  a dcs.v1.EvaluationLog (proto/dcs/v1/evaluation.proto) as JSON
+//                     (proto/dcs/proto_json.h)
 // each atomically (common/atomic_file.h), rewritten after every evaluation so a running run can
 // be watched. Thread-safe (pure functions).
 
@@ -15,7 +16,6 @@
 #include <vector>
 
 #include "absl/status/status.h"
-#include "absl/status/statusor.h"
 #include "actor/evaluation.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "learner/run_spec.h"
@@ -28,9 +28,6 @@ namespace dcs::learner {
 v1::EvaluationLog MakeEvaluationLog(const RunSpec& spec,
                                     const std::vector<actor::EvaluationResult>& evaluations,
                                     const std::vector<int64_t>& stage_boundaries, bool complete);
-
-// `log` in protobuf's JSON mapping, indented.
-absl::StatusOr<std::string> EvaluationLogJson(const v1::EvaluationLog& log);
 
 // Writes evaluations.csv and evaluations.json into `dir`. Errors name the file
 // (RESOURCE_EXHAUSTED for a full disk); a file that fails keeps its previous contents.

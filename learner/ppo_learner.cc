@@ -195,12 +195,13 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   const torch::Tensor return_tensor = View(returns, {n}, torch::kFloat32);
 
   UpdateStats stats;
-  // Sums over minibatches, kept as tensors and read once at the end.
-  torch::Tensor policy_loss_sum = torch::zeros({});
-  torch::Tensor value_loss_sum = torch::zeros({});
-  torch::Tensor entropy_loss_sum = torch::zeros({});
-  torch::Tensor clip_fraction_sum = torch::zeros({});
-  torch::Tensor approx_kl_sum = torch::zeros({});
+  // Sums over minibatches of what SB3 logs, from each minibatch's values (plain arithmetic on
+  // B numbers costs less than recording it as tensor operations).
+  double policy_loss_sum = 0;
+  double value_loss_sum = 0;
+  double entropy_loss_sum = 0;
+  double clip_fraction_sum = 0;
+  double approx_kl_sum = 0;
   int minibatches = 0;
   std::vector<int64_t> order(n);
   const double clip = config.clip_range;
@@ -256,16 +257,23 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
       if (config.ent_coef > 0) loss = loss + config.ent_coef * entropy_loss;
 
       {
-        torch::NoGradGuard no_grad;
-        const torch::Tensor approx_kl = ((ratio - 1) - torch::log(ratio)).mean();
+        // approx_kl = mean((r - 1) - log r), SB3's estimator; clip_fraction = mean(|r - 1| > clip).
+        const torch::Tensor ratios = ratio.detach().contiguous();
+        const float* ratio_values = ratios.data_ptr<float>();
+        double approx_kl = 0;
+        int clipped = 0;
+        for (int64_t i = 0; i < size; ++i) {
+          approx_kl += (ratio_values[i] - 1.0) - std::log(static_cast<double>(ratio_values[i]));
+          clipped += std::abs(ratio_values[i] - 1.0f) > clip;
+        }
+        approx_kl /= static_cast<double>(size);
         approx_kl_sum += approx_kl;
-        clip_fraction_sum += ((ratio - 1).abs() > clip).to(torch::kFloat32).mean();
-        policy_loss_sum += policy_loss;
-        value_loss_sum += value_loss;
-        entropy_loss_sum += entropy_loss;
+        clip_fraction_sum += static_cast<double>(clipped) / static_cast<double>(size);
+        policy_loss_sum += policy_loss.item<double>();
+        value_loss_sum += value_loss.item<double>();
+        entropy_loss_sum += entropy_loss.item<double>();
         ++minibatches;
-        if (config.target_kl.has_value() &&
-            approx_kl.item<double>() > 1.5 * *config.target_kl) {
+        if (config.target_kl.has_value() && approx_kl > 1.5 * *config.target_kl) {
           stats.stopped_early = true;  // before this minibatch's step, as SB3
           break;
         }
@@ -279,11 +287,14 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
       flat_gradients.zero_();
       loss.backward();
       {
-        // torch.nn.utils.clip_grad_norm_ over every parameter: one norm of the flat gradient.
+        // torch.nn.utils.clip_grad_norm_ over every parameter: one norm of the flat gradient,
+        // coefficient max_norm / (norm + 1e-6) in float32 as torch computes it, clamped to 1
+        // (multiplying by 1 changes nothing, so it is skipped).
         torch::NoGradGuard no_grad;
-        const torch::Tensor scale =
-            torch::clamp_max(config.max_grad_norm / (flat_gradients.norm() + 1e-6), 1.0);
-        flat_gradients.mul_(scale);
+        const float norm = flat_gradients.norm().item<float>();
+        const float coefficient =
+            static_cast<float>(config.max_grad_norm) / (norm + static_cast<float>(1e-6));
+        if (coefficient < 1.0f) flat_gradients.mul_(coefficient);
       }
       optimizer->step();
       ++stats.gradient_steps;
@@ -291,11 +302,11 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   }
   ++updates;
 
-  stats.policy_loss = policy_loss_sum.item<double>() / minibatches;
-  stats.value_loss = value_loss_sum.item<double>() / minibatches;
-  stats.entropy_loss = entropy_loss_sum.item<double>() / minibatches;
-  stats.clip_fraction = clip_fraction_sum.item<double>() / minibatches;
-  stats.approx_kl = approx_kl_sum.item<double>() / minibatches;
+  stats.policy_loss = policy_loss_sum / minibatches;
+  stats.value_loss = value_loss_sum / minibatches;
+  stats.entropy_loss = entropy_loss_sum / minibatches;
+  stats.clip_fraction = clip_fraction_sum / minibatches;
+  stats.approx_kl = approx_kl_sum / minibatches;
   // 1 - Var(returns - values) / Var(returns), NaN when the returns do not vary (as SB3).
   const torch::Tensor residual = return_tensor - old_values;
   const double return_variance = return_tensor.var(/*unbiased=*/false).item<double>();

@@ -9,6 +9,7 @@
 //   dcs env trace ...          an environment's state after every step of an action sequence
 //   dcs schedule preview ...   schedule trajectories as CSV and the paper's appendix figure
 //   dcs train --config F       one training run in this process, with the paper's evaluation
+//   dcs summarize DIR...       finished runs' scores and their IQM [Q1, Q3] across seeds
 // stdout carries data only; progress and errors go to stderr. Exit codes: README.md.
 
 #include <string>
@@ -22,7 +23,7 @@
 #include "services/env_commands.h"
 #include "services/exit_codes.h"
 #include "services/log.h"
-#include "services/train_command.h"
+#include "services/train_commands.h"
 
 namespace dcs::services {
 namespace {
@@ -45,7 +46,7 @@ int Main(int argc, char** argv) {
 
   std::vector<CliCommand> commands = AddClusterCommands(app, flags);
   for (CliCommand& command : AddEnvCommands(app)) commands.push_back(std::move(command));
-  for (CliCommand& command : AddTrainCommand(app, flags)) commands.push_back(std::move(command));
+  for (CliCommand& command : AddTrainCommands(app, flags)) commands.push_back(std::move(command));
 
   if (std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   for (const CliCommand& command : commands) {
@@ -53,7 +54,7 @@ int Main(int argc, char** argv) {
   }
   // Checked here rather than by CLI11, which would report it before an unknown flag.
   PrintError("dcs", "a command is required: up, down, status, health, version, env, "
-                    "schedule or train (see --help)");
+                    "schedule, train or summarize (see --help)");
   return kExitUsage;
 }
 

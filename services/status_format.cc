@@ -1,8 +1,6 @@
 // Copyright 2026 The DCS Authors.
 #include "services/status_format.h"
 
-#include <google/protobuf/util/json_util.h>
-
 #include <algorithm>
 #include <vector>
 
@@ -10,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/strip.h"
+#include "dcs/proto_json.h"
 #include "services/text_table.h"
 #include "services/time_proto.h"
 
@@ -38,13 +37,7 @@ std::string FormatClusterStatus(const v1::GetClusterStatusResponse& status,
                                 const std::string& coordinator_address, absl::Time now,
                                 OutputFormat format) {
   if (format == OutputFormat::kJson) {
-    google::protobuf::util::JsonPrintOptions options;
-    options.preserve_proto_field_names = true;
-    options.always_print_primitive_fields = true;
-    options.add_whitespace = true;
-    std::string json;
-    (void)google::protobuf::util::MessageToJsonString(status, &json, options);
-    return json;
+    return ProtoToJson(status);
   }
   std::vector<std::vector<std::string>> rows = {
       {"ROLE", "ID", "ADDRESS", "STATE", "LAST HEARTBEAT", "HOST", "PID", "VERSION"}};

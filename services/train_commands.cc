@@ -1,7 +1,8 @@
 // Copyright 2026 The DCS Authors.
-#include "services/train_command.h"
+#include "services/train_commands.h"
 
 #include <unistd.h>
+#include <google/protobuf/util/json_util.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -18,12 +19,15 @@
 #include "absl/strings/str_format.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
+#include "coordinator/iqm.h"
+#include "dcs/proto_json.h"
 #include "env/env_registry.h"
 #include "learner/evaluation_log.h"
 #include "learner/run_spec_yaml.h"
 #include "learner/torch_runtime.h"
 #include "learner/training_run.h"
 #include "services/exit_codes.h"
+#include "services/text_table.h"
 
 namespace dcs::services {
 namespace {
@@ -31,6 +35,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kStoredConfig[] = "config.yaml";
+constexpr int kBootstrapRepetitions = 10'000;
 
 struct TrainFlags {
   std::string config;
@@ -151,8 +156,7 @@ void PrintSummary(const std::string& out_dir, const learner::TrainingResult& res
                   OutputFormat format) {
   const v1::EvaluationLog& log = result.log;
   if (format == OutputFormat::kJson) {
-    absl::StatusOr<std::string> json = learner::EvaluationLogJson(log);
-    std::cout << (json.ok() ? *json : "{}") << std::endl;
+    std::cout << ProtoToJson(log) << std::endl;
     return;
   }
   std::cout << "run           " << out_dir << "\n"
@@ -207,9 +211,85 @@ int RunTrain(const TrainFlags& flags, const GlobalFlags& global) {
   return kExitOk;
 }
 
+// The scores of the finished run in `dir`. NOT_FOUND without an evaluation log, DATA_LOSS for
+// an unreadable one, FAILED_PRECONDITION for a run that has not finished.
+absl::StatusOr<v1::RunScore> ReadRunScore(const std::string& dir) {
+  const std::string path = (fs::path(dir) / "evaluations.json").string();
+  absl::StatusOr<std::string> json = ReadFile(path);
+  if (!json.ok()) return absl::NotFoundError(absl::StrCat("no run in ", dir, ": ", path));
+  v1::EvaluationLog log;
+  if (!google::protobuf::util::JsonStringToMessage(*json, &log).ok()) {
+    return absl::DataLossError(absl::StrCat(path, " is not an evaluation log"));
+  }
+  if (!log.complete() || log.evaluations_size() == 0) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        dir, ": the run has not finished (continue it with dcs train --resume --out ", dir, ")"));
+  }
+  v1::RunScore score;
+  score.set_run(dir);
+  score.set_seed(log.seed());
+  score.set_steps(log.evaluations(log.evaluations_size() - 1).step());
+  score.set_last(log.last());
+  score.set_best_anytime(log.best_anytime());
+  return score;
+}
+
+absl::StatusOr<v1::ScoreSummary> SummarizeScore(const std::vector<double>& values) {
+  DCS_ASSIGN_OR_RETURN(const coordinator::IqmSummary iqm, coordinator::SummarizeIqm(values));
+  DCS_ASSIGN_OR_RETURN(
+      const coordinator::ConfidenceInterval interval,
+      coordinator::BootstrapIqmInterval({values}, 0.95, kBootstrapRepetitions, /*seed=*/0));
+  v1::ScoreSummary summary;
+  summary.set_iqm(iqm.iqm);
+  summary.set_q1(iqm.q1);
+  summary.set_q3(iqm.q3);
+  summary.set_ci_low(interval.lo);
+  summary.set_ci_high(interval.hi);
+  return summary;
+}
+
+absl::StatusOr<v1::RunsSummary> SummarizeRuns(const std::vector<std::string>& dirs) {
+  v1::RunsSummary summary;
+  std::vector<double> last;
+  std::vector<double> best;
+  for (const std::string& dir : dirs) {
+    DCS_ASSIGN_OR_RETURN(*summary.add_runs(), ReadRunScore(dir));
+    last.push_back(summary.runs().rbegin()->last());
+    best.push_back(summary.runs().rbegin()->best_anytime());
+  }
+  DCS_ASSIGN_OR_RETURN(*summary.mutable_last(), SummarizeScore(last));
+  DCS_ASSIGN_OR_RETURN(*summary.mutable_best_anytime(), SummarizeScore(best));
+  return summary;
+}
+
+std::string FormatScoreSummary(const v1::ScoreSummary& score) {
+  return absl::StrFormat("%.1f [%.1f, %.1f]  (95%% CI of the IQM [%.1f, %.1f])", score.iqm(),
+                         score.q1(), score.q3(), score.ci_low(), score.ci_high());
+}
+
+int RunSummarize(const std::vector<std::string>& dirs, const GlobalFlags& global) {
+  absl::StatusOr<v1::RunsSummary> summary = SummarizeRuns(dirs);
+  if (!summary.ok()) return FailCommand(summary.status());
+  if (global.output == OutputFormat::kJson) {
+    std::cout << ProtoToJson(*summary) << std::endl;
+    return kExitOk;
+  }
+  std::vector<std::vector<std::string>> rows = {{"RUN", "SEED", "STEPS", "LAST", "BEST-ANYTIME"}};
+  for (const v1::RunScore& run : summary->runs()) {
+    rows.push_back({run.run(), absl::StrCat(run.seed()), absl::StrCat(run.steps()),
+                    absl::StrFormat("%.1f", run.last()),
+                    absl::StrFormat("%.1f", run.best_anytime())});
+  }
+  std::cout << RenderTable(rows) << "\n"
+            << "avg_combined IQM [Q1, Q3] over " << summary->runs_size() << " runs\n"
+            << "  last          " << FormatScoreSummary(summary->last()) << "\n"
+            << "  best-anytime  " << FormatScoreSummary(summary->best_anytime()) << std::endl;
+  return kExitOk;
+}
+
 }  // namespace
 
-std::vector<CliCommand> AddTrainCommand(CLI::App& dcs, const GlobalFlags& flags) {
+std::vector<CliCommand> AddTrainCommands(CLI::App& dcs, const GlobalFlags& flags) {
   auto train_flags = std::make_shared<TrainFlags>();
   CLI::App* train = dcs.add_subcommand(
       "train", "Train one run of a config in this process (PPO, with the paper's evaluation)");
@@ -227,7 +307,14 @@ std::vector<CliCommand> AddTrainCommand(CLI::App& dcs, const GlobalFlags& flags)
   train->add_option("--keep", train_flags->keep, "checkpoints to keep")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
-  return {{train, [train_flags, &flags] { return RunTrain(*train_flags, flags); }}};
+
+  auto run_dirs = std::make_shared<std::vector<std::string>>();
+  CLI::App* summarize = dcs.add_subcommand(
+      "summarize", "Scores of finished runs (one condition, several seeds) and their IQM [Q1, Q3]");
+  summarize->add_option("runs", *run_dirs, "the runs' directories (as dcs train --out)")
+      ->required();
+  return {{train, [train_flags, &flags] { return RunTrain(*train_flags, flags); }},
+          {summarize, [run_dirs, &flags] { return RunSummarize(*run_dirs, flags); }}};
 }
 
 }  // namespace dcs::services
