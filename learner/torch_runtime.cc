@@ -3,7 +3,10 @@
 
 #include <ATen/Parallel.h>
 #include <c10/util/Exception.h>
+#include <dlfcn.h>
 #include <torch/version.h>
+
+#include <cstdlib>
 
 #include "absl/strings/str_cat.h"
 
@@ -26,6 +29,32 @@ absl::Status PinTorchThreads(int threads) {
   return absl::OkStatus();
 }
 
-std::vector<LibraryVersion> LibraryVersions() { return {{"libtorch", TORCH_VERSION}}; }
+std::vector<LibraryVersion> LibraryVersions() {
+  std::vector<LibraryVersion> versions = {{"libtorch", TORCH_VERSION}};
+  if (const std::string core = BlasCoreName(); !core.empty()) {
+    versions.push_back({"openblas core", core});
+  }
+  return versions;
+}
+
+std::string BlasCoreName() {
+  // Looked up rather than linked: libtorch reaches OpenBLAS through the libblas.so.3
+  // alternative, which may be another BLAS.
+  using CoreName = char* (*)();
+  const auto core_name = reinterpret_cast<CoreName>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
+  return core_name == nullptr ? "" : core_name();
+}
+
+std::optional<std::string> BetterBlasCore() {
+  if (std::getenv("OPENBLAS_CORETYPE") != nullptr || BlasCoreName() != "Prescott") {
+    return std::nullopt;
+  }
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq")) {
+    return "SkylakeX";
+  }
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "Haswell";
+  return std::nullopt;
+}
 
 }  // namespace dcs::learner

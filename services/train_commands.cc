@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -17,6 +19,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
 #include "coordinator/iqm.h"
@@ -66,6 +69,29 @@ absl::StatusOr<std::string> EffectiveConfig(const std::string& path, const Train
   }
 }
 
+// When OpenBLAS fell back to its generic kernels on a CPU it does not recognise
+// (learner::BetterBlasCore), runs this program again, the same way, with OPENBLAS_CORETYPE
+// naming the right core: OpenBLAS reads it once, when the program loads, so it cannot be set
+// later. Returns if there is nothing to do, or if the restart fails (training then runs on the
+// generic kernels, only slower).
+void RestartWithBetterBlasCore() {
+  const std::optional<std::string> core = learner::BetterBlasCore();
+  if (!core.has_value()) return;
+  absl::StatusOr<std::string> command_line = ReadFile("/proc/self/cmdline");
+  if (!command_line.ok()) return;
+  std::vector<std::string> words = absl::StrSplit(*command_line, '\0', absl::SkipEmpty());
+  std::vector<char*> argv;
+  for (std::string& word : words) argv.push_back(word.data());
+  argv.push_back(nullptr);
+  std::cerr << "dcs: OpenBLAS does not recognise this CPU and chose its generic kernels; "
+               "restarting with OPENBLAS_CORETYPE="
+            << *core << " (set OPENBLAS_CORETYPE to choose)" << std::endl;
+  setenv("OPENBLAS_CORETYPE", core->c_str(), /*overwrite=*/1);
+  execv("/proc/self/exe", argv.data());
+  std::cerr << "dcs: cannot restart (" << std::strerror(errno) << "); training on the generic "
+            << "kernels" << std::endl;
+}
+
 // Where the run's files go: --out, else <data-dir>/runs/<config name>-seed<seed>.
 std::string OutputDirectory(const TrainFlags& flags, const GlobalFlags& global, uint64_t seed) {
   if (!flags.out.empty()) return flags.out;
@@ -74,48 +100,63 @@ std::string OutputDirectory(const TrainFlags& flags, const GlobalFlags& global, 
       .string();
 }
 
-// Reads and checks the config, and prepares `out_dir`: a new run needs a directory without
-// one; a resumed run needs its stored config, equal to --config if that is given too.
-absl::StatusOr<learner::RunSpec> PrepareRun(const TrainFlags& flags, const GlobalFlags& global,
-                                            std::string& out_dir) {
+// A run as the command line asks for it: checked, not started.
+struct RunRequest {
+  learner::RunSpec spec;
+  std::string config_text;  // as stored in the run's directory
+  std::string out_dir;
+};
+
+// Reads and checks the config and the run's directory, changing nothing: a new run needs a
+// directory without one; a resumed run needs its stored config, equal to --config if that is
+// given too.
+absl::StatusOr<RunRequest> CheckRunRequest(const TrainFlags& flags, const GlobalFlags& global) {
+  RunRequest request;
   if (flags.resume && flags.config.empty()) {
     if (flags.out.empty()) {
       return absl::InvalidArgumentError("--resume needs --out (the run's directory) or --config");
     }
-    out_dir = flags.out;
-    const std::string stored = (fs::path(out_dir) / kStoredConfig).string();
+    request.out_dir = flags.out;
+    const std::string stored = (fs::path(request.out_dir) / kStoredConfig).string();
     absl::StatusOr<std::string> text = ReadFile(stored);
     if (!text.ok()) return absl::NotFoundError(absl::StrCat("no run to resume: ", stored));
-    return learner::ParseRunSpecYaml(*text, stored);
+    request.config_text = *std::move(text);
+    DCS_ASSIGN_OR_RETURN(request.spec, learner::ParseRunSpecYaml(request.config_text, stored));
+    return request;
   }
   if (flags.config.empty()) return absl::InvalidArgumentError("--config is required");
-  DCS_ASSIGN_OR_RETURN(const std::string text, EffectiveConfig(flags.config, flags));
-  DCS_ASSIGN_OR_RETURN(learner::RunSpec spec, learner::ParseRunSpecYaml(text, flags.config));
-  out_dir = OutputDirectory(flags, global, spec.seed);
-  const fs::path stored = fs::path(out_dir) / kStoredConfig;
+  DCS_ASSIGN_OR_RETURN(request.config_text, EffectiveConfig(flags.config, flags));
+  DCS_ASSIGN_OR_RETURN(request.spec, learner::ParseRunSpecYaml(request.config_text, flags.config));
+  request.out_dir = OutputDirectory(flags, global, request.spec.seed);
+  const fs::path stored = fs::path(request.out_dir) / kStoredConfig;
   if (flags.resume) {
     absl::StatusOr<std::string> previous = ReadFile(stored.string());
-    if (!previous.ok()) return absl::NotFoundError(absl::StrCat("no run to resume in ", out_dir));
-    if (*previous != text) {
+    if (!previous.ok()) {
+      return absl::NotFoundError(absl::StrCat("no run to resume in ", request.out_dir));
+    }
+    if (*previous != request.config_text) {
       return absl::FailedPreconditionError(absl::StrCat(
-          out_dir, " holds a run of another config (", stored.string(), " differs from ",
+          request.out_dir, " holds a run of another config (", stored.string(), " differs from ",
           flags.config, flags.seed_given ? " with --seed" : "", ")"));
     }
-    return spec;
-  }
-  if (fs::exists(stored)) {
+  } else if (fs::exists(stored)) {
     return absl::FailedPreconditionError(
-        absl::StrCat(out_dir, " already holds a run: pass --resume to continue it, or --out "
-                              "for a new directory"));
+        absl::StrCat(request.out_dir, " already holds a run: pass --resume to continue it, or "
+                                      "--out for a new directory"));
   }
+  return request;
+}
+
+// Creates a new run's directory, holding its config.
+absl::Status CreateRunDirectory(const RunRequest& request) {
   std::error_code error;
-  fs::create_directories(out_dir, error);
+  fs::create_directories(request.out_dir, error);
   if (error) {
     return absl::PermissionDeniedError(
-        absl::StrCat("cannot create ", out_dir, ": ", error.message()));
+        absl::StrCat("cannot create ", request.out_dir, ": ", error.message()));
   }
-  DCS_RETURN_IF_ERROR(WriteFileAtomically(stored.string(), text));
-  return spec;
+  return WriteFileAtomically((fs::path(request.out_dir) / kStoredConfig).string(),
+                             request.config_text);
 }
 
 std::string FormatEvaluation(const actor::EvaluationResult& evaluation) {
@@ -176,12 +217,19 @@ void PrintSummary(const std::string& out_dir, const learner::TrainingResult& res
 }
 
 int RunTrain(const TrainFlags& flags, const GlobalFlags& global) {
-  std::string out_dir;
-  absl::StatusOr<learner::RunSpec> spec = PrepareRun(flags, global, out_dir);
-  if (!spec.ok()) return FailCommand(spec.status());
+  absl::StatusOr<RunRequest> request = CheckRunRequest(flags, global);
+  if (!request.ok()) return FailCommand(request.status());
+  RestartWithBetterBlasCore();
+  if (!flags.resume) {
+    if (absl::Status status = CreateRunDirectory(*request); !status.ok()) {
+      return FailCommand(status);
+    }
+  }
   if (absl::Status status = learner::PinTorchThreads(1); !status.ok()) {
     return FailCommand(status);
   }
+  const learner::RunSpec& spec = request->spec;
+  const std::string& out_dir = request->out_dir;
   std::signal(SIGINT, RequestStop);
   std::signal(SIGTERM, RequestStop);
   ProgressPrinter progress;
@@ -196,8 +244,8 @@ int RunTrain(const TrainFlags& flags, const GlobalFlags& global) {
           }};
   std::optional<learner::TrainingResult> result;
   const absl::Status status =
-      env::VisitEnvironment(spec->env, [&]<typename Env>() -> absl::Status {
-        DCS_ASSIGN_OR_RETURN(result, learner::Train<Env>(*spec, options));
+      env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
+        DCS_ASSIGN_OR_RETURN(result, learner::Train<Env>(spec, options));
         return absl::OkStatus();
       });
   progress.Finish();
