@@ -9,6 +9,7 @@
 #include "common/atomic_file.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/testing/temp_dir.h"
 
 namespace dcs::learner {
 namespace {
@@ -16,13 +17,6 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-
-std::string FreshDir(absl::string_view name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / absl::StrCat("run_checkpoint_", name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
 
 RunState StateAt(int64_t timesteps) {
   actor::EvaluationResult evaluation{
@@ -55,7 +49,7 @@ void Overwrite(const fs::path& path, absl::string_view contents) {
 }
 
 TEST(RunCheckpointTest, ReadsBackExactlyWhatWasWritten) {
-  const std::string dir = FreshDir("round_trip");
+  const std::string dir = testing::MakeTempDir();
   const RunState state = StateAt(128);
   ASSERT_TRUE(WriteCheckpoint(dir, state, std::string("learner\0bytes", 13), 3).ok());
   absl::StatusOr<Checkpoint> read = ReadLatestCheckpoint(dir);
@@ -80,14 +74,14 @@ TEST(RunCheckpointTest, ReadsBackExactlyWhatWasWritten) {
 }
 
 TEST(RunCheckpointTest, KeepsTheNewestAndPointsLatestAtIt) {
-  const std::string dir = FreshDir("keep");
+  const std::string dir = testing::MakeTempDir();
   for (int64_t t : {64, 128, 192, 256}) ASSERT_TRUE(WriteCheckpoint(dir, StateAt(t), "x", 2).ok());
   EXPECT_THAT(CheckpointNames(dir), ElementsAre("000000000192", "000000000256"));
   EXPECT_EQ(*ReadFile(dir + "/checkpoints/latest"), "000000000256\n");
 }
 
 TEST(RunCheckpointTest, CorruptNewestFallsBackToThePreviousOne) {
-  const std::string dir = FreshDir("fallback");
+  const std::string dir = testing::MakeTempDir();
   ASSERT_TRUE(WriteCheckpoint(dir, StateAt(64), "old learner", 3).ok());
   ASSERT_TRUE(WriteCheckpoint(dir, StateAt(128), "new learner", 3).ok());
   const fs::path newest = fs::path(dir) / "checkpoints" / "000000000128";
@@ -108,7 +102,7 @@ TEST(RunCheckpointTest, CorruptNewestFallsBackToThePreviousOne) {
 }
 
 TEST(RunCheckpointTest, NewerCheckpointThatLatestDoesNotNameIsIgnored) {
-  const std::string dir = FreshDir("interrupted");
+  const std::string dir = testing::MakeTempDir();
   ASSERT_TRUE(WriteCheckpoint(dir, StateAt(64), "a", 3).ok());
   ASSERT_TRUE(WriteCheckpoint(dir, StateAt(128), "b", 3).ok());
   // As if the writer died before moving the pointer.
@@ -119,7 +113,7 @@ TEST(RunCheckpointTest, NewerCheckpointThatLatestDoesNotNameIsIgnored) {
 }
 
 TEST(RunCheckpointTest, NoneOrOnlyCorruptCheckpointsAreErrors) {
-  const std::string dir = FreshDir("corrupt");
+  const std::string dir = testing::MakeTempDir();
   EXPECT_EQ(ReadLatestCheckpoint(dir).status().code(), absl::StatusCode::kNotFound);
   ASSERT_TRUE(WriteCheckpoint(dir, StateAt(64), "learner", 3).ok());
   Overwrite(fs::path(dir) / "checkpoints" / "000000000064" / "learner.bin", "");

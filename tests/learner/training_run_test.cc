@@ -17,6 +17,7 @@
 #include "env/cartpole.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/testing/temp_dir.h"
 #include "learner/run_spec_yaml.h"
 #include "learner/torch_runtime.h"
 
@@ -50,13 +51,6 @@ RunSpec Spec(absl::string_view yaml) {
   absl::StatusOr<RunSpec> spec = ParseRunSpecYaml(yaml, "test.yaml");
   EXPECT_TRUE(spec.ok()) << spec.status();
   return *spec;
-}
-
-std::string FreshDir(absl::string_view name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / absl::StrCat("training_run_", name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
 }
 
 std::vector<std::vector<double>> Returns(const RunState& state) {
@@ -121,7 +115,7 @@ TEST_F(TrainingRunTest, StoppedAndResumedRunEndsWithTheWeightsOfAnUninterruptedO
   absl::StatusOr<TrainingResult> straight = Train<env::CartPole>(spec, {});
   ASSERT_TRUE(straight.ok()) << straight.status();
 
-  const std::string dir = FreshDir("resume");
+  const std::string dir = testing::MakeTempDir();
   TrainingOptions options{.out_dir = dir,
                           .on_update = [](const TrainingProgress& p) { return p.updates < 5; }};
   absl::StatusOr<TrainingResult> first_half = Train<env::CartPole>(spec, options);
@@ -140,7 +134,7 @@ TEST_F(TrainingRunTest, StoppedAndResumedRunEndsWithTheWeightsOfAnUninterruptedO
 }
 
 TEST_F(TrainingRunTest, WritesTheEvaluationLogAsCsvAndJson) {
-  const std::string dir = FreshDir("log");
+  const std::string dir = testing::MakeTempDir();
   absl::StatusOr<TrainingResult> run = Train<env::CartPole>(Spec(kSmallRun), {.out_dir = dir});
   ASSERT_TRUE(run.ok()) << run.status();
 
@@ -169,7 +163,7 @@ TEST_F(TrainingRunTest, WritesTheEvaluationLogAsCsvAndJson) {
 
 TEST_F(TrainingRunTest, ResumeRefusesAMissingCheckpointOrAnotherRun) {
   const RunSpec spec = Spec(kSmallRun);
-  const std::string dir = FreshDir("refuse");
+  const std::string dir = testing::MakeTempDir();
   EXPECT_EQ(Train<env::CartPole>(spec, {.out_dir = dir, .resume = true}).status().code(),
             absl::StatusCode::kNotFound);
 
@@ -224,7 +218,7 @@ TEST_F(TrainingRunTest, NanObservationStopsTheRunNamingWhereAndKeepsTheCheckpoin
   spec.n_envs = 1;
   spec.stages.clear();
   spec.eval_freq = 64;
-  const std::string dir = FreshDir("nan");
+  const std::string dir = testing::MakeTempDir();
   const absl::Status status = Train<NanCartPole>(spec, {.out_dir = dir}).status();
   EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(status.message(), HasSubstr("environment steps 64 to 128"));
