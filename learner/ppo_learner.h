@@ -22,8 +22,8 @@
 #include "absl/strings/string_view.h"
 #include "actor/mlp_policy.h"
 #include "actor/policy.h"
-#include "learner/ppo_config.h"
 #include "actor/rollout.h"
+#include "learner/ppo_config.h"
 
 namespace dcs::learner {
 

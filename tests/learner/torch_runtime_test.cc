@@ -2,6 +2,10 @@
 #include "learner/torch_runtime.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <ATen/Parallel.h>
 
@@ -38,6 +42,25 @@ TEST(LibraryVersionsTest, ReportsLibtorch) {
   ASSERT_NE(libtorch, libraries.end());
   EXPECT_FALSE(libtorch->version.empty());
   EXPECT_NE(libtorch->version.find('.'), std::string::npos) << libtorch->version;
+}
+
+// bootstrap installs the serial OpenBLAS as libtorch's BLAS.
+TEST(BlasCoreTest, ReportsTheOpenBlasCoreInUse) {
+  const std::string core = BlasCoreName();
+  ASSERT_FALSE(core.empty());
+  const std::vector<LibraryVersion> libraries = LibraryVersions();
+  EXPECT_NE(std::find(libraries.begin(), libraries.end(), LibraryVersion{"openblas core", core}),
+            libraries.end());
+}
+
+TEST(BlasCoreTest, AChosenCoreIsLeftAlone) {
+  ASSERT_EQ(setenv("OPENBLAS_CORETYPE", "Haswell", /*overwrite=*/1), 0);
+  EXPECT_EQ(BetterBlasCore(), std::nullopt);
+  ASSERT_EQ(unsetenv("OPENBLAS_CORETYPE"), 0);
+  // Without it, a better core is named only when OpenBLAS fell back to its generic one.
+  if (BlasCoreName() != "Prescott") {
+    EXPECT_EQ(BetterBlasCore(), std::nullopt);
+  }
 }
 
 }  // namespace
