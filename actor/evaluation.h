@@ -14,10 +14,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "actor/policy.h"
 #include "actor/rollout_collector.h"
 #include "common/random.h"
@@ -30,6 +32,8 @@ enum class Split { kId, kOodLow, kOodHigh };
 
 // "id", "ood_low", "ood_high".
 const char* SplitName(Split split);
+// The split SplitName calls `name`, or nullopt.
+std::optional<Split> SplitFromName(absl::string_view name);
 
 struct EvaluationContext {
   Split split = Split::kId;
@@ -103,6 +107,13 @@ inline const char* SplitName(Split split) {
     case Split::kOodHigh: return "ood_high";
   }
   return "id";
+}
+
+inline std::optional<Split> SplitFromName(absl::string_view name) {
+  for (Split split : {Split::kId, Split::kOodLow, Split::kOodHigh}) {
+    if (name == SplitName(split)) return split;
+  }
+  return std::nullopt;
 }
 
 template <typename Env>

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iterator>
 #include <map>
+#include <optional>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
@@ -86,12 +87,6 @@ std::string ToYaml(const RunState& state) {
   return absl::StrCat(out.c_str(), "\n");
 }
 
-actor::Split SplitFromName(const std::string& name) {
-  if (name == "ood_low") return actor::Split::kOodLow;
-  if (name == "ood_high") return actor::Split::kOodHigh;
-  return actor::Split::kId;
-}
-
 // Reads one checkpoint directory. DATA_LOSS for a file that is missing, does not match the
 // manifest, or does not parse.
 absl::StatusOr<Checkpoint> ReadCheckpoint(const fs::path& dir) {
@@ -123,9 +118,14 @@ absl::StatusOr<Checkpoint> ReadCheckpoint(const fs::path& dir) {
       actor::EvaluationResult evaluation{.step = node["step"].as<int64_t>(),
                                          .updates = node["updates"].as<int64_t>()};
       for (const YAML::Node& context : node["contexts"]) {
+        const std::string split_name = context["split"].as<std::string>();
+        const std::optional<actor::Split> split = actor::SplitFromName(split_name);
+        if (!split.has_value()) {
+          return absl::DataLossError(absl::StrCat(dir.string(), "/run.yaml names an unknown ",
+                                                  "evaluation split '", split_name, "'"));
+        }
         evaluation.contexts.push_back(
-            {.context = {.split = SplitFromName(context["split"].as<std::string>()),
-                         .value = context["value"].as<double>()},
+            {.context = {.split = *split, .value = context["value"].as<double>()},
              .returns = context["returns"].as<std::vector<double>>(),
              .seconds = context["seconds"].as<double>()});
       }

@@ -24,7 +24,6 @@
 //
 // Confined to one thread.
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
