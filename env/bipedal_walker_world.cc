@@ -40,18 +40,16 @@ const LidarDirections& Directions() {
   return directions;
 }
 
+b2AABB SegmentBox(const b2Vec2& a, const b2Vec2& b) { return {b2Min(a, b), b2Max(a, b)}; }
+
 }  // namespace
 
-float WalkerWorld::LidarCallback::RayCastCallback(const b2RayCastInput& input, int32 proxy_id) {
+bool WalkerWorld::LidarCandidateCollector::QueryCallback(int32 proxy_id) {
   const auto* proxy = static_cast<const b2FixtureProxy*>(broad_phase->GetUserData(proxy_id));
-  const b2Fixture* fixture = proxy->fixture;
-  if ((fixture->GetFilterData().categoryBits & 1) == 0) return -1;  // ignored
-  b2RayCastOutput output;
-  if (!fixture->RayCast(&output, input, proxy->childIndex)) return input.maxFraction;
-  const float fraction = output.fraction;
-  ray.p2 = (1.0f - fraction) * input.p1 + fraction * input.p2;
-  ray.fraction = fraction;
-  return fraction;  // clips the ray: the last report is the nearest hit
+  if ((proxy->fixture->GetFilterData().categoryBits & 1) != 0) {
+    candidates->push_back({proxy->fixture, proxy->childIndex, broad_phase->GetFatAABB(proxy_id)});
+  }
+  return true;  // keep querying
 }
 
 WalkerWorld::WalkerWorld() : world_(std::make_unique<b2World>(b2Vec2(0.0f, -10.0f))) {
@@ -77,8 +75,8 @@ void WalkerWorld::EndContact(b2Contact* contact) {
 
 void WalkerWorld::Destroy() {
   world_->SetContactListener(nullptr);
-  for (b2Body* body : terrain_) world_->DestroyBody(body);
-  terrain_.clear();
+  if (ground_ != nullptr) world_->DestroyBody(ground_);
+  ground_ = nullptr;
   if (hull_ != nullptr) world_->DestroyBody(hull_);
   hull_ = nullptr;
   payload_ = nullptr;
@@ -107,10 +105,7 @@ void WalkerWorld::AddObstacle(const std::array<b2Vec2, 4>& vertices, double fric
   b2FixtureDef fixture;
   fixture.shape = &shape;
   fixture.friction = static_cast<float>(friction);
-  b2BodyDef body;  // static, at the origin
-  b2Body* obstacle = world_->CreateBody(&body);
-  obstacle->CreateFixture(&fixture);
-  terrain_.push_back(obstacle);
+  ground_->CreateFixture(&fixture);
   obstacles_.push_back({vertices});
 }
 
@@ -132,6 +127,8 @@ void WalkerWorld::GenerateTerrain(double friction, Random& random) {
   terrain_x_.clear();
   terrain_y_.clear();
   obstacles_.clear();
+  b2BodyDef ground;  // static, at the origin
+  ground_ = world_->CreateBody(&ground);
   for (int i = 0; i < g.terrain_length; ++i) {
     const double x = i * step;
     terrain_x_.push_back(x);
@@ -193,12 +190,9 @@ void WalkerWorld::GenerateTerrain(double friction, Random& random) {
   fixture.shape = &edge;
   fixture.friction = static_cast<float>(friction);
   fixture.filter.categoryBits = kGroundCategory;
-  b2BodyDef body;
   for (int i = 0; i + 1 < g.terrain_length; ++i) {
     edge.SetTwoSided(Vec(terrain_x_[i], terrain_y_[i]), Vec(terrain_x_[i + 1], terrain_y_[i + 1]));
-    b2Body* segment = world_->CreateBody(&body);
-    segment->CreateFixture(&fixture);
-    terrain_.push_back(segment);
+    ground_->CreateFixture(&fixture);
   }
 }
 
@@ -306,10 +300,9 @@ void WalkerWorld::CreateWalker(double motors_torque, Random& random) {
 void WalkerWorld::SetGravity(double x, double y) { world_->SetGravity(Vec(x, y)); }
 
 void WalkerWorld::SetTerrainFriction(double friction) {
-  for (b2Body* body : terrain_) {
-    for (b2Fixture* f = body->GetFixtureList(); f != nullptr; f = f->GetNext()) {
-      f->SetFriction(static_cast<float>(friction));
-    }
+  if (ground_ == nullptr) return;
+  for (b2Fixture* f = ground_->GetFixtureList(); f != nullptr; f = f->GetNext()) {
+    f->SetFriction(static_cast<float>(friction));
   }
   // A contact mixes its friction when it is created; re-mix the existing ones.
   for (b2Contact* c = world_->GetContactList(); c != nullptr; c = c->GetNext()) {
@@ -360,20 +353,38 @@ void WalkerWorld::Step(double dt) {
 
 void WalkerWorld::CastLidar(double range, std::span<float, kNumLidar> fractions) {
   const LidarDirections& directions = Directions();
-  const b2BroadPhase& broad_phase = world_->GetContactManager().m_broadPhase;
-  const b2Vec2 pos = hull_->GetPosition();
+  const b2Vec2 p1 = hull_->GetPosition();
+  b2AABB fan = SegmentBox(p1, p1);  // the box of all rays
   for (int i = 0; i < kNumLidar; ++i) {
-    LidarCallback& callback = lidar_[i];
-    callback.broad_phase = &broad_phase;
-    callback.ray.fraction = 1.0f;
-    callback.ray.p1 = pos;
-    callback.ray.p2 = Vec(pos.x + directions.sin[i] * range, pos.y - directions.cos[i] * range);
+    lidar_[i] = {.p1 = p1,
+                 .p2 = Vec(p1.x + directions.sin[i] * range, p1.y - directions.cos[i] * range),
+                 .fraction = 1.0f};
+    fan.Combine(SegmentBox(p1, lidar_[i].p2));
+  }
+  const b2BroadPhase& broad_phase = world_->GetContactManager().m_broadPhase;
+  lidar_candidates_.clear();
+  LidarCandidateCollector collector{&broad_phase, &lidar_candidates_};
+  broad_phase.Query(&collector, fan);
+
+  for (int i = 0; i < kNumLidar; ++i) {
+    LidarRay& ray = lidar_[i];
     b2RayCastInput input;  // what b2World::RayCast(callback, p1, p2) passes on
-    input.p1 = callback.ray.p1;
-    input.p2 = callback.ray.p2;
+    input.p1 = ray.p1;
+    input.p2 = ray.p2;
     input.maxFraction = 1.0f;
-    broad_phase.RayCast(&callback, input);
-    fractions[i] = callback.ray.fraction;
+    b2AABB reach = SegmentBox(ray.p1, ray.p2);  // the ray clipped at the nearest hit so far
+    for (const LidarCandidate& candidate : lidar_candidates_) {
+      b2RayCastOutput output;
+      if (!b2TestOverlap(candidate.fat_aabb, reach) ||
+          !candidate.fixture->RayCast(&output, input, candidate.child_index)) {
+        continue;
+      }
+      input.maxFraction = output.fraction;
+      ray.fraction = output.fraction;
+      ray.p2 = (1.0f - output.fraction) * input.p1 + output.fraction * input.p2;
+      reach = SegmentBox(ray.p1, ray.p2);
+    }
+    fractions[i] = ray.fraction;
   }
 }
 

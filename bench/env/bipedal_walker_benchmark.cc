@@ -8,6 +8,9 @@
 //                             random actions (short episodes: it falls, so resets weigh more)
 //   BM_BareWalker/heuristic   the same with the heuristic gait (long episodes, mostly walking)
 //   BM_Reset                  BipedalWalker::Reset alone (terrain, clouds, walker, one step)
+//   BM_WorldStepOnly          the Box2D floor: recorded heuristic episodes replayed through
+//                             WalkerWorld::SetMotors and Step alone (no lidar, observation or
+//                             reward; rebuilds untimed), checked to retrace the same trajectory
 //   BM_ScheduledWalker/F      the dynamic-context wrapper, the paper's payload (2 kg, 0.5 m),
 //                             heuristic actions (episodes of about 110 steps), COM_X moved by
 //                             schedule family F and observed live (F = none: no schedule), so
@@ -15,6 +18,8 @@
 //   BM_VectorWalker16         16 wrapped slots with a sinusoidal COM_X, random actions
 
 #include <array>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -74,6 +79,77 @@ void BM_Reset(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_Reset);
+
+// One heuristic episode of Gymnasium's walker, as its seed and actions.
+struct RecordedEpisode {
+  uint64_t seed;
+  std::vector<std::array<float, 4>> actions;
+  b2Vec2 final_hull_position;
+};
+
+RecordedEpisode RecordHeuristicEpisode(uint64_t seed) {
+  BipedalWalker env;
+  env.SetFeature(BipedalWalker::kPayloadMass, 0);
+  std::array<float, 24> observation;
+  Random random(seed);
+  env.Reset(random, observation);
+  WalkerHeuristic gait;
+  RecordedEpisode episode{.seed = seed};
+  for (bool done = false; !done;) {
+    episode.actions.push_back(gait.Act(observation));
+    done = env.Step(episode.actions.back(), observation).done();
+  }
+  episode.final_hull_position = env.world().hull()->GetPosition();
+  return episode;
+}
+
+double DefaultFeature(BipedalWalker::Feature feature) {
+  return BipedalWalker::Features().feature(feature).default_value;
+}
+
+// Sets the motors for `action` and steps the world, as BipedalWalker's step does with default
+// features (Gymnasium's constants).
+void StepWorld(WalkerWorld& world, std::span<const float, 4> action) {
+  world.SetMotors(action, DefaultFeature(BipedalWalker::kSpeedHip),
+                  DefaultFeature(BipedalWalker::kSpeedKnee),
+                  DefaultFeature(BipedalWalker::kMotorsTorque));
+  world.Step(1.0 / DefaultFeature(BipedalWalker::kFps));
+}
+
+// Builds the episode's world as BipedalWalker::Reset does, including its internal zero-action
+// step.
+void BuildEpisodeWorld(const RecordedEpisode& episode, WalkerWorld& world) {
+  Random random(episode.seed);
+  world.Build(WalkerGeometry{}, DefaultFeature(BipedalWalker::kFriction),
+              DefaultFeature(BipedalWalker::kMotorsTorque), random);
+  StepWorld(world, std::array<float, 4>{0, 0, 0, 0});
+}
+
+void BM_WorldStepOnly(benchmark::State& state) {
+  std::vector<RecordedEpisode> episodes;
+  for (uint64_t seed = 0; seed < 4; ++seed) episodes.push_back(RecordHeuristicEpisode(seed));
+  auto world = std::make_unique<WalkerWorld>();
+  size_t episode = 0;
+  size_t step = 0;
+  BuildEpisodeWorld(episodes[episode], *world);
+  for (auto _ : state) {
+    StepWorld(*world, episodes[episode].actions[step]);
+    if (++step < episodes[episode].actions.size()) continue;
+    state.PauseTiming();
+    const b2Vec2 replayed = world->hull()->GetPosition();
+    const b2Vec2 recorded = episodes[episode].final_hull_position;
+    if (replayed.x != recorded.x || replayed.y != recorded.y) {
+      state.SkipWithError("the replay left the recorded trajectory");
+      break;
+    }
+    episode = (episode + 1) % episodes.size();
+    step = 0;
+    BuildEpisodeWorld(episodes[episode], *world);
+    state.ResumeTiming();
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_WorldStepOnly);
 
 ScheduleConfig BenchmarkConfig(const std::string& family) {
   ScheduleConfig config{.family = family};

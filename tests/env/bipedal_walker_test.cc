@@ -317,6 +317,63 @@ TEST(BipedalWalkerTest, NormalTerrainDrawsInGymnasiumOrder) {
   }
 }
 
+// Gymnasium's LidarCallback on b2World::RayCast: ignore fixtures whose category bit 0 is clear,
+// clip the ray at every other. The last report is the nearest hit.
+class GymnasiumLidarCallback final : public b2RayCastCallback {
+ public:
+  float ReportFixture(b2Fixture* fixture, const b2Vec2& point, const b2Vec2& /*normal*/,
+                      float reported_fraction) override {
+    if ((fixture->GetFilterData().categoryBits & 1) == 0) return -1;
+    hit = fixture;
+    p2 = point;
+    fraction = reported_fraction;
+    return reported_fraction;
+  }
+  const b2Fixture* hit = nullptr;
+  b2Vec2 p2{0, 0};
+  float fraction = 1;
+};
+
+// CastLidar answers exactly what Gymnasium's per-ray b2World::RayCast answers, on terrain edges,
+// hardcore obstacles and a payload placed where the rays can see it.
+TEST(BipedalWalkerTest, LidarEqualsGymnasiumsWorldRayCast) {
+  BipedalWalker env = Walker(/*payload_mass=*/2.0);
+  env.SetFeature(BipedalWalker::kHardcore, 1);
+  env.SetFeature(BipedalWalker::kComX, 1.2);  // the payload circle crosses the far rays
+  Random random(11);
+  Random action_random(12);
+  Observation observation;
+  std::array<int, b2Shape::e_typeCount> hits_by_shape{};
+  for (int episode = 0; episode < 8; ++episode) {
+    env.Reset(random, observation);
+    for (bool done = false; !done;) {
+      Action action;
+      for (float& a : action) a = static_cast<float>(action_random.Uniform(-1, 1));
+      done = env.Step(action, observation).done();
+      const WalkerWorld& world = env.world();
+      for (int i = 0; i < WalkerWorld::kNumLidar; ++i) {
+        const WalkerWorld::LidarRay& ray = world.lidar(i);
+        const double angle = 1.5 * i / 10.0;
+        const double range = 160.0 / 30.0;
+        const b2Vec2 p1 = world.hull()->GetPosition();
+        const b2Vec2 p2(static_cast<float>(p1.x + std::sin(angle) * range),
+                        static_cast<float>(p1.y - std::cos(angle) * range));
+        GymnasiumLidarCallback reference;
+        reference.p2 = p2;
+        world.world().RayCast(&reference, p1, p2);
+        ASSERT_EQ(ray.fraction, reference.fraction) << "episode " << episode << " ray " << i;
+        ASSERT_EQ(ray.p2.x, reference.p2.x) << "episode " << episode << " ray " << i;
+        ASSERT_EQ(ray.p2.y, reference.p2.y) << "episode " << episode << " ray " << i;
+        ASSERT_EQ(observation[14 + i], reference.fraction);
+        if (reference.hit != nullptr) ++hits_by_shape[reference.hit->GetType()];
+      }
+    }
+  }
+  EXPECT_GT(hits_by_shape[b2Shape::e_edge], 0);     // terrain
+  EXPECT_GT(hits_by_shape[b2Shape::e_polygon], 0);  // obstacles
+  EXPECT_GT(hits_by_shape[b2Shape::e_circle], 0);   // the payload
+}
+
 TEST(BipedalWalkerTest, HardcoreBuildsObstaclesAndRunsLonger) {
   BipedalWalker env = Walker();
   env.SetFeature(BipedalWalker::kHardcore, 1);
@@ -326,16 +383,24 @@ TEST(BipedalWalkerTest, HardcoreBuildsObstaclesAndRunsLonger) {
   EXPECT_FALSE(env.world().obstacles().empty());
   EXPECT_EQ(env.max_episode_steps(), BipedalWalker::kMaxHardcoreEpisodeSteps);
   for (int i = 0; i <= 20; ++i) EXPECT_EQ(env.world().terrain_y()[i], kTerrainHeight);
-  // Every obstacle is a static terrain body the lidar can see (category 0x0001).
+  // The terrain is one static body: 199 edges and a polygon per obstacle, all seen by the lidar
+  // (category 0x0001).
   int static_bodies = 0;
+  int edges = 0;
+  int polygons = 0;
   for (const b2Body* body = env.world().world().GetBodyList(); body != nullptr;
        body = body->GetNext()) {
-    if (body->GetType() == b2_staticBody) {
-      ++static_bodies;
-      EXPECT_EQ(body->GetFixtureList()->GetFilterData().categoryBits, 0x0001);
+    if (body->GetType() != b2_staticBody) continue;
+    ++static_bodies;
+    for (const b2Fixture* f = body->GetFixtureList(); f != nullptr; f = f->GetNext()) {
+      EXPECT_EQ(f->GetFilterData().categoryBits, 0x0001);
+      edges += f->GetType() == b2Shape::e_edge;
+      polygons += f->GetType() == b2Shape::e_polygon;
     }
   }
-  EXPECT_EQ(static_bodies, 199 + static_cast<int>(env.world().obstacles().size()));
+  EXPECT_EQ(static_bodies, 1);
+  EXPECT_EQ(edges, 199);
+  EXPECT_EQ(polygons, static_cast<int>(env.world().obstacles().size()));
 
   env.SetFeature(BipedalWalker::kHardcore, 0);
   EXPECT_EQ(env.max_episode_steps(), BipedalWalker::kMaxHardcoreEpisodeSteps);  // until reset
