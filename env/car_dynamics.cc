@@ -65,7 +65,6 @@ Car::Car(b2World& world, double init_angle, double init_x, double init_y) : worl
     wheel_def.position.Set(static_cast<float>(init_x + wx * kCarSize),
                            static_cast<float>(init_y + wy * kCarSize));
     wheel_def.angle = static_cast<float>(init_angle);
-    wheel_def.userData.pointer = CarRacingBodyTag(CarRacingBodyKind::kWheel, i);
     b2Body* body = world_.CreateBody(&wheel_def);
     b2PolygonShape shape;
     shape.Set(wheel_poly, 4);
@@ -75,6 +74,7 @@ Car::Car(b2World& world, double init_angle, double init_x, double init_y) : worl
     fixture.filter.categoryBits = 0x0020;
     fixture.filter.maskBits = 0x001;
     fixture.restitution = 0.0f;
+    fixture.userData.pointer = CarRacingFixtureTag(CarRacingFixtureKind::kWheel, i);
     body->CreateFixture(&fixture);
 
     b2RevoluteJointDef joint_def;

@@ -21,16 +21,16 @@
 
 namespace dcs::env {
 
-// What a Box2D body's user data (b2BodyUserData::pointer) says about it, for the contact
+// What a Box2D fixture's user data (b2FixtureUserData::pointer) says about it, for the contact
 // listener: a road tile or a wheel, with its index. 0 means neither (hull, payload).
-enum class CarRacingBodyKind : uintptr_t { kNone = 0, kTile = 1, kWheel = 2 };
-inline uintptr_t CarRacingBodyTag(CarRacingBodyKind kind, int index) {
+enum class CarRacingFixtureKind : uintptr_t { kNone = 0, kTile = 1, kWheel = 2 };
+inline uintptr_t CarRacingFixtureTag(CarRacingFixtureKind kind, int index) {
   return (static_cast<uintptr_t>(kind) << 24) | static_cast<uintptr_t>(index);
 }
-inline CarRacingBodyKind CarRacingBodyTagKind(uintptr_t tag) {
-  return static_cast<CarRacingBodyKind>(tag >> 24);
+inline CarRacingFixtureKind CarRacingFixtureTagKind(uintptr_t tag) {
+  return static_cast<CarRacingFixtureKind>(tag >> 24);
 }
-inline int CarRacingBodyTagIndex(uintptr_t tag) { return static_cast<int>(tag & 0xFFFFFF); }
+inline int CarRacingFixtureTagIndex(uintptr_t tag) { return static_cast<int>(tag & 0xFFFFFF); }
 
 // car_dynamics.py constants, in world units (SIZE = 0.02 per pixel of the car's drawing).
 inline constexpr double kCarSize = 0.02;
