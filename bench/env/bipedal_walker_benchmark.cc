@@ -36,13 +36,19 @@ namespace {
 constexpr double kComLo = -0.6;  // the paper's training range
 constexpr double kComHi = 0.6;
 
+// Gymnasium's walker: DCS's default context without the payload.
+BipedalWalker GymnasiumWalker() {
+  BipedalWalker env;
+  env.SetFeature(BipedalWalker::kPayloadMass, 0);
+  return env;
+}
+
 void RandomAction(Random& random, std::array<float, 4>& action) {
   for (float& a : action) a = static_cast<float>(random.Uniform(-1, 1));
 }
 
 void BM_BareWalker(benchmark::State& state, bool heuristic) {
-  BipedalWalker env;
-  env.SetFeature(BipedalWalker::kPayloadMass, 0);  // Gymnasium's walker
+  BipedalWalker env = GymnasiumWalker();
   std::array<float, 24> observation;
   std::array<float, 4> action = {0, 0, 0, 0};
   Random random(0);
@@ -68,8 +74,7 @@ BENCHMARK_CAPTURE(BM_BareWalker, random, false);
 BENCHMARK_CAPTURE(BM_BareWalker, heuristic, true);
 
 void BM_Reset(benchmark::State& state) {
-  BipedalWalker env;
-  env.SetFeature(BipedalWalker::kPayloadMass, 0);
+  BipedalWalker env = GymnasiumWalker();
   std::array<float, 24> observation;
   Random random(0);
   for (auto _ : state) {
@@ -88,8 +93,7 @@ struct RecordedEpisode {
 };
 
 RecordedEpisode RecordHeuristicEpisode(uint64_t seed) {
-  BipedalWalker env;
-  env.SetFeature(BipedalWalker::kPayloadMass, 0);
+  BipedalWalker env = GymnasiumWalker();
   std::array<float, 24> observation;
   Random random(seed);
   env.Reset(random, observation);
