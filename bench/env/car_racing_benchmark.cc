@@ -11,13 +11,12 @@
 //                               payload body is re-created every step), centre-line driver
 //   BM_CarRacingDraw/K          drawing one frame into the (96 K)^2 canvas only (no physics,
 //                               no box filter)
-//   BM_CarRacingReset           Reset: track generation, 300-odd tile bodies, the car and the
+//   BM_CarRacingReset           Reset: track generation, 300-odd tile fixtures, the car and the
 //                               first step with its (zoomed-out) picture
 //   BM_CarRacingTrack           the track generator alone
 
 #include <array>
 #include <string>
-#include <vector>
 
 #include "benchmark/benchmark.h"
 #include "env/car_racing.h"
@@ -28,17 +27,16 @@
 namespace dcs::env {
 namespace {
 
-using ObservationSpan = std::span<uint8_t, CarRacing::kObservationSize>;
+using Observation = std::array<uint8_t, CarRacing::kObservationSize>;  // 27 kB
 
 void BM_CarRacingStep(benchmark::State& state) {
   CarRacing env(CarRacingOptions{.supersample = static_cast<int>(state.range(0))});
-  std::vector<uint8_t> observation(CarRacing::kObservationSize);
-  const ObservationSpan span(observation.data(), observation.size());
+  Observation observation;
   Random random(0);
-  env.Reset(random, span);
+  env.Reset(random, observation);
   const std::array<float, 3> action = {0.0f, 0.1f, 0.0f};
   for (auto _ : state) {
-    if (env.Step(action, span).done()) env.Reset(random, span);
+    if (env.Step(action, observation).done()) env.Reset(random, observation);
     benchmark::DoNotOptimize(observation.data());
   }
   state.SetItemsProcessed(state.iterations());
@@ -47,17 +45,16 @@ BENCHMARK(BM_CarRacingStep)->Arg(1)->Arg(2)->Arg(3)->Arg(4);
 
 void BM_CarRacingCenterline(benchmark::State& state) {
   CarRacing env(CarRacingOptions{.supersample = static_cast<int>(state.range(0))});
-  std::vector<uint8_t> observation(CarRacing::kObservationSize);
-  const ObservationSpan span(observation.data(), observation.size());
+  Observation observation;
   Random random(0);
-  env.Reset(random, span);
+  env.Reset(random, observation);
   CenterlineDriver driver;
   driver.Reset(env);
   std::array<float, 3> action;
   for (auto _ : state) {
     driver.Act(env, action);
-    if (env.Step(action, span).done()) {
-      env.Reset(random, span);
+    if (env.Step(action, observation).done()) {
+      env.Reset(random, observation);
       driver.Reset(env);
     }
     benchmark::DoNotOptimize(observation.data());
@@ -83,19 +80,18 @@ void BM_CarRacingScheduledComY(benchmark::State& state) {
     state.SkipWithError(std::string(env.status().message()).c_str());
     return;
   }
-  std::vector<uint8_t> observation(CarRacing::kObservationSize);
-  const ObservationSpan span(observation.data(), observation.size());
+  Observation observation;
   std::array<float, 1> context;
   int64_t steps = 0;
-  env->Reset(steps, span, context);
+  env->Reset(steps, observation, context);
   CenterlineDriver driver;
   driver.Reset(env->env());
   std::array<float, 3> action;
   for (auto _ : state) {
     driver.Act(env->env(), action);
     ++steps;
-    if (env->Step(action, span, context).done()) {
-      env->Reset(steps, span, context);
+    if (env->Step(action, observation, context).done()) {
+      env->Reset(steps, observation, context);
       driver.Reset(env->env());
     }
     benchmark::DoNotOptimize(observation.data());
@@ -107,16 +103,15 @@ BENCHMARK(BM_CarRacingScheduledComY);
 void BM_CarRacingDraw(benchmark::State& state) {
   const int k = static_cast<int>(state.range(0));
   CarRacing env;
-  std::vector<uint8_t> observation(CarRacing::kObservationSize);
-  const ObservationSpan span(observation.data(), observation.size());
+  Observation observation;
   Random random(0);
-  env.Reset(random, span);
+  env.Reset(random, observation);
   CenterlineDriver driver;
   driver.Reset(env);
   std::array<float, 3> action;
   for (int i = 0; i < 100; ++i) {  // past the zoom animation, on the road
     driver.Act(env, action);
-    env.Step(action, span);
+    env.Step(action, observation);
   }
   Canvas canvas(96 * k, 96 * k);
   for (auto _ : state) {
@@ -129,11 +124,10 @@ BENCHMARK(BM_CarRacingDraw)->Arg(1)->Arg(2)->Arg(3)->Arg(4);
 
 void BM_CarRacingReset(benchmark::State& state) {
   CarRacing env;
-  std::vector<uint8_t> observation(CarRacing::kObservationSize);
-  const ObservationSpan span(observation.data(), observation.size());
+  Observation observation;
   Random random(0);
   for (auto _ : state) {
-    env.Reset(random, span);
+    env.Reset(random, observation);
     benchmark::DoNotOptimize(observation.data());
   }
   state.SetItemsProcessed(state.iterations());
