@@ -29,6 +29,17 @@ namespace {
 
 using Observation = std::array<uint8_t, CarRacing::kObservationSize>;  // 27 kB
 
+// One step of the centre-line driver; a finished episode restarts on the next track.
+void DriveCenterline(CarRacing& env, CenterlineDriver& driver, Random& random,
+                     Observation& observation) {
+  std::array<float, 3> action;
+  driver.Act(env, action);
+  if (env.Step(action, observation).done()) {
+    env.Reset(random, observation);
+    driver.Reset(env);
+  }
+}
+
 void BM_CarRacingStep(benchmark::State& state) {
   CarRacing env(CarRacingOptions{.supersample = static_cast<int>(state.range(0))});
   Observation observation;
@@ -50,13 +61,8 @@ void BM_CarRacingCenterline(benchmark::State& state) {
   env.Reset(random, observation);
   CenterlineDriver driver;
   driver.Reset(env);
-  std::array<float, 3> action;
   for (auto _ : state) {
-    driver.Act(env, action);
-    if (env.Step(action, observation).done()) {
-      env.Reset(random, observation);
-      driver.Reset(env);
-    }
+    DriveCenterline(env, driver, random, observation);
     benchmark::DoNotOptimize(observation.data());
   }
   state.SetItemsProcessed(state.iterations());
@@ -108,10 +114,8 @@ void BM_CarRacingDraw(benchmark::State& state) {
   env.Reset(random, observation);
   CenterlineDriver driver;
   driver.Reset(env);
-  std::array<float, 3> action;
   for (int i = 0; i < 100; ++i) {  // past the zoom animation, on the road
-    driver.Act(env, action);
-    env.Step(action, observation);
+    DriveCenterline(env, driver, random, observation);
   }
   Canvas canvas(96 * k, 96 * k);
   for (auto _ : state) {
