@@ -22,18 +22,12 @@
 #include "absl/strings/string_view.h"
 #include "actor/policy.h"
 #include "actor/rollout_collector.h"
+#include "actor/split.h"
 #include "common/random.h"
 #include "common/status_macros.h"
 #include "env/dynamic_context_env.h"
 
 namespace dcs::actor {
-
-enum class Split { kId, kOodLow, kOodHigh };
-
-// "id", "ood_low", "ood_high".
-const char* SplitName(Split split);
-// The split SplitName calls `name`, or nullopt.
-std::optional<Split> SplitFromName(absl::string_view name);
 
 struct EvaluationContext {
   Split split = Split::kId;
@@ -53,8 +47,8 @@ struct EvaluationResult {
   int64_t updates = 0;  // PPO updates the evaluated policy had had (its version)
   std::vector<ContextResult> contexts;
   // Per split, the mean and minimum of its contexts' means (NaN for a split without contexts).
-  double split_mean[3] = {0, 0, 0};
-  double split_min[3] = {0, 0, 0};
+  double split_mean[kNumSplits] = {0, 0, 0};
+  double split_min[kNumSplits] = {0, 0, 0};
   double avg_combined = 0;  // the mean over every context
 };
 
@@ -84,7 +78,7 @@ inline void Summarize(EvaluationResult& result) {
     r.std = std::sqrt(squares / static_cast<double>(r.returns.size()));
     combined += r.mean;
   }
-  for (int split = 0; split < 3; ++split) {
+  for (int split = 0; split < kNumSplits; ++split) {
     double sum = 0;
     double minimum = std::numeric_limits<double>::infinity();
     int count = 0;
@@ -98,22 +92,6 @@ inline void Summarize(EvaluationResult& result) {
     result.split_min[split] = count > 0 ? minimum : std::nan("");
   }
   result.avg_combined = combined / static_cast<double>(result.contexts.size());
-}
-
-inline const char* SplitName(Split split) {
-  switch (split) {
-    case Split::kId: return "id";
-    case Split::kOodLow: return "ood_low";
-    case Split::kOodHigh: return "ood_high";
-  }
-  return "id";
-}
-
-inline std::optional<Split> SplitFromName(absl::string_view name) {
-  for (Split split : {Split::kId, Split::kOodLow, Split::kOodHigh}) {
-    if (name == SplitName(split)) return split;
-  }
-  return std::nullopt;
 }
 
 template <typename Env>

@@ -13,15 +13,20 @@
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 
-#define DCS_RETURN_IF_ERROR(expr)                          \
-  do {                                                     \
-    if (::absl::Status dcs_status_ = (expr); !dcs_status_.ok()) { \
-      return dcs_status_;                                  \
-    }                                                      \
+// Each use declares its hidden variable under a name of its own (__COUNTER__), so uses nest:
+// a lambda inside one macro's argument may use the macros again without shadowing.
+#define DCS_RETURN_IF_ERROR(expr) \
+  DCS_RETURN_IF_ERROR_IMPL_(DCS_STATUS_CONCAT_(dcs_status_, __COUNTER__), expr)
+
+#define DCS_RETURN_IF_ERROR_IMPL_(status, expr)               \
+  do {                                                        \
+    if (::absl::Status status = (expr); !status.ok()) {       \
+      return status;                                          \
+    }                                                         \
   } while (false)
 
 #define DCS_ASSIGN_OR_RETURN(lhs, rexpr) \
-  DCS_ASSIGN_OR_RETURN_IMPL_(DCS_STATUS_CONCAT_(dcs_statusor_, __LINE__), lhs, rexpr)
+  DCS_ASSIGN_OR_RETURN_IMPL_(DCS_STATUS_CONCAT_(dcs_statusor_, __COUNTER__), lhs, rexpr)
 
 #define DCS_ASSIGN_OR_RETURN_IMPL_(statusor, lhs, rexpr) \
   auto statusor = (rexpr);                                \

@@ -6,6 +6,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "common/status_macros.h"
+#include "common/status_util.h"
 
 namespace dcs::env {
 
@@ -41,6 +43,18 @@ std::vector<double> ContextSpace::Defaults() const {
   values.reserve(features_.size());
   for (const ContextFeature& f : features_) values.push_back(f.default_value);
   return values;
+}
+
+absl::StatusOr<std::vector<double>> ContextSpace::WithValues(
+    const std::map<std::string, double>& values) const {
+  std::vector<double> context = Defaults();
+  for (const auto& [name, value] : values) {
+    absl::StatusOr<int> index = IndexOf(name);
+    if (!index.ok()) return ErrorInField(index.status(), name);
+    DCS_RETURN_IF_ERROR(ErrorInField(Validate(*index, value), name));
+    context[*index] = value;
+  }
+  return context;
 }
 
 }  // namespace dcs::env

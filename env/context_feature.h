@@ -7,6 +7,7 @@
 // value must respect and the "sensor" bounds used to normalise it when the policy observes it.
 // Immutable after construction; thread-safe.
 
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -54,6 +55,11 @@ class ContextSpace {
 
   // Every feature's default value, by index.
   std::vector<double> Defaults() const;
+
+  // The defaults with `values` (feature name -> value) in place of theirs. INVALID_ARGUMENT,
+  // with the feature's name as the error's field (common/status_util.h), for a name IndexOf
+  // does not know or a value Validate refuses.
+  absl::StatusOr<std::vector<double>> WithValues(const std::map<std::string, double>& values) const;
 
  private:
   std::vector<ContextFeature> features_;

@@ -35,13 +35,11 @@
 #include "common/status_macros.h"
 #include "env/context_feature.h"
 #include "env/context_pool.h"
+#include "env/observe_mode.h"
 #include "env/staged_schedule.h"
 #include "env/step_result.h"
-#include "env/trajectory_recorder.h"
 
 namespace dcs::env {
-
-enum class ObserveMode { kNone, kInitial, kLive };
 
 struct FeaturePool {
   int feature = 0;  // index into Env::Features()
@@ -98,9 +96,6 @@ class DynamicContextEnv {
   // episode: the same episode number gives the same initial context, state and schedule).
   void SetNextEpisode(int64_t episode) { episode_ = episode - 1; }
 
-  // Records every transition into `recorder` (not owned; nullptr stops recording).
-  void set_recorder(TrajectoryRecorder* recorder) { recorder_ = recorder; }
-
   Env& env() { return env_; }
 
  private:
@@ -120,7 +115,6 @@ class DynamicContextEnv {
   std::vector<double> initial_context_;  // the episode's values after reset, by feature
   int64_t episode_ = -1;
   int64_t steps_ = 0;
-  TrajectoryRecorder* recorder_ = nullptr;
 };
 
 // Implementation details.
@@ -217,14 +211,7 @@ StepResult DynamicContextEnv<Env>::Step(
       env_.SetFeature(s.feature, s.schedule.Next(steps_, env_.GetFeature(s.feature)));
     }
   }
-  if (recorder_ != nullptr) {
-    recorder_->BeginStep<Observation, ActionElement>(episode_, steps_, observation, action,
-                                                     context);
-  }
   const StepResult result = env_.Step(action, observation);
-  if (recorder_ != nullptr) {
-    recorder_->EndStep(result.reward, [this](int i) { return env_.GetFeature(i); });
-  }
   ++steps_;
   WriteContext(context);
   return result;

@@ -2,14 +2,17 @@
 #include "env/schedule_config.h"
 
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <set>
 #include <utility>
+#include <variant>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "common/status_macros.h"
+#include "common/status_util.h"
 #include "env/schedule_internal.h"
 
 namespace dcs::env {
@@ -17,23 +20,22 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The family names, indexed by ScheduleFamily.
-constexpr absl::string_view kFamilyNames[] = {
-    "identity",   "continuous_incrementer", "sudden_jump",     "random_walk",
-    "ornstein_uhlenbeck", "piecewise_constant", "sinusoidal", "cosine_annealing",
-    "sinusoidal_jump", "phased_ou",         "levy_walk",       "sequential"};
-
 std::string FormatBound(double value) {
   return std::isinf(value) ? (value > 0 ? "inf" : "-inf") : absl::StrCat(value);
 }
 
 // Reads one schedule config's parameters, remembering which it has read, so that Finish() can
-// name any it did not recognise. Every error names the family and the parameter.
+// name any it did not recognise. Every error names the family and the parameter, and carries
+// the parameter as its field (common/status_util.h).
 class ParamReader {
  public:
-  ParamReader(const ScheduleConfig& config, double min_value, double max_value)
-      : config_(config), min_(min_value), max_(max_value) {}
+  ParamReader(const ScheduleConfig& config, double min_value, double max_value, uint32_t seed)
+      : config_(config), min_(min_value), max_(max_value), seed_(seed) {}
 
+  const ScheduleConfig& config() const { return config_; }
+  double min() const { return min_; }
+  double max() const { return max_; }
+  uint32_t seed() const { return seed_; }
   double span() const { return max_ - min_; }
   double midpoint() const { return 0.5 * (min_ + max_); }
 
@@ -192,8 +194,9 @@ class ParamReader {
   }
 
   absl::Status Error(absl::string_view name, absl::string_view message) const {
-    return absl::InvalidArgumentError(
-        absl::StrCat("schedule '", config_.family, "': ", name, " ", message));
+    return ErrorInField(absl::InvalidArgumentError(absl::StrCat("schedule '", config_.family,
+                                                                "': ", name, " ", message)),
+                        name);
   }
 
  private:
@@ -232,6 +235,7 @@ class ParamReader {
   const ScheduleConfig& config_;
   const double min_;
   const double max_;
+  const uint32_t seed_;
   std::set<std::string> known_;
 };
 
@@ -331,7 +335,8 @@ absl::StatusOr<ScheduleParams> ParseSuddenJump(ParamReader& r) {
   return p;
 }
 
-absl::StatusOr<ScheduleParams> ParseOrnsteinUhlenbeck(ParamReader& r, double min_value) {
+absl::StatusOr<ScheduleParams> ParseOrnsteinUhlenbeck(ParamReader& r) {
+  const double min_value = r.min();
   OrnsteinUhlenbeckParams p;
   DCS_RETURN_IF_ERROR(r.Number("theta", 0.05, 0, 1, &p.theta));
   DCS_RETURN_IF_ERROR(r.Magnitude("sigma", "sigma_frac", 1.0, 0.08, &p.sigma));
@@ -363,7 +368,8 @@ absl::StatusOr<ScheduleParams> ParseSinusoidalJump(ParamReader& r) {
   return p;
 }
 
-absl::StatusOr<ScheduleParams> ParsePhasedOu(ParamReader& r, double min_value) {
+absl::StatusOr<ScheduleParams> ParsePhasedOu(ParamReader& r) {
+  const double min_value = r.min();
   PhasedOuParams p;
   DCS_RETURN_IF_ERROR(r.Number("theta", 0.05, 0, 1, &p.theta));
   DCS_RETURN_IF_ERROR(r.Magnitude("sigma", "sigma_frac", 1.0, 0.04, &p.sigma));
@@ -382,14 +388,73 @@ absl::StatusOr<ScheduleParams> ParseLevyWalk(ParamReader& r) {
   return p;
 }
 
+absl::StatusOr<ScheduleParams> ParseIdentity(ParamReader&) { return IdentityParams{}; }
+
+absl::StatusOr<ScheduleParams> ParseSequential(ParamReader& r) {
+  const std::vector<ScheduleConfig>& parts = r.config().parts;
+  if (parts.empty()) return r.Error("parts", "missing (a list of schedules)");
+  SequentialParams sequential;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    absl::StatusOr<ScheduleSpec> part = ParseScheduleSpec(
+        parts[i], r.min(), r.max(), internal::SpawnSeed(r.seed(), static_cast<uint32_t>(i)));
+    if (!part.ok()) return ErrorInField(part.status(), absl::StrCat("parts[", i, "]"));
+    sequential.parts.push_back(*std::move(part));
+  }
+  return sequential;
+}
+
+// The one table of schedule families: each family's name as configs spell it and the reader of
+// its parameters, in ScheduleFamily's order (checked below).
+struct Family {
+  ScheduleFamily family;
+  absl::string_view name;
+  absl::StatusOr<ScheduleParams> (*parse)(ParamReader&);
+};
+constexpr Family kFamilies[] = {
+    {ScheduleFamily::kIdentity, "identity", ParseIdentity},
+    {ScheduleFamily::kContinuousIncrementer, "continuous_incrementer",
+     ParseContinuousIncrementer},
+    {ScheduleFamily::kSuddenJump, "sudden_jump", ParseSuddenJump},
+    {ScheduleFamily::kRandomWalk, "random_walk", ParseRandomWalk},
+    {ScheduleFamily::kOrnsteinUhlenbeck, "ornstein_uhlenbeck", ParseOrnsteinUhlenbeck},
+    {ScheduleFamily::kPiecewiseConstant, "piecewise_constant", ParsePiecewiseConstant},
+    {ScheduleFamily::kSinusoidal, "sinusoidal", ParseSinusoidal},
+    {ScheduleFamily::kCosineAnnealing, "cosine_annealing", ParseCosineAnnealing},
+    {ScheduleFamily::kSinusoidalJump, "sinusoidal_jump", ParseSinusoidalJump},
+    {ScheduleFamily::kPhasedOu, "phased_ou", ParsePhasedOu},
+    {ScheduleFamily::kLevyWalk, "levy_walk", ParseLevyWalk},
+    {ScheduleFamily::kSequential, "sequential", ParseSequential},
+};
+// The paper's name for the static stage of a multi-stage schedule.
+constexpr absl::string_view kIdentityAlias = "constant";
+
+constexpr bool FamiliesInOrder() {
+  if (std::size(kFamilies) != std::variant_size_v<ScheduleParams>) return false;
+  for (size_t i = 0; i < std::size(kFamilies); ++i) {
+    if (static_cast<size_t>(kFamilies[i].family) != i) return false;
+  }
+  return true;
+}
+static_assert(FamiliesInOrder(), "kFamilies lists every ScheduleFamily once, in order");
+
+const Family* FindFamily(absl::string_view name) {
+  if (name == kIdentityAlias) return &kFamilies[0];
+  for (const Family& family : kFamilies) {
+    if (family.name == name) return &family;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 absl::string_view ScheduleFamilyName(ScheduleFamily family) {
-  return kFamilyNames[static_cast<int>(family)];
+  return kFamilies[static_cast<int>(family)].name;
 }
 
 std::vector<std::string> ScheduleFamilyNames() {
-  return std::vector<std::string>(std::begin(kFamilyNames), std::end(kFamilyNames));
+  std::vector<std::string> names;
+  for (const Family& family : kFamilies) names.emplace_back(family.name);
+  return names;
 }
 
 absl::StatusOr<ScheduleSpec> ParseScheduleSpec(const ScheduleConfig& config, double min_value,
@@ -399,52 +464,19 @@ absl::StatusOr<ScheduleSpec> ParseScheduleSpec(const ScheduleConfig& config, dou
         absl::StrCat("schedule '", config.family, "': bounds must be finite with min < max, got [",
                      min_value, ", ", max_value, "]"));
   }
-  ScheduleSpec spec{.min_value = min_value, .max_value = max_value, .seed = seed};
-  ParamReader reader(config, min_value, max_value);
-  absl::StatusOr<ScheduleParams> params;
-  const std::string& family = config.family;
-  if (family == "identity" || family == "constant") {
-    params = IdentityParams{};
-  } else if (family == "sinusoidal") {
-    params = ParseSinusoidal(reader);
-  } else if (family == "cosine_annealing") {
-    params = ParseCosineAnnealing(reader);
-  } else if (family == "continuous_incrementer") {
-    params = ParseContinuousIncrementer(reader);
-  } else if (family == "random_walk") {
-    params = ParseRandomWalk(reader);
-  } else if (family == "piecewise_constant") {
-    params = ParsePiecewiseConstant(reader);
-  } else if (family == "sudden_jump") {
-    params = ParseSuddenJump(reader);
-  } else if (family == "ornstein_uhlenbeck") {
-    params = ParseOrnsteinUhlenbeck(reader, min_value);
-  } else if (family == "sinusoidal_jump") {
-    params = ParseSinusoidalJump(reader);
-  } else if (family == "phased_ou") {
-    params = ParsePhasedOu(reader, min_value);
-  } else if (family == "levy_walk") {
-    params = ParseLevyWalk(reader);
-  } else if (family == "sequential") {
-    if (config.parts.empty()) return reader.Error("parts", "missing (a list of schedules)");
-    SequentialParams sequential;
-    for (size_t i = 0; i < config.parts.size(); ++i) {
-      DCS_ASSIGN_OR_RETURN(
-          ScheduleSpec part,
-          ParseScheduleSpec(config.parts[i], min_value, max_value,
-                            internal::SpawnSeed(seed, static_cast<uint32_t>(i))));
-      sequential.parts.push_back(std::move(part));
-    }
-    params = std::move(sequential);
-  } else {
-    return absl::InvalidArgumentError(
-        absl::StrCat("unknown schedule family '", family, "' (known: constant, ",
-                     absl::StrJoin(ScheduleFamilyNames(), ", "), ")"));
+  const Family* family = FindFamily(config.family);
+  if (family == nullptr) {
+    return absl::InvalidArgumentError(absl::StrCat("unknown schedule family '", config.family,
+                                                   "' (known: ", kIdentityAlias, ", ",
+                                                   absl::StrJoin(ScheduleFamilyNames(), ", "),
+                                                   ")"));
   }
+  ParamReader reader(config, min_value, max_value, seed);
+  absl::StatusOr<ScheduleParams> params = family->parse(reader);
   if (!params.ok()) return params.status();
   DCS_RETURN_IF_ERROR(reader.Finish());
-  spec.params = *std::move(params);
-  return spec;
+  return ScheduleSpec{
+      .min_value = min_value, .max_value = max_value, .seed = seed, .params = *std::move(params)};
 }
 
 }  // namespace dcs::env

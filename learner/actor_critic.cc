@@ -35,7 +35,7 @@ torch::Tensor ActorCriticImpl::TanhMlp::Forward(torch::Tensor x) {
   return x;
 }
 
-ActorCriticImpl::ActorCriticImpl(const PolicySpec& spec, const PpoConfig& config)
+ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConfig& config)
     : spec_(spec) {
   const double sqrt2 = std::numbers::sqrt2;
   int features = spec.flat_input_size();

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "actor/mlp_policy.h"
-#include "learner/ppo_config.h"
+#include "run/ppo_config.h"
 
 namespace dcs::learner {
 
@@ -33,7 +33,7 @@ struct ObservationBatch {
 class ActorCriticImpl : public torch::nn::Module {
  public:
   // REQUIRES: spec and config valid. Initialises from torch's global generator (seed it first).
-  ActorCriticImpl(const PolicySpec& spec, const PpoConfig& config);
+  ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConfig& config);
 
   // The action head's output: logits [B, num_actions] or the Gaussian mean [B, action_size].
   torch::Tensor ActionHead(const ObservationBatch& batch);
@@ -65,7 +65,7 @@ class ActorCriticImpl : public torch::nn::Module {
  private:
   torch::Tensor Features(const ObservationBatch& batch);
 
-  const PolicySpec spec_;
+  const run::PolicySpec spec_;
   // Linear layers each followed by tanh, called directly: torch::nn::Sequential's type-erased
   // dispatch costs more than these layers compute.
   struct TanhMlp {

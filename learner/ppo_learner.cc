@@ -47,7 +47,7 @@ absl::Status CheckFinite(const std::vector<float>& values, int per_transition, i
 
 // `count` channel-last images as channel-first floats in [0, 1] (SB3's VecTransposeImage and
 // division by 255).
-torch::Tensor ImageTensor(const uint8_t* bytes, int64_t count, const PolicySpec& spec) {
+torch::Tensor ImageTensor(const uint8_t* bytes, int64_t count, const run::PolicySpec& spec) {
   return torch::from_blob(const_cast<uint8_t*>(bytes),
                           {count, spec.image_height, spec.image_width, spec.image_channels},
                           torch::kUInt8)
@@ -71,8 +71,8 @@ void NormalizeMinibatch(std::span<float> values) {
 }  // namespace
 
 struct PpoLearner::Impl {
-  PolicySpec spec;
-  PpoConfig config;
+  run::PolicySpec spec;
+  run::PpoConfig config;
   int n_envs = 1;
   uint64_t seed = 0;
   ActorCritic network{nullptr};
@@ -320,11 +320,11 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
 PpoLearner::PpoLearner(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 PpoLearner::~PpoLearner() = default;
 
-absl::StatusOr<std::unique_ptr<PpoLearner>> PpoLearner::Create(const PolicySpec& spec,
-                                                               const PpoConfig& config,
+absl::StatusOr<std::unique_ptr<PpoLearner>> PpoLearner::Create(const run::PolicySpec& spec,
+                                                               const run::PpoConfig& config,
                                                                int n_envs, uint64_t seed) {
-  DCS_RETURN_IF_ERROR(ValidatePolicySpec(spec));
-  DCS_RETURN_IF_ERROR(ValidatePpoConfig(config, n_envs));
+  DCS_RETURN_IF_ERROR(run::ValidatePolicySpec(spec));
+  DCS_RETURN_IF_ERROR(run::ValidatePpoConfig(config, n_envs));
   auto impl = std::make_unique<Impl>();
   impl->spec = spec;
   impl->config = config;
@@ -360,7 +360,7 @@ actor::MlpWeights PpoLearner::ActorWeights() const { return impl_->network->Expo
 
 void PpoLearner::Act(std::span<const float> inputs, std::span<const uint8_t> image,
                      bool deterministic, Random& random, std::span<float> action) {
-  const PolicySpec& spec = impl_->spec;
+  const run::PolicySpec& spec = impl_->spec;
   torch::NoGradGuard no_grad;
   ObservationBatch batch{.flat = torch::from_blob(const_cast<float*>(inputs.data()),
                                                   {1, spec.flat_input_size()}, torch::kFloat32)};

@@ -23,7 +23,7 @@
 #include "actor/mlp_policy.h"
 #include "actor/policy.h"
 #include "actor/rollout.h"
-#include "learner/ppo_config.h"
+#include "run/ppo_config.h"
 
 namespace dcs::learner {
 
@@ -44,8 +44,8 @@ struct UpdateStats {
 class PpoLearner final : public actor::Policy {
  public:
   // INVALID_ARGUMENT for an invalid spec or config.
-  static absl::StatusOr<std::unique_ptr<PpoLearner>> Create(const PolicySpec& spec,
-                                                           const PpoConfig& config, int n_envs,
+  static absl::StatusOr<std::unique_ptr<PpoLearner>> Create(const run::PolicySpec& spec,
+                                                           const run::PpoConfig& config, int n_envs,
                                                            uint64_t seed);
   ~PpoLearner() override;
   PpoLearner(const PpoLearner&) = delete;

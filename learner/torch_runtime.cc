@@ -5,10 +5,16 @@
 #include <c10/util/Exception.h>
 #include <dlfcn.h>
 #include <torch/version.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+#include "common/atomic_file.h"
 
 namespace dcs::learner {
 
@@ -55,6 +61,29 @@ std::optional<std::string> BetterBlasCore() {
   }
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "Haswell";
   return std::nullopt;
+}
+
+void RestartWithBestBlasKernels(absl::FunctionRef<void(absl::string_view)> note) {
+  const std::optional<std::string> core = BetterBlasCore();
+  if (!core.has_value()) return;
+  absl::StatusOr<std::string> command_line = ReadFile("/proc/self/cmdline");
+  if (!command_line.ok()) {
+    note(absl::StrCat("cannot restart with OPENBLAS_CORETYPE=", *core, " (",
+                      command_line.status().message(), "); going on with OpenBLAS's generic "
+                      "kernels"));
+    return;
+  }
+  std::vector<std::string> words = absl::StrSplit(*command_line, '\0', absl::SkipEmpty());
+  std::vector<char*> argv;
+  for (std::string& word : words) argv.push_back(word.data());
+  argv.push_back(nullptr);
+  note(absl::StrCat("OpenBLAS does not recognise this CPU and chose its generic kernels; "
+                    "restarting with OPENBLAS_CORETYPE=",
+                    *core, " (set OPENBLAS_CORETYPE to choose)"));
+  setenv("OPENBLAS_CORETYPE", core->c_str(), /*overwrite=*/1);
+  execv("/proc/self/exe", argv.data());
+  note(absl::StrCat("cannot restart (", std::strerror(errno),
+                    "); going on with OpenBLAS's generic kernels"));
 }
 
 }  // namespace dcs::learner

@@ -2,16 +2,20 @@
 #ifndef DCS_LEARNER_TORCH_RUNTIME_H_
 #define DCS_LEARNER_TORCH_RUNTIME_H_
 
-// Process-wide libtorch settings. Not thread-safe: call from main before any torch work.
+// Process-wide settings of the numeric libraries behind libtorch. Every process that trains or
+// updates calls RestartWithBestBlasKernels first thing in main, then PinTorchThreads. Not
+// thread-safe: call from main before any torch work.
 //
 // DESIGN.md §4: with libtorch pinned to one thread per run, the same sweep gives the same
-// report bit for bit however many learners share a machine; a learner process runs one run.
+// report bit for bit however many learners share a machine.
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "absl/functional/function_ref.h"
 #include "absl/status/status.h"
+#include "absl/strings/string_view.h"
 #include "common/library_version.h"
 
 namespace dcs::learner {
@@ -35,6 +39,13 @@ std::string BlasCoreName();
 // (or AVX2 and FMA), the core to ask for with OPENBLAS_CORETYPE: "SkylakeX" (or "Haswell");
 // otherwise, or when OPENBLAS_CORETYPE is already set, nullopt.
 std::optional<std::string> BetterBlasCore();
+
+// When BetterBlasCore names a core, runs this program again, with the same arguments and
+// OPENBLAS_CORETYPE set to it (OpenBLAS reads it once, when the program loads, so it cannot be
+// set later); `note` gets one line saying so first. Returns when there is nothing to do, or if
+// the restart failed: then `note` gets the reason, and the process goes on with the generic
+// kernels (only slower).
+void RestartWithBestBlasKernels(absl::FunctionRef<void(absl::string_view)> note);
 
 }  // namespace dcs::learner
 

@@ -3,6 +3,9 @@
 // dcs-learner: a cluster member that will run PPO updates on the trajectories actors stream
 // to it.
 
+#include <iostream>
+
+#include "absl/strings/string_view.h"
 #include "common/status_macros.h"
 #include "coordinator/worker_registry.h"
 #include "learner/torch_runtime.h"
@@ -37,6 +40,9 @@ class LearnerRole final : public WorkerServiceRole {
 }  // namespace dcs::services
 
 int main(int argc, char** argv) {
+  // Before anything else: it may run this program again with other numeric kernels.
+  dcs::learner::RestartWithBestBlasKernels(
+      [](absl::string_view note) { std::cerr << "dcs-learner: " << note << std::endl; });
   dcs::services::LearnerRole role;
   return dcs::services::RunService({.program = "dcs-learner",
                                     .component = "learner",

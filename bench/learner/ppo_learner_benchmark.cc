@@ -15,7 +15,7 @@
 namespace dcs::learner {
 namespace {
 
-PolicySpec CartPoleSpec() {
+run::PolicySpec CartPoleSpec() {
   return {.observation_size = 4, .context_size = 1, .num_actions = 2, .action_size = 1};
 }
 
@@ -35,7 +35,7 @@ actor::Rollout RandomRollout(int steps, uint64_t seed) {
 
 void BM_PpoUpdateCartPole(benchmark::State& state) {
   PinTorchThreads(1).IgnoreError();
-  std::unique_ptr<PpoLearner> learner = *PpoLearner::Create(CartPoleSpec(), PpoConfig{}, 1, 0);
+  std::unique_ptr<PpoLearner> learner = *PpoLearner::Create(CartPoleSpec(), run::PpoConfig{}, 1, 0);
   const actor::Rollout rollout = RandomRollout(2048, 1);
   for (auto _ : state) {
     absl::StatusOr<UpdateStats> stats = learner->Update(rollout);
@@ -48,7 +48,7 @@ BENCHMARK(BM_PpoUpdateCartPole)->Unit(benchmark::kMillisecond);
 
 void BM_ActorInferenceCartPole(benchmark::State& state) {
   PinTorchThreads(1).IgnoreError();
-  std::unique_ptr<PpoLearner> learner = *PpoLearner::Create(CartPoleSpec(), PpoConfig{}, 1, 0);
+  std::unique_ptr<PpoLearner> learner = *PpoLearner::Create(CartPoleSpec(), run::PpoConfig{}, 1, 0);
   actor::MlpPolicy policy = *actor::MlpPolicy::Create(learner->ActorWeights());
   Random random(3);
   std::vector<float> input = {0.01f, -0.2f, 0.03f, 0.1f, -0.5f};

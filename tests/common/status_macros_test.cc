@@ -50,6 +50,29 @@ TEST(ReturnIfErrorTest, SecondErrorIsReturned) {
   EXPECT_EQ(calls.count, 2);
 }
 
+// Nested uses: each macro's argument is a lambda that uses the macros again. This file is
+// built with -Wshadow -Werror, so the test is first that it compiles: hidden variables of
+// nested uses would otherwise shadow each other.
+absl::Status Nested(Calls& calls, absl::Status inner) {
+  DCS_RETURN_IF_ERROR([&]() -> absl::Status {
+    DCS_RETURN_IF_ERROR([&]() -> absl::Status {
+      DCS_RETURN_IF_ERROR(calls.Step(inner));
+      return calls.Step(absl::OkStatus());
+    }());
+    return absl::OkStatus();
+  }());
+  return calls.Step(absl::OkStatus());
+}
+
+TEST(ReturnIfErrorTest, NestedUsesReturnTheInnermostError) {
+  Calls calls;
+  EXPECT_TRUE(Nested(calls, absl::OkStatus()).ok());
+  EXPECT_EQ(calls.count, 3);
+  calls.count = 0;
+  EXPECT_EQ(Nested(calls, absl::AbortedError("lease moved")), absl::AbortedError("lease moved"));
+  EXPECT_EQ(calls.count, 1);
+}
+
 absl::StatusOr<int> Half(int value) {
   if (value % 2 != 0) return absl::InvalidArgumentError(absl::StrCat(value, " is odd"));
   return value / 2;
@@ -86,6 +109,20 @@ TEST(AssignOrReturnTest, SecondErrorPropagates) {
   const absl::StatusOr<int> result = Quarter(6, &trace);
   EXPECT_EQ(result.status(), absl::InvalidArgumentError("3 is odd"));
   EXPECT_EQ(trace, "half ");
+}
+
+// DCS_ASSIGN_OR_RETURN inside a lambda given to DCS_ASSIGN_OR_RETURN.
+absl::StatusOr<int> NestedQuarter(int value) {
+  DCS_ASSIGN_OR_RETURN(const int quarter, [&]() -> absl::StatusOr<int> {
+    DCS_ASSIGN_OR_RETURN(const int half, Half(value));
+    return Half(half);
+  }());
+  return quarter;
+}
+
+TEST(AssignOrReturnTest, Nests) {
+  EXPECT_EQ(NestedQuarter(12).value_or(-1), 3);
+  EXPECT_EQ(NestedQuarter(6).status(), absl::InvalidArgumentError("3 is odd"));
 }
 
 absl::StatusOr<std::unique_ptr<std::string>> MakeName(bool ok) {

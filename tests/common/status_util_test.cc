@@ -34,5 +34,23 @@ TEST(AnnotateTest, OkStaysOk) {
   EXPECT_EQ(annotated.message(), "");
 }
 
+TEST(ErrorFieldTest, NestedCallersAddTheirPartInFront) {
+  const absl::Status status = ErrorInField(
+      ErrorInField(absl::InvalidArgumentError("period must be at least 1, got 0"), "period"),
+      "parts[1]");
+  EXPECT_EQ(ErrorField(status), "parts[1].period");
+  EXPECT_EQ(status.message(), "period must be at least 1, got 0");
+  EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
+}
+
+TEST(ErrorFieldTest, AbsentUnlessRecordedAndKeptByAnnotate) {
+  EXPECT_EQ(ErrorField(absl::InvalidArgumentError("no field")), std::nullopt);
+  EXPECT_TRUE(ErrorInField(absl::OkStatus(), "period").ok());
+  const absl::Status annotated =
+      Annotate(ErrorInField(absl::InvalidArgumentError("bad"), "period"), "stage 2");
+  EXPECT_EQ(annotated.message(), "stage 2: bad");
+  EXPECT_EQ(ErrorField(annotated), "period");
+}
+
 }  // namespace
 }  // namespace dcs::common

@@ -24,7 +24,6 @@
 #include "env/context_pool.h"
 #include "env/schedule.h"
 #include "env/schedule_config.h"
-#include "env/trajectory_recorder.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
@@ -75,19 +74,39 @@ float NormalizedLength(double length) {
   return NormalizeContext(CartPole::Features().feature(kLength), length);
 }
 
-// A wrapper, its buffers and a simple balancing policy.
+// One transition as the wrapper took it: the episode and step, the state the action was taken
+// in, the context the policy saw with it, and every feature's true value during it.
+struct Transition {
+  int64_t episode = 0;
+  int64_t t = 0;
+  std::array<float, 4> state = {};
+  std::vector<float> visible;
+  std::vector<double> context;
+};
+
+// A wrapper, its buffers, a simple balancing policy, and a record of every transition.
 struct Slot {
   explicit Slot(Env e) : env(std::move(e)), context(env.context_size()) {}
 
   void Reset(int64_t global_step = 0) { env.Reset(global_step, observation, context); }
   StepResult Step() {
     const std::array<int32_t, 1> action = {observation[2] + 0.5f * observation[3] > 0 ? 1 : 0};
-    return env.Step(action, observation, context);
+    Transition transition{.episode = env.episode(),
+                          .t = env.episode_steps(),
+                          .state = observation,
+                          .visible = context};
+    const StepResult result = env.Step(action, observation, context);
+    // A schedule's value is written before the physics step, so after it the features still
+    // hold the values the transition ran with.
+    for (int i = 0; i < CartPole::kNumFeatures; ++i) transition.context.push_back(env.feature(i));
+    transitions.push_back(std::move(transition));
+    return result;
   }
 
   Env env;
   std::array<float, 4> observation = {};
   std::vector<float> context;
+  std::vector<Transition> transitions;
 };
 
 Slot MakeSlot(DynamicContextOptions options) {
@@ -110,34 +129,33 @@ TEST(DynamicContextEnvTest, FirstTransitionMakesNoScheduleCall) {
                         .schedules = {Scheduled(kLength, Sine())},
                         .observe = ObserveMode::kLive,
                         .observed_features = {kLength}});
-  TrajectoryRecorder recorder(4, 1, CartPole::kNumFeatures, 1);
-  slot.env.set_recorder(&recorder);
   slot.Reset();
   const std::array<float, 4> first_state = slot.observation;
   for (int t = 0; t < 30; ++t) slot.Step();
-  ASSERT_EQ(recorder.size(), 30u);
+  ASSERT_EQ(slot.transitions.size(), 30u);
   EXPECT_EQ(slot.env.episode(), 0);
   EXPECT_EQ(slot.env.episode_steps(), 30);
 
   // Transition 1 (t = 0) runs with the reset value; transition t + 1 with call k = t.
-  EXPECT_EQ(recorder.context(0)[kLength], 0.55);
-  for (size_t t = 1; t < recorder.size(); ++t) {
-    EXPECT_NEAR(recorder.context(t)[kLength],
+  EXPECT_EQ(slot.transitions[0].context[kLength], 0.55);
+  for (size_t t = 1; t < slot.transitions.size(); ++t) {
+    EXPECT_NEAR(slot.transitions[t].context[kLength],
                 0.55 - 0.1 * std::sin(2 * std::numbers::pi * static_cast<double>(t) / 20), 1e-12)
         << t;
   }
-  EXPECT_NE(recorder.context(1)[kLength], 0.55);
+  EXPECT_NE(slot.transitions[1].context[kLength], 0.55);
   // The policy saw, with s_t, the context shown after the previous transition (live value).
-  EXPECT_FLOAT_EQ(recorder.visible(0)[0], NormalizedLength(0.55));
-  for (size_t t = 1; t < recorder.size(); ++t) {
-    EXPECT_FLOAT_EQ(recorder.visible(t)[0], NormalizedLength(recorder.context(t - 1)[kLength]));
+  EXPECT_FLOAT_EQ(slot.transitions[0].visible[0], NormalizedLength(0.55));
+  for (size_t t = 1; t < slot.transitions.size(); ++t) {
+    EXPECT_FLOAT_EQ(slot.transitions[t].visible[0],
+                    NormalizedLength(slot.transitions[t - 1].context[kLength]));
   }
   // The recorded state is the one the action was taken in; other features are untouched.
-  EXPECT_THAT(recorder.state(0), ::testing::ElementsAreArray(first_state));
-  for (size_t t = 0; t < recorder.size(); ++t) {
-    EXPECT_EQ(recorder.episode(t), 0);
-    EXPECT_EQ(recorder.t(t), static_cast<int64_t>(t));
-    EXPECT_EQ(recorder.context(t)[CartPole::kGravity], 9.8);
+  EXPECT_THAT(slot.transitions[0].state, ::testing::ElementsAreArray(first_state));
+  for (size_t t = 0; t < slot.transitions.size(); ++t) {
+    EXPECT_EQ(slot.transitions[t].episode, 0);
+    EXPECT_EQ(slot.transitions[t].t, static_cast<int64_t>(t));
+    EXPECT_EQ(slot.transitions[t].context[CartPole::kGravity], 9.8);
   }
 }
 
@@ -145,14 +163,13 @@ TEST(DynamicContextEnvTest, FirstCallSkipFamiliesChangeFromTheThirdTransition) {
   Slot slot = MakeSlot({.context = ContextWithLength(0.5),
                         .schedules = {Scheduled(kLength, Up())},
                         .observe = ObserveMode::kNone});
-  TrajectoryRecorder recorder(4, 1, CartPole::kNumFeatures, 0);
-  slot.env.set_recorder(&recorder);
   slot.Reset();
   for (int t = 0; t < 6; ++t) slot.Step();
-  EXPECT_EQ(recorder.context(0)[kLength], 0.5);  // no call
-  EXPECT_EQ(recorder.context(1)[kLength], 0.5);  // k = 1: the skip
+  EXPECT_EQ(slot.transitions[0].context[kLength], 0.5);  // no call
+  EXPECT_EQ(slot.transitions[1].context[kLength], 0.5);  // k = 1: the skip
   for (size_t t = 2; t < 6; ++t) {
-    EXPECT_NEAR(recorder.context(t)[kLength], 0.5 + 0.01 * static_cast<double>(t - 1), 1e-12);
+    EXPECT_NEAR(slot.transitions[t].context[kLength], 0.5 + 0.01 * static_cast<double>(t - 1),
+                1e-12);
   }
 }
 
@@ -165,13 +182,12 @@ TEST(DynamicContextEnvTest, EventAtCallKHappensInTransitionKPlusOne) {
   Slot slot = MakeSlot({.context = ContextWithLength(0.5),
                         .schedules = {Scheduled(kLength, jump)},
                         .observe = ObserveMode::kNone});
-  TrajectoryRecorder recorder(4, 1, CartPole::kNumFeatures, 0);
-  slot.env.set_recorder(&recorder);
   slot.Reset();
   for (int t = 0; t < 25; ++t) slot.Step();
-  for (size_t t = 0; t < 10; ++t) EXPECT_EQ(recorder.context(t)[kLength], 0.5) << t;
-  for (size_t t = 10; t < 20; ++t) EXPECT_NEAR(recorder.context(t)[kLength], 0.55, 1e-12) << t;
-  for (size_t t = 20; t < 25; ++t) EXPECT_NEAR(recorder.context(t)[kLength], 0.6, 1e-12) << t;
+  const std::vector<Transition>& record = slot.transitions;
+  for (size_t t = 0; t < 10; ++t) EXPECT_EQ(record[t].context[kLength], 0.5) << t;
+  for (size_t t = 10; t < 20; ++t) EXPECT_NEAR(record[t].context[kLength], 0.55, 1e-12) << t;
+  for (size_t t = 20; t < 25; ++t) EXPECT_NEAR(record[t].context[kLength], 0.6, 1e-12) << t;
 }
 
 TEST(DynamicContextEnvTest, ScheduleRunsWithItsOwnSeedEpisodeAndSlot) {

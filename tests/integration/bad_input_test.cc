@@ -15,43 +15,34 @@
 #include "common/atomic_file.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "services/child_process.h"
-#include "services/cluster_client.h"
+#include "services/cli/child_process.h"
+#include "services/cli/cluster_client.h"
 #include "services/exit_codes.h"
 #include "services/port_file.h"
 #include "tests/integration/test_util.h"
+#include "tests/testing/eventually.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
 
 namespace dcs::integration {
 namespace {
 
+using dcs::testing::Eventually;
 using dcs::testing::MakeTempDir;
 using dcs::testing::PickFreePort;
 using ::testing::HasSubstr;
 using ::testing::SizeIs;
 
-// Waits until `predicate` holds, up to `timeout`.
-template <typename Predicate>
-bool Eventually(Predicate predicate, absl::Duration timeout = absl::Seconds(20)) {
-  const absl::Time deadline = absl::Now() + timeout;
-  while (absl::Now() < deadline) {
-    if (predicate()) return true;
-    absl::SleepFor(absl::Milliseconds(50));
-  }
-  return predicate();
-}
-
 // A dcs-coordinator on ephemeral ports, and the ports it got.
 struct RunningCoordinator {
-  services::ChildProcess process;
+  services::cli::ChildProcess process;
   services::BoundPorts ports;
 };
 
 RunningCoordinator StartCoordinator(const std::string& listen = "127.0.0.1:0") {
   const std::string dir = MakeTempDir();
   const std::string port_file = absl::StrCat(dir, "/ports");
-  absl::StatusOr<services::ChildProcess> process = services::ChildProcess::Start(
+  absl::StatusOr<services::cli::ChildProcess> process = services::cli::ChildProcess::Start(
       {.path = BinaryPath("dcs-coordinator"),
        .args = {absl::StrCat("--listen=", listen), "--metrics-listen=127.0.0.1:0",
                 absl::StrCat("--port-file=", port_file)},
@@ -66,7 +57,7 @@ TEST(BadInputTest, TheExampleConfigIsValid) {
   const std::string dir = MakeTempDir();
   const std::string port_file = absl::StrCat(dir, "/ports");
   // The example's fixed ports may be taken on this machine: the command line wins over them.
-  absl::StatusOr<services::ChildProcess> coordinator = services::ChildProcess::Start(
+  absl::StatusOr<services::cli::ChildProcess> coordinator = services::cli::ChildProcess::Start(
       {.path = BinaryPath("dcs-coordinator"),
        .args = {"--config", DCS_SOURCE_DIR "/configs/coordinator.yaml", "--listen=127.0.0.1:0",
                 "--metrics-listen=127.0.0.1:0", absl::StrCat("--port-file=", port_file)},
@@ -152,7 +143,7 @@ TEST(BadInputTest, WorkerRetriesAnUnreachableCoordinatorAndRegistersOnceItIsUp) 
   const std::string dir = MakeTempDir();
   const std::string log = absl::StrCat(dir, "/actor.log");
   const std::string port_file = absl::StrCat(dir, "/ports");
-  absl::StatusOr<services::ChildProcess> actor = services::ChildProcess::Start(
+  absl::StatusOr<services::cli::ChildProcess> actor = services::cli::ChildProcess::Start(
       {.path = BinaryPath("dcs-actor"),
        .args = {absl::StrCat("--coordinator=127.0.0.1:", coordinator_port),
                 absl::StrCat("--port-file=", port_file)},
@@ -169,13 +160,14 @@ TEST(BadInputTest, WorkerRetriesAnUnreachableCoordinatorAndRegistersOnceItIsUp) 
   std::optional<services::BoundPorts> ports = services::ReadPortFile(port_file);
   ASSERT_TRUE(ports.has_value());
   const std::string actor_address = absl::StrCat("127.0.0.1:", ports->grpc);
-  absl::StatusOr<bool> serving = services::IsServing(actor_address, "", absl::Seconds(2));
+  absl::StatusOr<bool> serving = services::cli::IsServing(actor_address, "", absl::Seconds(2));
   ASSERT_TRUE(serving.ok()) << serving.status();
   EXPECT_FALSE(*serving);
 
   RunningCoordinator coordinator = StartCoordinator(absl::StrCat("127.0.0.1:", coordinator_port));
   EXPECT_TRUE(Eventually([&] {
-    absl::StatusOr<bool> now_serving = services::IsServing(actor_address, "", absl::Seconds(1));
+    absl::StatusOr<bool> now_serving =
+        services::cli::IsServing(actor_address, "", absl::Seconds(1));
     return now_serving.ok() && *now_serving;
   })) << ReadFile(log).value_or("");
   EXPECT_THAT(ReadFile(log).value_or(""), HasSubstr("registered with the coordinator"));
@@ -183,7 +175,8 @@ TEST(BadInputTest, WorkerRetriesAnUnreachableCoordinatorAndRegistersOnceItIsUp) 
   ::kill(actor->pid(), SIGTERM);
   std::optional<int> status = actor->Wait(absl::Seconds(5));
   ASSERT_TRUE(status.has_value()) << "dcs-actor did not stop within 5 s";
-  EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == 0) << services::DescribeExit(*status);
+  EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == 0)
+      << services::cli::DescribeExit(*status);
 }
 
 }  // namespace

@@ -16,9 +16,9 @@
 #include "common/atomic_file.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "services/child_process.h"
-#include "services/cluster_client.h"
-#include "services/local_cluster.h"
+#include "services/cli/child_process.h"
+#include "services/cli/cluster_client.h"
+#include "services/cli/local_cluster.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
@@ -26,8 +26,8 @@
 namespace dcs::integration {
 namespace {
 
-using services::ClusterProcess;
-using services::LocalCluster;
+using services::cli::ClusterProcess;
+using services::cli::LocalCluster;
 using dcs::testing::HttpGet;
 using dcs::testing::MakeTempDir;
 using dcs::testing::PickFreePort;
@@ -54,19 +54,20 @@ std::set<std::string> MetricNames(const std::string& exposition) {
 TEST(ClusterTest, EveryProcessServesAndTheCoordinatorListsBothWorkers) {
   std::unique_ptr<LocalCluster> cluster = StartCluster();
   ASSERT_NE(cluster, nullptr);
-  const services::ClusterState& state = cluster->state();
+  const services::cli::ClusterState& state = cluster->state();
   ASSERT_EQ(state.processes.size(), 3u);
   for (const ClusterProcess& process : state.processes) {
-    absl::StatusOr<bool> serving = services::IsServing(process.grpc_address, "", absl::Seconds(2));
+    absl::StatusOr<bool> serving =
+        services::cli::IsServing(process.grpc_address, "", absl::Seconds(2));
     ASSERT_TRUE(serving.ok()) << process.name << ": " << serving.status();
     EXPECT_TRUE(*serving) << process.name;
   }
-  absl::StatusOr<bool> service_serving = services::IsServing(
+  absl::StatusOr<bool> service_serving = services::cli::IsServing(
       state.coordinator_address, "dcs.v1.CoordinatorService", absl::Seconds(2));
   EXPECT_TRUE(service_serving.ok() && *service_serving) << service_serving.status();
 
   absl::StatusOr<v1::GetClusterStatusResponse> status =
-      services::GetClusterStatus(state.coordinator_address, absl::Seconds(5));
+      services::cli::GetClusterStatus(state.coordinator_address, absl::Seconds(5));
   ASSERT_TRUE(status.ok()) << status.status();
   std::vector<std::pair<v1::WorkerRole, std::string>> workers;
   for (const v1::Worker& worker : status->workers()) {
@@ -140,7 +141,7 @@ TEST(ClusterTest, ARealPrometheusServerScrapesEveryProcess) {
                                                targets, "]\n"))
                   .ok());
   const std::string web = absl::StrCat("127.0.0.1:", PickFreePort());
-  absl::StatusOr<services::ChildProcess> prometheus = services::ChildProcess::Start(
+  absl::StatusOr<services::cli::ChildProcess> prometheus = services::cli::ChildProcess::Start(
       {.path = "/usr/bin/prometheus",
        .args = {absl::StrCat("--config.file=", dir, "/prometheus.yml"),
                 absl::StrCat("--storage.tsdb.path=", dir, "/data"),
@@ -178,11 +179,11 @@ TEST(ClusterTest, ARealPrometheusServerScrapesEveryProcess) {
 TEST(ClusterTest, SigtermStopsEveryProcessCleanlyWithinFiveSeconds) {
   std::unique_ptr<LocalCluster> cluster = StartCluster();
   ASSERT_NE(cluster, nullptr);
-  const services::ClusterState state = cluster->state();
+  const services::cli::ClusterState state = cluster->state();
   const absl::Status stopped = cluster->Stop(absl::Seconds(5));
   EXPECT_TRUE(stopped.ok()) << stopped;
   for (const ClusterProcess& process : state.processes) {
-    EXPECT_FALSE(services::IsProcessRunning(process.pid, process.executable)) << process.name;
+    EXPECT_FALSE(services::cli::IsProcessRunning(process.pid, process.executable)) << process.name;
   }
 }
 

@@ -19,9 +19,9 @@
 #include "dcs/v1/coordinator_service.pb.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "services/child_process.h"
+#include "services/cli/child_process.h"
 #include "services/exit_codes.h"
-#include "services/local_cluster.h"
+#include "services/cli/local_cluster.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
@@ -36,21 +36,21 @@ using ::testing::SizeIs;
 
 RunResult Dcs(const std::vector<std::string>& args) { return RunProgram(BinaryPath("dcs"), args); }
 
-void ExpectAllStopped(const services::ClusterState& state) {
-  for (const services::ClusterProcess& process : state.processes) {
-    EXPECT_FALSE(services::IsProcessRunning(process.pid, process.executable)) << process.name;
+void ExpectAllStopped(const services::cli::ClusterState& state) {
+  for (const services::cli::ClusterProcess& process : state.processes) {
+    EXPECT_FALSE(services::cli::IsProcessRunning(process.pid, process.executable)) << process.name;
   }
 }
 
 // Starts `dcs up` in the foreground and waits until it reports the cluster up.
 struct ForegroundUp {
-  services::ChildProcess dcs;
+  services::cli::ChildProcess dcs;
   std::string output_path;
-  services::ClusterState state;
+  services::cli::ClusterState state;
 };
 std::optional<ForegroundUp> StartForegroundUp(const std::string& data_dir) {
   const std::string output = absl::StrCat(MakeTempDir(), "/up.log");
-  absl::StatusOr<services::ChildProcess> dcs = services::ChildProcess::Start(
+  absl::StatusOr<services::cli::ChildProcess> dcs = services::cli::ChildProcess::Start(
       {.path = BinaryPath("dcs"),
        .args = {"up", "--actors=2", absl::StrCat("--data-dir=", data_dir)},
        .output_path = output});
@@ -59,7 +59,7 @@ std::optional<ForegroundUp> StartForegroundUp(const std::string& data_dir) {
   const absl::Time deadline = absl::Now() + absl::Seconds(30);
   while (absl::Now() < deadline) {
     if (ReadFile(output).value_or("").find("press Ctrl-C") != std::string::npos) {
-      absl::StatusOr<services::ClusterState> state = services::ReadClusterState(data_dir);
+      absl::StatusOr<services::cli::ClusterState> state = services::cli::ReadClusterState(data_dir);
       EXPECT_TRUE(state.ok()) << state.status();
       if (!state.ok()) return std::nullopt;
       return ForegroundUp{*std::move(dcs), output, *std::move(state)};
@@ -74,7 +74,7 @@ TEST(DcsCliTest, UpDetachedThenStatusThenDown) {
   const std::string data_dir = MakeTempDir();
   const RunResult up = Dcs({"up", "--detach", "--actors=2", "--data-dir", data_dir});
   ASSERT_EQ(up.exit_code, 0) << up.output;
-  absl::StatusOr<services::ClusterState> state = services::ReadClusterState(data_dir);
+  absl::StatusOr<services::cli::ClusterState> state = services::cli::ReadClusterState(data_dir);
   ASSERT_TRUE(state.ok()) << state.status();
   ASSERT_THAT(state->processes, SizeIs(4));
 
@@ -119,7 +119,7 @@ TEST(DcsCliTest, CtrlCStopsTheForegroundClusterLeavingNothingBehind) {
   std::optional<int> status = up->dcs.Wait(absl::Seconds(30));
   ASSERT_TRUE(status.has_value()) << "dcs up did not stop";
   EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == 0)
-      << services::DescribeExit(*status) << "\n" << ReadFile(up->output_path).value_or("");
+      << services::cli::DescribeExit(*status) << "\n" << ReadFile(up->output_path).value_or("");
   ExpectAllStopped(up->state);
 }
 
@@ -132,7 +132,8 @@ TEST(DcsCliTest, DownStopsAForegroundClusterThroughItsSupervisor) {
   EXPECT_EQ(down.exit_code, 0) << down.output;
   std::optional<int> status = up->dcs.Wait(absl::Seconds(30));
   ASSERT_TRUE(status.has_value()) << "dcs up did not stop";
-  EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == 0) << services::DescribeExit(*status);
+  EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == 0)
+      << services::cli::DescribeExit(*status);
   ExpectAllStopped(up->state);
 }
 
@@ -140,14 +141,14 @@ TEST(DcsCliTest, AProcessThatDiesStopsTheForegroundClusterWithAnError) {
   const std::string data_dir = MakeTempDir();
   std::optional<ForegroundUp> up = StartForegroundUp(data_dir);
   ASSERT_TRUE(up.has_value());
-  const services::ClusterProcess& learner = up->state.processes[1];
+  const services::cli::ClusterProcess& learner = up->state.processes[1];
   ASSERT_EQ(learner.name, "learner");
 
   ::kill(learner.pid, SIGKILL);
   std::optional<int> status = up->dcs.Wait(absl::Seconds(30));
   ASSERT_TRUE(status.has_value()) << "dcs up did not notice";
   EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == services::kExitFailure)
-      << services::DescribeExit(*status);
+      << services::cli::DescribeExit(*status);
   EXPECT_THAT(ReadFile(up->output_path).value_or(""), HasSubstr("learner killed by SIGKILL"));
   ExpectAllStopped(up->state);
 }

@@ -6,7 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
-#include "services/child_process.h"
+#include "services/cli/child_process.h"
 #include "tests/testing/temp_dir.h"
 
 namespace dcs::integration {
@@ -18,8 +18,8 @@ std::string BinaryPath(const std::string& name) { return absl::StrCat(BinDir(), 
 RunResult RunProgram(const std::string& path, const std::vector<std::string>& args,
               absl::Duration timeout) {
   const std::string output_path = absl::StrCat(dcs::testing::MakeTempDir(), "/output");
-  absl::StatusOr<services::ChildProcess> child =
-      services::ChildProcess::Start({.path = path, .args = args, .output_path = output_path});
+  absl::StatusOr<services::cli::ChildProcess> child =
+      services::cli::ChildProcess::Start({.path = path, .args = args, .output_path = output_path});
   if (!child.ok()) return {.exit_code = -1, .output = child.status().ToString()};
   std::optional<int> status = child->Wait(timeout);
   const int wait_status = status ? *status : child->Stop(absl::ZeroDuration());

@@ -10,15 +10,14 @@
 #include <filesystem>
 #include <string>
 
-#include <google/protobuf/util/json_util.h>
-
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "common/atomic_file.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "services/child_process.h"
+#include "run/evaluation_log.h"
+#include "services/cli/child_process.h"
 #include "services/exit_codes.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/temp_dir.h"
@@ -49,10 +48,9 @@ ppo: {n_steps: 64, batch_size: 32, n_epochs: 2}
 }
 
 v1::EvaluationLog ReadLog(const std::string& run_dir) {
-  v1::EvaluationLog log;
-  const std::string json = ReadFile(run_dir + "/evaluations.json").value_or("");
-  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(json, &log).ok()) << json;
-  return log;
+  absl::StatusOr<v1::EvaluationLog> log = run::ReadEvaluationLog(run_dir);
+  EXPECT_TRUE(log.ok()) << log.status();
+  return log.value_or(v1::EvaluationLog());
 }
 
 TEST(TrainCliTest, TrainsIntoItsDirectoryAndRefusesToOverwriteIt) {
@@ -91,7 +89,7 @@ TEST(TrainCliTest, CtrlCStopsWithACheckpointThatResumeContinues) {
   const std::string config = WriteConfig(dir, 64 * 1000);
   const std::string out = dir + "/run";
   const std::string output = dir + "/train.log";
-  absl::StatusOr<services::ChildProcess> train = services::ChildProcess::Start(
+  absl::StatusOr<services::cli::ChildProcess> train = services::cli::ChildProcess::Start(
       {.path = BinaryPath("dcs"),
        .args = {"train", "--config", config, "--out", out},
        .output_path = output});
@@ -107,7 +105,7 @@ TEST(TrainCliTest, CtrlCStopsWithACheckpointThatResumeContinues) {
   ASSERT_TRUE(status.has_value()) << "dcs train did not stop";
   const std::string log = ReadFile(output).value_or("");
   ASSERT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == services::kExitInterrupted)
-      << services::DescribeExit(*status) << "\n" << log;
+      << services::cli::DescribeExit(*status) << "\n" << log;
   EXPECT_THAT(log, HasSubstr(absl::StrCat("continue with: dcs train --resume --out ", out)));
   EXPECT_FALSE(ReadLog(out).complete());
 

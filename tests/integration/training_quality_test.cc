@@ -4,13 +4,13 @@
 // every one of 5 seeds reaches a deterministic mean return of at least 475 by 150k steps. The
 // real `dcs train`, end to end; about a minute of one core.
 
+#include <algorithm>
 #include <string>
 
-#include <google/protobuf/util/json_util.h>
-
+#include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
-#include "common/atomic_file.h"
 #include "dcs/v1/evaluation.pb.h"
+#include "run/evaluation_log.h"
 #include "gtest/gtest.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/temp_dir.h"
@@ -29,12 +29,10 @@ TEST(TrainingQualityTest, EverySeedBalancesStandardCartPoleBy150kSteps) {
         absl::Minutes(5));
     ASSERT_EQ(train.exit_code, 0) << train.output;
 
-    v1::EvaluationLog log;
-    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(
-                    ReadFile(out + "/evaluations.json").value_or(""), &log)
-                    .ok());
+    const absl::StatusOr<v1::EvaluationLog> log = run::ReadEvaluationLog(out);
+    ASSERT_TRUE(log.ok()) << log.status();
     double best = 0;
-    for (const v1::Evaluation& evaluation : log.evaluations()) {
+    for (const v1::Evaluation& evaluation : log->evaluations()) {
       if (evaluation.step() <= 150'000) best = std::max(best, evaluation.avg_combined());
     }
     EXPECT_GE(best, 475) << "seed " << seed;

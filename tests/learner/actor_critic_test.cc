@@ -13,11 +13,11 @@
 namespace dcs::learner {
 namespace {
 
-PolicySpec CartPoleSpec() {
+run::PolicySpec CartPoleSpec() {
   return {.observation_size = 4, .context_size = 1, .num_actions = 2, .action_size = 1};
 }
 
-PolicySpec WalkerSpec() {
+run::PolicySpec WalkerSpec() {
   return {.observation_size = 24,
           .context_size = 1,
           .num_actions = 0,
@@ -27,9 +27,9 @@ PolicySpec WalkerSpec() {
 }
 
 // The actor's Eigen network computes the same function as the learner's torch network.
-void ExpectEigenMatchesTorch(const PolicySpec& spec) {
+void ExpectEigenMatchesTorch(const run::PolicySpec& spec) {
   torch::manual_seed(7);
-  ActorCritic network(spec, PpoConfig{});
+  ActorCritic network(spec, run::PpoConfig{});
   absl::StatusOr<actor::MlpPolicy> policy = actor::MlpPolicy::Create(network->ExportActor());
   ASSERT_TRUE(policy.ok()) << policy.status();
   ASSERT_EQ(policy->input_size(), spec.flat_input_size());
@@ -61,7 +61,7 @@ TEST(ActorCriticTest, InitialisesWithSb3Gains) {
   // Orthogonal rows scaled by the gain: W W^T = gain^2 I for a wide layer (64 x 5 is tall, so
   // use W^T W = gain^2 I on the 64 x 64 hidden layer), 0.01 for the action head, zero biases.
   torch::manual_seed(1);
-  ActorCritic network(CartPoleSpec(), PpoConfig{});
+  ActorCritic network(CartPoleSpec(), run::PpoConfig{});
   const actor::MlpWeights weights = network->ExportActor();
   ASSERT_EQ(weights.layers.size(), 3u);  // 5 -> 64 -> 64 -> 2
   const actor::DenseLayer& hidden = weights.layers[1];
@@ -84,8 +84,8 @@ TEST(ActorCriticTest, InitialisesWithSb3Gains) {
 
 TEST(ActorCriticTest, GaussianLogProbAndEntropyAreSummedOverDimensions) {
   torch::manual_seed(2);
-  const PolicySpec spec = WalkerSpec();
-  ActorCritic network(spec, PpoConfig{.log_std_init = -0.5});
+  const run::PolicySpec spec = WalkerSpec();
+  ActorCritic network(spec, run::PpoConfig{.log_std_init = -0.5});
   const torch::Tensor input = torch::zeros({1, spec.flat_input_size()});
   const torch::Tensor mean = network->ActionHead({.flat = input}).detach();
   const torch::Tensor action = mean + 0.3;
@@ -102,7 +102,7 @@ TEST(ActorCriticTest, GaussianLogProbAndEntropyAreSummedOverDimensions) {
 
 TEST(ActorCriticTest, ImagePoliciesRunNatureCnnOnTheImageAndAppendTheContext) {
   torch::manual_seed(4);
-  const PolicySpec spec{.image_height = 96,
+  const run::PolicySpec spec{.image_height = 96,
                         .image_width = 96,
                         .image_channels = 3,
                         .context_size = 2,
@@ -110,7 +110,7 @@ TEST(ActorCriticTest, ImagePoliciesRunNatureCnnOnTheImageAndAppendTheContext) {
                         .action_size = 3,
                         .action_low = {-1, 0, 0},
                         .action_high = {1, 1, 1}};
-  ActorCritic network(spec, PpoConfig{});
+  ActorCritic network(spec, run::PpoConfig{});
   const ObservationBatch batch{.flat = torch::zeros({5, 2}), .images = torch::rand({5, 3, 96, 96})};
   const ActorCriticImpl::Evaluation evaluation =
       network->EvaluateActions(batch, torch::zeros({5, 3}));

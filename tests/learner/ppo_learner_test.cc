@@ -18,11 +18,11 @@ using ::testing::HasSubstr;
 
 constexpr int kSteps = 256;
 
-PolicySpec BanditSpec() {
+run::PolicySpec BanditSpec() {
   return {.observation_size = 4, .context_size = 1, .num_actions = 2, .action_size = 1};
 }
 
-PpoConfig SmallConfig() { return {.n_steps = kSteps, .batch_size = 64, .n_epochs = 4}; }
+run::PpoConfig SmallConfig() { return {.n_steps = kSteps, .batch_size = 64, .n_epochs = 4}; }
 
 // A two-armed bandit as a rollout: random observations, actions sampled from the learner's
 // current policy, reward 1 for action 1; episodes of 32 steps.
@@ -159,14 +159,14 @@ TEST_F(PpoLearnerTest, SavedStateResumesExactly) {
 }
 
 TEST_F(PpoLearnerTest, ConfigGuardsAreSb3s) {
-  PpoConfig config;
+  run::PpoConfig config;
   config.batch_size = 1;
   EXPECT_THAT(PpoLearner::Create(BanditSpec(), config, 1, 0).status().message(),
               HasSubstr("batch_size"));
-  config = PpoConfig{.learning_rate = -1e-3};
+  config = run::PpoConfig{.learning_rate = -1e-3};
   EXPECT_THAT(PpoLearner::Create(BanditSpec(), config, 1, 0).status().message(),
               HasSubstr("learning_rate"));
-  config = PpoConfig{.n_steps = 1};
+  config = run::PpoConfig{.n_steps = 1};
   EXPECT_THAT(PpoLearner::Create(BanditSpec(), config, 1, 0).status().message(),
               HasSubstr("n_steps * n_envs"));
 }

@@ -1,8 +1,6 @@
 // Copyright 2026 The DCS Authors.
 #include "learner/training_run.h"
 
-#include <google/protobuf/util/json_util.h>
-
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -17,9 +15,10 @@
 #include "env/cartpole.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "tests/testing/temp_dir.h"
-#include "learner/run_spec_yaml.h"
 #include "learner/torch_runtime.h"
+#include "run/evaluation_log.h"
+#include "run/run_spec_yaml.h"
+#include "tests/testing/temp_dir.h"
 
 namespace dcs::learner {
 namespace {
@@ -47,13 +46,13 @@ evaluation: {freq: 256, episodes: 2, contexts: {id: [0.5], ood_high: [1.0]}}
 ppo: {n_steps: 64, batch_size: 32, n_epochs: 2}
 )";
 
-RunSpec Spec(absl::string_view yaml) {
-  absl::StatusOr<RunSpec> spec = ParseRunSpecYaml(yaml, "test.yaml");
+run::RunSpec Spec(absl::string_view yaml) {
+  absl::StatusOr<run::RunSpec> spec = run::ParseRunSpecYaml(yaml, "test.yaml");
   EXPECT_TRUE(spec.ok()) << spec.status();
   return *spec;
 }
 
-std::vector<std::vector<double>> Returns(const RunState& state) {
+std::vector<std::vector<double>> Returns(const run::RunState& state) {
   std::vector<std::vector<double>> returns;
   for (const actor::EvaluationResult& evaluation : state.evaluations) {
     for (const actor::ContextResult& context : evaluation.contexts) {
@@ -69,7 +68,7 @@ class TrainingRunTest : public ::testing::Test {
 };
 
 TEST_F(TrainingRunTest, SameSpecAndSeedGiveTheSameRunBitForBit) {
-  const RunSpec spec = Spec(kSmallRun);
+  const run::RunSpec spec = Spec(kSmallRun);
   absl::StatusOr<TrainingResult> first = Train<env::CartPole>(spec, {});
   absl::StatusOr<TrainingResult> second = Train<env::CartPole>(spec, {});
   ASSERT_TRUE(first.ok()) << first.status();
@@ -79,7 +78,7 @@ TEST_F(TrainingRunTest, SameSpecAndSeedGiveTheSameRunBitForBit) {
   EXPECT_EQ(Returns(first->state), Returns(second->state));
   EXPECT_EQ(first->state.recent_returns, second->state.recent_returns);
 
-  RunSpec other_seed = spec;
+  run::RunSpec other_seed = spec;
   other_seed.seed = 12;
   absl::StatusOr<TrainingResult> third = Train<env::CartPole>(other_seed, {});
   ASSERT_TRUE(third.ok()) << third.status();
@@ -111,7 +110,7 @@ TEST_F(TrainingRunTest, EvaluatesThePolicyThatCollectedEachEvaluationStep) {
 }
 
 TEST_F(TrainingRunTest, StoppedAndResumedRunEndsWithTheWeightsOfAnUninterruptedOne) {
-  const RunSpec spec = Spec(kSmallRun);
+  const run::RunSpec spec = Spec(kSmallRun);
   absl::StatusOr<TrainingResult> straight = Train<env::CartPole>(spec, {});
   ASSERT_TRUE(straight.ok()) << straight.status();
 
@@ -138,10 +137,9 @@ TEST_F(TrainingRunTest, WritesTheEvaluationLogAsCsvAndJson) {
   absl::StatusOr<TrainingResult> run = Train<env::CartPole>(Spec(kSmallRun), {.out_dir = dir});
   ASSERT_TRUE(run.ok()) << run.status();
 
-  absl::StatusOr<std::string> json = ReadFile(dir + "/evaluations.json");
-  ASSERT_TRUE(json.ok()) << json.status();
-  v1::EvaluationLog log;
-  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(*json, &log).ok());
+  absl::StatusOr<v1::EvaluationLog> read = run::ReadEvaluationLog(dir);
+  ASSERT_TRUE(read.ok()) << read.status();
+  const v1::EvaluationLog& log = *read;
   ASSERT_EQ(log.evaluations_size(), 7);
   EXPECT_TRUE(log.complete());
   EXPECT_EQ(log.seed(), 11u);
@@ -162,7 +160,7 @@ TEST_F(TrainingRunTest, WritesTheEvaluationLogAsCsvAndJson) {
 }
 
 TEST_F(TrainingRunTest, ResumeRefusesAMissingCheckpointOrAnotherRun) {
-  const RunSpec spec = Spec(kSmallRun);
+  const run::RunSpec spec = Spec(kSmallRun);
   const std::string dir = testing::MakeTempDir();
   EXPECT_EQ(Train<env::CartPole>(spec, {.out_dir = dir, .resume = true}).status().code(),
             absl::StatusCode::kNotFound);
@@ -170,11 +168,11 @@ TEST_F(TrainingRunTest, ResumeRefusesAMissingCheckpointOrAnotherRun) {
   TrainingOptions stop_early{.out_dir = dir,
                              .on_update = [](const TrainingProgress&) { return false; }};
   ASSERT_TRUE(Train<env::CartPole>(spec, stop_early).ok());
-  RunSpec other_seed = spec;
+  run::RunSpec other_seed = spec;
   other_seed.seed = 12;
   EXPECT_EQ(Train<env::CartPole>(other_seed, {.out_dir = dir, .resume = true}).status().code(),
             absl::StatusCode::kFailedPrecondition);
-  RunSpec other_slots = spec;
+  run::RunSpec other_slots = spec;
   other_slots.n_envs = 4;
   const absl::Status status =
       Train<env::CartPole>(other_slots, {.out_dir = dir, .resume = true}).status();
@@ -214,7 +212,7 @@ class NanCartPole {
 };
 
 TEST_F(TrainingRunTest, NanObservationStopsTheRunNamingWhereAndKeepsTheCheckpoints) {
-  RunSpec spec = Spec(kSmallRun);
+  run::RunSpec spec = Spec(kSmallRun);
   spec.n_envs = 1;
   spec.stages.clear();
   spec.eval_freq = 64;
@@ -224,7 +222,7 @@ TEST_F(TrainingRunTest, NanObservationStopsTheRunNamingWhereAndKeepsTheCheckpoin
   EXPECT_THAT(status.message(), HasSubstr("environment steps 64 to 128"));
   EXPECT_THAT(status.message(), HasSubstr("not finite"));
   // The update after rollout 0 was checkpointed; nothing after it was.
-  absl::StatusOr<Checkpoint> checkpoint = ReadLatestCheckpoint(dir);
+  absl::StatusOr<run::Checkpoint> checkpoint = run::ReadLatestCheckpoint(dir);
   ASSERT_TRUE(checkpoint.ok()) << checkpoint.status();
   EXPECT_EQ(checkpoint->state.timesteps, 64);
 }
@@ -267,7 +265,7 @@ ppo: {n_steps: 128, batch_size: 64, n_epochs: 2}
 }
 
 TEST_F(TrainingRunTest, CnnPolicyTrainsAFewUpdatesOnCarRacing) {
-  const RunSpec spec = Spec(R"(
+  const run::RunSpec spec = Spec(R"(
 env: car_racing
 total_timesteps: 64
 feature: COM_Y
@@ -277,7 +275,7 @@ evaluation: {freq: 1000, episodes: 1, contexts: {id: [0.0]}}
 ppo: {n_steps: 32, batch_size: 16, n_epochs: 2}
 )");
   absl::StatusOr<std::unique_ptr<PpoLearner>> untrained = PpoLearner::Create(
-      PolicySpecFor<env::CarRacing>(1), spec.ppo, spec.n_envs, spec.seed);
+      run::PolicySpecFor<env::CarRacing>(1), spec.ppo, spec.n_envs, spec.seed);
   ASSERT_TRUE(untrained.ok()) << untrained.status();
   absl::StatusOr<TrainingResult> run = Train<env::CarRacing>(spec, {});
   ASSERT_TRUE(run.ok()) << run.status();

@@ -8,7 +8,7 @@
 #include "absl/time/time.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "services/cluster_client.h"
+#include "services/cli/cluster_client.h"
 #include "services/log.h"
 #include "tests/testing/in_process_coordinator.h"
 
@@ -17,6 +17,7 @@ namespace {
 
 using dcs::testing::InProcessCoordinator;
 using ::testing::HasSubstr;
+using cli::IsServing;
 
 constexpr absl::Duration kRpcTimeout = absl::Seconds(10);
 constexpr char kService[] = "dcs.v1.CoordinatorService";

@@ -20,6 +20,7 @@
 #include "gtest/gtest.h"
 #include "services/build_info.h"
 #include "services/log.h"
+#include "tests/testing/eventually.h"
 #include "tests/testing/in_process_coordinator.h"
 #include "tests/testing/net.h"
 
@@ -104,17 +105,6 @@ double Value(prometheus::Registry& metrics, const std::string& name) {
   return -1;
 }
 
-// Polls `condition` until it holds or kTimeout passes.
-template <typename F>
-bool Eventually(F condition) {
-  const absl::Time deadline = absl::Now() + kTimeout;
-  while (!condition()) {
-    if (absl::Now() >= deadline) return false;
-    absl::SleepFor(absl::Milliseconds(10));
-  }
-  return true;
-}
-
 class WorkerAgentTest : public ::testing::Test {
  protected:
   void SetUp() override { ConfigureLogging({.component = "test", .min_level = LogLevel::kError}); }
@@ -147,10 +137,10 @@ TEST_F(WorkerAgentTest, JoinsHeartbeatsAndLeaves) {
 
   // Heartbeats arrive at the coordinator's 50 ms interval, so the worker stays alive.
   const std::string id = workers[0].id;
-  ASSERT_TRUE(Eventually([&] {
+  ASSERT_TRUE(testing::Eventually([&] {
     const auto listed = coordinator->registry().List(absl::Now());
     return listed.size() == 1 && listed[0].last_heartbeat_at > listed[0].registered_at;
-  }));
+  }, kTimeout));
 
   agent.Stop();
   EXPECT_THAT(coordinator->registry().List(absl::Now()), IsEmpty());
@@ -166,8 +156,8 @@ TEST_F(WorkerAgentTest, RetriesWithBackoffWhileCoordinatorRefusesConnections) {
   RefusingPort refusing;
   ASSERT_GT(refusing.port(), 0);
   WorkerAgent agent(Options(refusing.address()), metrics_);
-  ASSERT_TRUE(
-      Eventually([&] { return Value(metrics_, "dcs_coordinator_rpc_failures_total") > 2; }));
+  ASSERT_TRUE(testing::Eventually(
+      [&] { return Value(metrics_, "dcs_coordinator_rpc_failures_total") > 2; }, kTimeout));
   EXPECT_EQ(Value(metrics_, "dcs_coordinator_connected"), 0);
   agent.Stop();
   EXPECT_THAT(membership_.changes(), IsEmpty());

@@ -1,0 +1,54 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_RUN_EVALUATION_LOG_H_
+#define DCS_RUN_EVALUATION_LOG_H_
+
+// A run's evaluation log: its evaluations in order with the paper's two per-run scores, last and
+// best-anytime (spec/schedules.md §9.3), written to the run's output directory as
+//   evaluations.csv   one row per evaluation and context:
+//                     step,updates,split,value,episodes,mean,std,seconds
+//   evaluations.json  a dcs.v1.EvaluationLog (proto/dcs/v1/evaluation.proto) as JSON
+//                     (proto/dcs/proto_json.h)
+// each atomically (common/atomic_file.h), rewritten after every evaluation so a running run can
+// be watched; and read back (ReadEvaluationLog: the one reader of evaluations.json).
+// Thread-safe (pure functions).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "actor/evaluation.h"
+#include "actor/split.h"
+#include "dcs/v1/evaluation.pb.h"
+#include "run/run_spec.h"
+
+namespace dcs::run {
+
+// The log of `evaluations` of the run `spec`. `complete`: the last evaluation is the one at the
+// end of training. Best-anytime is the highest avg_combined; with `stage_boundaries` (a
+// multi-stage run) only evaluations at a boundary or the end are candidates (§8).
+v1::EvaluationLog MakeEvaluationLog(const RunSpec& spec,
+                                    const std::vector<actor::EvaluationResult>& evaluations,
+                                    const std::vector<int64_t>& stage_boundaries, bool complete);
+
+// evaluations.csv in `dir`, for people to open.
+std::string EvaluationCsvPath(const std::string& dir);
+
+// Writes evaluations.csv and evaluations.json into `dir`. Errors name the file
+// (RESOURCE_EXHAUSTED for a full disk); a file that fails keeps its previous contents.
+absl::Status WriteEvaluationLog(const std::string& dir, const v1::EvaluationLog& log);
+
+// The evaluation log in `dir`. NOT_FOUND if it has none; DATA_LOSS naming the file if that is
+// not an evaluation log (not JSON, an unknown field, a context of no known split).
+absl::StatusOr<v1::EvaluationLog> ReadEvaluationLog(const std::string& dir);
+
+// A split as the proto numbers it, and back: nullopt for SPLIT_UNSPECIFIED and values no split
+// has. The numbers are the C++ enumeration's plus one (checked where they are converted).
+v1::Split SplitToProto(actor::Split split);
+std::optional<actor::Split> SplitFromProto(int split);
+
+}  // namespace dcs::run
+
+#endif  // DCS_RUN_EVALUATION_LOG_H_

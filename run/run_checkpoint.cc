@@ -1,0 +1,202 @@
+// Copyright 2026 The DCS Authors.
+#include "run/run_checkpoint.h"
+
+#include <openssl/sha.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iterator>
+#include <map>
+#include <optional>
+
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/strip.h"
+#include "common/atomic_file.h"
+#include "common/enum_names.h"
+#include "common/round_trip.h"
+#include "common/status_macros.h"
+
+namespace dcs::run {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kLatest[] = "latest";
+constexpr char kManifest[] = "MANIFEST";
+// The files of a checkpoint besides its manifest, in the order they are written.
+constexpr const char* kFiles[] = {"learner.bin", "run.yaml"};
+
+std::string Sha256Hex(absl::string_view bytes) {
+  unsigned char digest[SHA256_DIGEST_LENGTH];
+  SHA256(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), digest);
+  std::string hex;
+  for (unsigned char byte : digest) absl::StrAppendFormat(&hex, "%02x", byte);
+  return hex;
+}
+
+// Checkpoint names sort as numbers: fixed width.
+std::string CheckpointName(int64_t timesteps) { return absl::StrFormat("%012d", timesteps); }
+
+fs::path CheckpointsDir(const std::string& run_dir) { return fs::path(run_dir) / "checkpoints"; }
+
+// Doubles as exact text (YAML's own formatting would round them).
+template <typename Values>
+void EmitNumbers(YAML::Emitter& out, const Values& values) {
+  out << YAML::Flow << YAML::BeginSeq;
+  for (double value : values) out << RoundTrip(value);
+  out << YAML::EndSeq;
+}
+
+std::string ToYaml(const RunState& state) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  out << YAML::Key << "timesteps" << YAML::Value << state.timesteps;
+  out << YAML::Key << "rollouts" << YAML::Value << state.rollouts;
+  out << YAML::Key << "recent_returns" << YAML::Value;
+  EmitNumbers(out, state.recent_returns);
+  out << YAML::Key << "journals" << YAML::Value << YAML::BeginSeq;
+  for (const actor::SlotJournal& journal : state.journals) {
+    out << YAML::BeginMap;
+    out << YAML::Key << "episode" << YAML::Value << journal.episode;
+    out << YAML::Key << "reset_step" << YAML::Value << journal.reset_step;
+    out << YAML::Key << "episode_return" << YAML::Value << RoundTrip(journal.episode_return);
+    out << YAML::Key << "actions" << YAML::Value;
+    EmitNumbers(out, journal.actions);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "evaluations" << YAML::Value << YAML::BeginSeq;
+  for (const actor::EvaluationResult& evaluation : state.evaluations) {
+    out << YAML::BeginMap << YAML::Key << "step" << YAML::Value << evaluation.step;
+    out << YAML::Key << "updates" << YAML::Value << evaluation.updates;
+    out << YAML::Key << "contexts" << YAML::Value << YAML::BeginSeq;
+    for (const actor::ContextResult& context : evaluation.contexts) {
+      out << YAML::BeginMap;
+      out << YAML::Key << "split" << YAML::Value
+          << std::string(NameOf(actor::kSplitNames, context.context.split));
+      out << YAML::Key << "value" << YAML::Value << RoundTrip(context.context.value);
+      out << YAML::Key << "seconds" << YAML::Value << RoundTrip(context.seconds);
+      out << YAML::Key << "returns" << YAML::Value;
+      EmitNumbers(out, context.returns);
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+  return absl::StrCat(out.c_str(), "\n");
+}
+
+// Reads one checkpoint directory. DATA_LOSS for a file that is missing, does not match the
+// manifest, or does not parse.
+absl::StatusOr<Checkpoint> ReadCheckpoint(const fs::path& dir) {
+  DCS_ASSIGN_OR_RETURN(const std::string manifest, ReadFile(dir / kManifest));
+  std::map<std::string, std::string> contents;
+  for (const char* file : kFiles) {
+    DCS_ASSIGN_OR_RETURN(contents[file], ReadFile(dir / file));
+    if (!absl::StrContains(manifest, absl::StrCat(Sha256Hex(contents[file]), "  ", file, "\n"))) {
+      return absl::DataLossError(absl::StrCat((dir / file).string(),
+                                              " does not match the checkpoint's MANIFEST ",
+                                              "(truncated or corrupt)"));
+    }
+  }
+  Checkpoint checkpoint{.name = dir.filename().string(), .learner = contents["learner.bin"]};
+  const std::string& text = contents["run.yaml"];
+  try {
+    const YAML::Node root = YAML::Load(text);
+    RunState& state = checkpoint.state;
+    state.timesteps = root["timesteps"].as<int64_t>();
+    state.rollouts = root["rollouts"].as<int64_t>();
+    state.recent_returns = root["recent_returns"].as<std::vector<double>>();
+    for (const YAML::Node& node : root["journals"]) {
+      state.journals.push_back({.episode = node["episode"].as<int64_t>(),
+                                .reset_step = node["reset_step"].as<int64_t>(),
+                                .actions = node["actions"].as<std::vector<float>>(),
+                                .episode_return = node["episode_return"].as<double>()});
+    }
+    for (const YAML::Node& node : root["evaluations"]) {
+      actor::EvaluationResult evaluation{.step = node["step"].as<int64_t>(),
+                                         .updates = node["updates"].as<int64_t>()};
+      for (const YAML::Node& context : node["contexts"]) {
+        const std::string split_name = context["split"].as<std::string>();
+        const std::optional<actor::Split> split = FindByName(actor::kSplitNames, split_name);
+        if (!split.has_value()) {
+          return absl::DataLossError(absl::StrCat(dir.string(), "/run.yaml names an unknown ",
+                                                  "evaluation split '", split_name, "'"));
+        }
+        evaluation.contexts.push_back(
+            {.context = {.split = *split, .value = context["value"].as<double>()},
+             .returns = context["returns"].as<std::vector<double>>(),
+             .seconds = context["seconds"].as<double>()});
+      }
+      actor::Summarize(evaluation);
+      state.evaluations.push_back(std::move(evaluation));
+    }
+  } catch (const YAML::Exception& e) {
+    return absl::DataLossError(absl::StrCat(dir.string(), "/run.yaml is unreadable: ", e.what()));
+  }
+  return checkpoint;
+}
+
+}  // namespace
+
+absl::Status WriteCheckpoint(const std::string& run_dir, const RunState& state,
+                             const std::string& learner, int keep) {
+  const fs::path root = CheckpointsDir(run_dir);
+  const std::string name = CheckpointName(state.timesteps);
+  std::error_code error;
+  fs::create_directories(root / name, error);
+  if (error) {
+    return absl::PermissionDeniedError(
+        absl::StrCat("cannot create ", (root / name).string(), ": ", error.message()));
+  }
+  // The manifest (sha256sum's format: `sha256sum -c MANIFEST` checks it) after the files it
+  // vouches for.
+  const std::string contents[] = {learner, ToYaml(state)};
+  std::string manifest;
+  for (size_t i = 0; i < std::size(kFiles); ++i) {
+    DCS_RETURN_IF_ERROR(WriteFileAtomically(root / name / kFiles[i], contents[i]));
+    absl::StrAppend(&manifest, Sha256Hex(contents[i]), "  ", kFiles[i], "\n");
+  }
+  DCS_RETURN_IF_ERROR(WriteFileAtomically(root / name / kManifest, manifest));
+  // The pointer last: until it moves, the previous checkpoint is the one a resume reads.
+  DCS_RETURN_IF_ERROR(WriteFileAtomically(root / kLatest, name + "\n"));
+
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(root, error)) {
+    if (entry.is_directory()) names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  for (size_t i = 0; i + keep < names.size(); ++i) fs::remove_all(root / names[i], error);
+  return absl::OkStatus();
+}
+
+absl::StatusOr<Checkpoint> ReadLatestCheckpoint(const std::string& run_dir) {
+  const fs::path root = CheckpointsDir(run_dir);
+  absl::StatusOr<std::string> latest = ReadFile(root / kLatest);
+  if (!latest.ok()) {
+    return absl::NotFoundError(absl::StrCat("no checkpoint in ", root.string()));
+  }
+  const std::string newest(absl::StripAsciiWhitespace(*latest));
+  // The one `latest` names, then older ones. A newer one is ignored: `latest` had not moved to
+  // it, so its writing was interrupted.
+  std::vector<std::string> names;
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(root, error)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_directory() && name <= newest) names.push_back(name);
+  }
+  std::sort(names.rbegin(), names.rend());
+  absl::Status last_error = absl::DataLossError(absl::StrCat("no readable checkpoint in ",
+                                                             root.string()));
+  for (const std::string& name : names) {
+    absl::StatusOr<Checkpoint> checkpoint = ReadCheckpoint(root / name);
+    if (checkpoint.ok()) return checkpoint;
+    last_error = checkpoint.status();
+  }
+  return absl::DataLossError(last_error.message());
+}
+
+}  // namespace dcs::run

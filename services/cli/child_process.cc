@@ -1,0 +1,191 @@
+// Copyright 2026 The DCS Authors.
+#include "services/cli/child_process.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+
+namespace dcs::services::cli {
+namespace {
+
+constexpr absl::Duration kPollInterval = absl::Milliseconds(20);
+
+// Runs in the forked child: only async-signal-safe calls until execv. On failure, writes
+// errno to `error_fd` (close-on-exec, so a successful exec closes it with nothing written).
+[[noreturn]] void ExecChild(const ChildProcessOptions& options, char* const* argv, int output_fd,
+                            int error_fd, pid_t parent) {
+  sigset_t none;
+  sigemptyset(&none);
+  pthread_sigmask(SIG_SETMASK, &none, nullptr);
+  if (options.new_session) {
+    setsid();
+  } else {
+    setpgid(0, 0);
+    if (options.stop_with_parent) {
+      prctl(PR_SET_PDEATHSIG, SIGTERM);
+      if (getppid() != parent) _exit(127);  // the parent died before prctl took effect
+    }
+  }
+  if (output_fd >= 0) {
+    dup2(output_fd, STDOUT_FILENO);
+    dup2(output_fd, STDERR_FILENO);
+  }
+  execv(options.path.c_str(), argv);
+  const int error = errno;
+  [[maybe_unused]] ssize_t written = write(error_fd, &error, sizeof(error));
+  _exit(127);
+}
+
+}  // namespace
+
+absl::StatusOr<ChildProcess> ChildProcess::Start(const ChildProcessOptions& options) {
+  std::vector<std::string> arguments = {options.path};
+  arguments.insert(arguments.end(), options.args.begin(), options.args.end());
+  std::vector<char*> argv;
+  for (std::string& argument : arguments) argv.push_back(argument.data());
+  argv.push_back(nullptr);
+
+  int output_fd = -1;
+  if (!options.output_path.empty()) {
+    output_fd = ::open(options.output_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC,
+                       0644);
+    if (output_fd < 0) {
+      return absl::PermissionDeniedError(
+          absl::StrCat("cannot open ", options.output_path, ": ", std::strerror(errno)));
+    }
+  }
+  int error_pipe[2];
+  if (::pipe2(error_pipe, O_CLOEXEC) != 0) {
+    if (output_fd >= 0) ::close(output_fd);
+    return absl::InternalError(absl::StrCat("pipe: ", std::strerror(errno)));
+  }
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid == 0) ExecChild(options, argv.data(), output_fd, error_pipe[1], parent);
+  const int fork_errno = errno;
+  ::close(error_pipe[1]);
+  if (output_fd >= 0) ::close(output_fd);
+  if (pid < 0) {
+    ::close(error_pipe[0]);
+    return absl::ResourceExhaustedError(absl::StrCat("fork: ", std::strerror(fork_errno)));
+  }
+
+  int exec_errno = 0;
+  ssize_t got;
+  do {
+    got = ::read(error_pipe[0], &exec_errno, sizeof(exec_errno));
+  } while (got < 0 && errno == EINTR);
+  ::close(error_pipe[0]);
+  if (got == sizeof(exec_errno)) {
+    ::waitpid(pid, nullptr, 0);
+    const std::string message =
+        absl::StrCat("cannot run ", options.path, ": ", std::strerror(exec_errno));
+    return exec_errno == ENOENT ? absl::NotFoundError(message)
+                                : absl::PermissionDeniedError(message);
+  }
+  return ChildProcess(pid);
+}
+
+ChildProcess::ChildProcess(ChildProcess&& other) noexcept
+    : pid_(std::exchange(other.pid_, -1)), exit_status_(other.exit_status_) {}
+
+ChildProcess& ChildProcess::operator=(ChildProcess&& other) noexcept {
+  if (this != &other) {
+    if (pid_ > 0) Stop(absl::ZeroDuration());
+    pid_ = std::exchange(other.pid_, -1);
+    exit_status_ = other.exit_status_;
+  }
+  return *this;
+}
+
+ChildProcess::~ChildProcess() {
+  if (pid_ > 0) Stop(absl::ZeroDuration());
+}
+
+std::optional<int> ChildProcess::Poll() {
+  if (pid_ <= 0) return exit_status_;
+  int status = 0;
+  const pid_t result = ::waitpid(pid_, &status, WNOHANG);
+  if (result == pid_) {
+    pid_ = -1;
+    exit_status_ = status;
+  }
+  return exit_status_;
+}
+
+std::optional<int> ChildProcess::Wait(absl::Duration timeout) {
+  const absl::Time deadline = absl::Now() + timeout;
+  while (true) {
+    if (std::optional<int> status = Poll()) return status;
+    if (absl::Now() >= deadline) return std::nullopt;
+    absl::SleepFor(kPollInterval);
+  }
+}
+
+int ChildProcess::Stop(absl::Duration grace) {
+  if (std::optional<int> status = Poll()) return *status;
+  // Released or moved from: kill(-1, ...) would signal every process we may signal.
+  if (pid_ <= 0) return 0;
+  if (grace > absl::ZeroDuration()) {
+    ::kill(pid_, SIGTERM);
+    if (std::optional<int> status = Wait(grace)) return *status;
+  }
+  ::kill(pid_, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = -1;
+  exit_status_ = status;
+  return status;
+}
+
+pid_t ChildProcess::Release() { return std::exchange(pid_, -1); }
+
+std::string DescribeExit(int wait_status) {
+  if (WIFEXITED(wait_status)) return absl::StrCat("exited with status ", WEXITSTATUS(wait_status));
+  if (WIFSIGNALED(wait_status)) {
+    return absl::StrCat("killed by SIG", sigabbrev_np(WTERMSIG(wait_status)));
+  }
+  return absl::StrCat("wait status ", wait_status);
+}
+
+bool IsProcessRunning(pid_t pid, const std::string& executable_name) {
+  if (pid <= 0 || ::kill(pid, 0) != 0) return false;
+  std::ifstream stat(absl::StrCat("/proc/", pid, "/stat"));
+  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+  const size_t end_of_comm = text.rfind(')');
+  if (end_of_comm == std::string::npos || end_of_comm + 2 >= text.size()) return false;
+  if (text[end_of_comm + 2] == 'Z') return false;
+  std::error_code error;
+  const std::filesystem::path exe =
+      std::filesystem::read_symlink(absl::StrCat("/proc/", pid, "/exe"), error);
+  // Another user's process hides its exe: trust the pid then. A rebuilt binary reads
+  // "dcs-actor (deleted)".
+  const std::string name = exe.filename().string();
+  return error || name == executable_name || name == executable_name + " (deleted)";
+}
+
+bool StopProcess(pid_t pid, const std::string& executable_name, absl::Duration grace) {
+  if (!IsProcessRunning(pid, executable_name)) return true;
+  ::kill(pid, SIGTERM);
+  const absl::Time deadline = absl::Now() + grace;
+  while (absl::Now() < deadline) {
+    if (!IsProcessRunning(pid, executable_name)) return true;
+    absl::SleepFor(kPollInterval);
+  }
+  ::kill(pid, SIGKILL);
+  return false;
+}
+
+}  // namespace dcs::services::cli

@@ -1,0 +1,65 @@
+// Copyright 2026 The DCS Authors.
+#include "services/cli/cli_command.h"
+
+#include <cmath>
+#include <optional>
+
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+
+#include "services/command_line.h"
+#include "services/exit_codes.h"
+
+namespace dcs::services::cli {
+
+int FailCommand(const absl::Status& status) {
+  PrintError("dcs", status.ToString());
+  return ExitCodeFor(status);
+}
+
+namespace {
+
+// `text` as a finite number, or nullopt.
+std::optional<double> FiniteNumber(absl::string_view text) {
+  double value = 0;
+  if (!absl::SimpleAtod(text, &value) || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+absl::StatusOr<std::vector<double>> ParseNumberList(absl::string_view text,
+                                                    absl::string_view flag) {
+  std::vector<double> numbers;
+  for (absl::string_view item : absl::StrSplit(text, ',')) {
+    const std::optional<double> value = FiniteNumber(item);
+    if (!value.has_value()) {
+      return absl::InvalidArgumentError(
+          absl::StrCat(flag, ": '", item, "' is not a finite number (expected a,b,c,...)"));
+    }
+    numbers.push_back(*value);
+  }
+  return numbers;
+}
+
+absl::StatusOr<std::map<std::string, double>> ParseAssignments(
+    const std::vector<std::string>& assignments, absl::string_view flag) {
+  std::map<std::string, double> values;
+  for (const std::string& assignment : assignments) {
+    const std::vector<std::string> parts = absl::StrSplit(assignment, absl::MaxSplits('=', 1));
+    const std::optional<double> value =
+        parts.size() == 2 ? FiniteNumber(parts[1]) : std::nullopt;
+    if (!value.has_value()) {
+      return absl::InvalidArgumentError(absl::StrCat(
+          flag, ": expected name=value with a finite number, got '", assignment, "'"));
+    }
+    if (!values.emplace(parts[0], *value).second) {
+      return absl::InvalidArgumentError(
+          absl::StrCat(flag, ": '", parts[0], "' is given twice"));
+    }
+  }
+  return values;
+}
+
+}  // namespace dcs::services::cli

@@ -1,0 +1,56 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_CLI_CLI_COMMAND_H_
+#define DCS_SERVICES_CLI_CLI_COMMAND_H_
+
+// The commands of the `dcs` client: each command file adds its subcommands to the command line
+// and says what runs when one is chosen (services/cli/dcs_main.cc lists the files and
+// dispatches); and the flag values several commands parse. Confined to main's thread.
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "absl/time/time.h"
+#include "services/cli/status_format.h"
+
+namespace dcs::services::cli {
+
+// Flags every `dcs` command may use.
+struct GlobalFlags {
+  std::string addr;  // --addr or DCS_ADDR
+  std::string data_dir = "dcs-data";
+  absl::Duration timeout = absl::Seconds(5);
+  OutputFormat output = OutputFormat::kTable;
+};
+
+// Prints `status` as `dcs`'s one error line and returns the exit code it maps to.
+int FailCommand(const absl::Status& status);
+
+struct CliCommand {
+  CLI::App* app;            // owned by the parent CLI::App
+  std::function<int()> run;  // returns the exit code (services/exit_codes.h)
+};
+
+// What each command file provides: adds its commands to `dcs`. `flags` outlives them.
+using AddCommandsFunction = std::vector<CliCommand> (*)(CLI::App& dcs, const GlobalFlags& flags);
+
+// Comma-separated finite numbers ("0.35,0.75"). INVALID_ARGUMENT naming `flag` and the bad
+// entry.
+absl::StatusOr<std::vector<double>> ParseNumberList(absl::string_view text,
+                                                    absl::string_view flag);
+
+// name=value assignments of a repeatable flag (`--set length=1.3`), by name. INVALID_ARGUMENT
+// naming `flag` for one without '=', a value that is not a finite number, or a name given
+// twice.
+absl::StatusOr<std::map<std::string, double>> ParseAssignments(
+    const std::vector<std::string>& assignments, absl::string_view flag);
+
+}  // namespace dcs::services::cli
+
+#endif  // DCS_SERVICES_CLI_CLI_COMMAND_H_

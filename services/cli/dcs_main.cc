@@ -1,0 +1,70 @@
+// Copyright 2026 The DCS Authors.
+//
+// dcs: the DCS command-line client. `dcs --help` lists the commands, `dcs <command> --help`
+// describes each; README.md shows them in use. stdout carries data only; progress and errors
+// go to stderr. Exit codes: README.md.
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "services/cli/cli_command.h"
+#include "services/cli/cluster_commands.h"
+#include "services/cli/env_commands.h"
+#include "services/cli/schedule_commands.h"
+#include "services/cli/summarize_command.h"
+#include "services/cli/train_command.h"
+#include "services/cli/version_command.h"
+#include "services/command_line.h"
+#include "services/exit_codes.h"
+#include "services/log.h"
+
+namespace dcs::services::cli {
+namespace {
+
+// Every command file of `dcs`, in the order `dcs --help` lists their commands.
+constexpr AddCommandsFunction kCommandFiles[] = {
+    AddClusterCommands, AddVersionCommand, AddEnvCommands,
+    AddScheduleCommands, AddTrainCommand,  AddSummarizeCommand,
+};
+
+int Main(int argc, char** argv) {
+  ConfigureLogging({.component = "dcs"});
+  CLI::App app("dcs: dynamic context scheduling for reinforcement learning, as a service", "dcs");
+  app.require_subcommand(0, 1);
+  app.fallthrough();  // global flags may follow the command
+  GlobalFlags flags;
+  app.add_option("--addr", flags.addr,
+                 "a server's gRPC address host:port (default: the local cluster's "
+                 "coordinator, else 127.0.0.1:50051)")
+      ->envname("DCS_ADDR");
+  app.add_option("--data-dir", flags.data_dir, "where `dcs up` keeps logs and cluster state")
+      ->capture_default_str();
+  AddDurationOption(app, "--timeout", &flags.timeout, "deadline of each call to a server");
+  AddChoiceOption(app, "-o,--output", &flags.output, OutputFormatNames(),
+                  "table, or json (for scripts)");
+
+  std::vector<CliCommand> commands;
+  for (AddCommandsFunction add : kCommandFiles) {
+    for (CliCommand& command : add(app, flags)) commands.push_back(std::move(command));
+  }
+
+  if (std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  for (const CliCommand& command : commands) {
+    if (command.app->parsed()) return command.run();
+  }
+  // Checked here rather than by CLI11, which would report it before an unknown flag.
+  std::vector<std::string> names;
+  for (const CLI::App* command : app.get_subcommands({})) names.push_back(command->get_name());
+  PrintError("dcs", absl::StrCat("a command is required: ", absl::StrJoin(names, ", "),
+                                 " (see --help)"));
+  return kExitUsage;
+}
+
+}  // namespace
+}  // namespace dcs::services::cli
+
+int main(int argc, char** argv) { return dcs::services::cli::Main(argc, argv); }

@@ -1,0 +1,102 @@
+// Copyright 2026 The DCS Authors.
+#include "services/cli/schedule_commands.h"
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "absl/strings/str_cat.h"
+#include "common/atomic_file.h"
+#include "common/status_macros.h"
+#include "coordinator/line_plot.h"
+#include "coordinator/schedule_preview.h"
+#include "run/schedule_yaml.h"
+#include "services/command_line.h"
+#include "services/exit_codes.h"
+
+namespace dcs::services::cli {
+namespace {
+
+struct PreviewFlags {
+  std::string spec;  // a YAML file, a family name, or "all"
+  std::string range = "0.35,0.75";
+  coordinator::PreviewOptions options;
+  std::string out;
+  std::string svg;
+};
+
+absl::StatusOr<std::vector<coordinator::PreviewPanel>> PreviewPanels(const std::string& spec) {
+  if (!std::filesystem::exists(spec)) return coordinator::FamilyPreviewPanels(spec);
+  DCS_ASSIGN_OR_RETURN(const std::string text, ReadFile(spec));
+  DCS_ASSIGN_OR_RETURN(const std::vector<env::ScheduleConfig> configs,
+                       run::ParseScheduleConfigsYaml(text, spec));
+  std::vector<coordinator::PreviewPanel> panels;
+  for (size_t i = 0; i < configs.size(); ++i) {
+    const std::string& family = configs[i].family;
+    panels.push_back(
+        {.title = configs.size() > 1 ? absl::StrCat(family, " #", i + 1) : family,
+         .curves = {{.label = family, .config = configs[i]}}});
+  }
+  return panels;
+}
+
+absl::Status Preview(PreviewFlags flags) {
+  DCS_ASSIGN_OR_RETURN(const std::vector<double> range, ParseNumberList(flags.range, "--range"));
+  if (range.size() != 2) {
+    return absl::InvalidArgumentError("--range: expected lo,hi (the training range)");
+  }
+  flags.options.lo = range[0];
+  flags.options.hi = range[1];
+  DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::PreviewPanel> panels,
+                       PreviewPanels(flags.spec));
+  DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::PreviewTrajectory> trajectories,
+                       coordinator::RunPreview(panels, flags.options));
+  DCS_RETURN_IF_ERROR(WriteFileAtomically(
+      flags.out, coordinator::PreviewCsv(panels, trajectories, flags.options)));
+  std::cerr << "wrote " << trajectories.size() << " trajectories to " << flags.out << std::endl;
+  if (!flags.svg.empty()) {
+    DCS_ASSIGN_OR_RETURN(
+        const std::string svg,
+        coordinator::RenderSvg(coordinator::PreviewFigure(panels, trajectories, flags.options)));
+    DCS_RETURN_IF_ERROR(WriteFileAtomically(flags.svg, svg));
+    std::cerr << "wrote the figure to " << flags.svg << std::endl;
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+std::vector<CliCommand> AddScheduleCommands(CLI::App& dcs, const GlobalFlags&) {
+  CLI::App* schedule_group = dcs.add_subcommand("schedule", "Schedules: previews");
+  schedule_group->require_subcommand(1);
+  auto preview_flags = std::make_shared<PreviewFlags>();
+  CLI::App* preview = schedule_group->add_subcommand(
+      "preview", "Write schedule trajectories over a few episodes as CSV (and an SVG figure)");
+  preview->add_option("--spec", preview_flags->spec,
+                      "a YAML file of schedule configs, a family name, or 'all'")
+      ->required();
+  preview->add_option("--range", preview_flags->range, "the training range lo,hi")
+      ->capture_default_str();
+  preview->add_option("--pool-size", preview_flags->options.pool_size,
+                      "episode-initial values: pool-N over the range")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
+  preview->add_option("--episodes", preview_flags->options.episodes, "episodes per schedule")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  preview->add_option("--steps", preview_flags->options.steps, "transitions per episode")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  preview->add_option("--seed", preview_flags->options.seed, "the preview's seed")
+      ->capture_default_str();
+  preview->add_option("--out", preview_flags->out, "the CSV file to write")->required();
+  preview->add_option("--svg", preview_flags->svg, "also draw the figure into this SVG file");
+
+  return {{preview, [preview_flags] {
+             const absl::Status status = Preview(*preview_flags);
+             return status.ok() ? kExitOk : FailCommand(status);
+           }}};
+}
+
+}  // namespace dcs::services::cli
