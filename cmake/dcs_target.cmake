@@ -12,9 +12,11 @@ function(dcs_target_options target)
   target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR})
 endfunction()
 
-# dcs_library(name SOURCES ... DEPS ...): the one library of a folder.
+# dcs_library(name SOURCES ... DEPS ...): the one library of a folder. It needs a layer in
+# cmake/layers.cmake (cmake/layering.cmake refuses the build otherwise).
 function(dcs_library name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  set_property(GLOBAL APPEND PROPERTY DCS_LIBRARIES ${name})
   add_library(${name} STATIC ${ARG_SOURCES})
   dcs_target_options(${name})
   target_link_libraries(${name} PUBLIC ${ARG_DEPS})

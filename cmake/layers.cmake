@@ -1,0 +1,13 @@
+# DCS's layers, bottom up: the one table of the layering rule (cmake/layering.cmake checks it;
+# docs/architecture.md §1 draws it). A library may link DCS libraries of lower layers only;
+# gRPC and libtorch only where marked. Libraries of one layer do not link each other.
+dcs_layer(dcs_common 0)             # status macros, seed streams, small utilities
+dcs_layer(dcs_proto 0)              # protobuf messages of the wire contract
+dcs_layer(dcs_env 1)                # environments, schedules, the dynamic-context wrapper
+dcs_layer(dcs_proto_grpc 1 GRPC)    # gRPC stubs of the wire contract
+dcs_layer(dcs_actor 2)              # policies, rollout collection, evaluation
+dcs_layer(dcs_run 3)                # a run as data: configs, plans, records
+dcs_layer(dcs_learner 4 TORCH)      # PPO in libtorch, training sessions
+dcs_layer(dcs_coordinator 4)        # workers, summaries, plots; sweeps and the store to come
+dcs_layer(dcs_services 5 GRPC)      # the servers' plumbing
+dcs_layer(dcs_cli 6 GRPC TORCH)     # the dcs client (it trains in process)
