@@ -17,7 +17,7 @@
 #include "gtest/gtest.h"
 #include "learner/torch_runtime.h"
 #include "run/evaluation_log.h"
-#include "run/run_spec_yaml.h"
+#include "tests/learner/small_run.h"
 #include "tests/testing/temp_dir.h"
 
 namespace dcs::learner {
@@ -26,31 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-
-// A CartPole run small enough for a unit test: 10 rollouts of 64 steps per slot, evaluated every
-// 128 steps on two contexts; pool-3 and a two-stage schedule so that resuming has pools,
-// schedules and episodes crossing rollout boundaries to get right.
-constexpr char kSmallRun[] = R"(
-env: cartpole
-seed: 11
-total_timesteps: 1280
-n_envs: 2
-feature: length
-training_range: [0.35, 0.75]
-pool: {size: 3}
-stages:
-  - {steps: 400, schedule: {family: sinusoidal, amplitude_frac: 0.5, period: 40}}
-  - {steps: 880, schedule: {family: random_walk, std_frac: 0.05}}
-observe: live
-evaluation: {freq: 256, episodes: 2, contexts: {id: [0.5], ood_high: [1.0]}}
-ppo: {n_steps: 64, batch_size: 32, n_epochs: 2}
-)";
-
-run::RunSpec Spec(absl::string_view yaml) {
-  absl::StatusOr<run::RunSpec> spec = run::ParseRunSpecYaml(yaml, "test.yaml");
-  EXPECT_TRUE(spec.ok()) << spec.status();
-  return *spec;
-}
 
 std::vector<std::vector<double>> Returns(const run::RunState& state) {
   std::vector<std::vector<double>> returns;

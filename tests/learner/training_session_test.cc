@@ -16,7 +16,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "learner/torch_runtime.h"
-#include "run/run_spec_yaml.h"
+#include "tests/learner/small_run.h"
 
 namespace dcs::learner {
 namespace {
@@ -24,37 +24,13 @@ namespace {
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-// 128-step rollouts (64 x 2 slots) to 1280 steps, evaluated every 256 steps and at the stage
-// boundary 400.
-constexpr char kRun[] = R"(
-env: cartpole
-seed: 11
-total_timesteps: 1280
-n_envs: 2
-feature: length
-training_range: [0.35, 0.75]
-pool: {size: 3}
-stages:
-  - {steps: 400, schedule: {family: sinusoidal, amplitude_frac: 0.5, period: 40}}
-  - {steps: 880, schedule: {family: random_walk, std_frac: 0.05}}
-observe: live
-evaluation: {freq: 256, episodes: 1, contexts: {id: [0.5]}}
-ppo: {n_steps: 64, batch_size: 32, n_epochs: 2}
-)";
-
-run::RunSpec Spec() {
-  absl::StatusOr<run::RunSpec> spec = run::ParseRunSpecYaml(kRun, "run.yaml");
-  EXPECT_TRUE(spec.ok()) << spec.status();
-  return *spec;
-}
-
 // A session with its own environment slots, stepped as an actor would step them.
 class Driver {
  public:
   // nullptr (with a test failure) if the session or its slots cannot be made.
   static std::unique_ptr<Driver> Make(const run::Checkpoint* checkpoint = nullptr) {
     absl::StatusOr<std::unique_ptr<TrainingSession>> session =
-        TrainingSession::Create<env::CartPole>(Spec(), checkpoint);
+        TrainingSession::Create<env::CartPole>(Spec(kSmallRun), checkpoint);
     EXPECT_TRUE(session.ok()) << session.status();
     if (!session.ok()) return nullptr;
     std::vector<env::DynamicContextOptions> slots(2, (*session)->plan().slot);
@@ -74,7 +50,8 @@ class Driver {
     if (!policy.ok()) return policy.status();
     actor::Rollout rollout;
     std::vector<actor::EpisodeSummary> finished;
-    collector_->Collect(*policy, 64, session_->state().rollouts, rollout, finished);
+    collector_->Collect(*policy, session_->spec().ppo.n_steps, session_->state().rollouts, rollout,
+                        finished);
     return session_->AddRollout(std::move(rollout), finished, collector_->journals());
   }
 
@@ -192,11 +169,11 @@ TEST_F(TrainingSessionTest, RefusesACheckpointOfAnotherRun) {
   ASSERT_TRUE(driver->session().Update().ok());
   absl::StatusOr<run::Checkpoint> checkpoint = driver->session().Checkpoint();
   ASSERT_TRUE(checkpoint.ok());
-  run::RunSpec other_seed = Spec();
+  run::RunSpec other_seed = Spec(kSmallRun);
   other_seed.seed = 12;
   EXPECT_EQ(TrainingSession::Create<env::CartPole>(other_seed, &*checkpoint).status().code(),
             absl::StatusCode::kFailedPrecondition);
-  run::RunSpec other_slots = Spec();
+  run::RunSpec other_slots = Spec(kSmallRun);
   other_slots.n_envs = 4;
   const absl::Status slots =
       TrainingSession::Create<env::CartPole>(other_slots, &*checkpoint).status();
