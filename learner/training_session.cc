@@ -17,23 +17,19 @@ constexpr size_t kRecentEpisodes = 100;  // SB3's ep_info_buffer
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<TrainingSession>> TrainingSession::Create(
-    run::RunSpec spec, absl::StatusOr<run::RunPlan> plan,
-    absl::FunctionRef<run::PolicySpec(int context_size)> policy_spec,
+    run::RunSpec spec, run::RunPlan plan, const run::PolicySpec& policy,
     const run::Checkpoint* checkpoint) {
-  if (!plan.ok()) return plan.status();
-  const int context_size = static_cast<int>(plan->slot.observed_features.size());
   DCS_ASSIGN_OR_RETURN(std::unique_ptr<PpoLearner> learner,
-                       PpoLearner::Create(policy_spec(context_size), spec.ppo, spec.n_envs,
-                                          spec.seed));
+                       PpoLearner::Create(policy, spec.ppo, spec.n_envs, spec.seed));
   std::unique_ptr<TrainingSession> session(
-      new TrainingSession(std::move(spec), *std::move(plan), std::move(learner)));
-  const run::RunSpec& run = session->spec_;
+      new TrainingSession(std::move(spec), std::move(plan), std::move(learner)));
   if (checkpoint == nullptr) return session;
   DCS_RETURN_IF_ERROR(session->learner_->LoadState(checkpoint->learner));
-  if (static_cast<int>(checkpoint->state.journals.size()) != run.n_envs) {
+  const int n_envs = session->spec_.n_envs;
+  if (static_cast<int>(checkpoint->state.journals.size()) != n_envs) {
     return absl::FailedPreconditionError(
         absl::StrCat("checkpoint ", checkpoint->name, " has ", checkpoint->state.journals.size(),
-                     " environment slots, the run has n_envs ", run.n_envs));
+                     " environment slots, the run has n_envs ", n_envs));
   }
   session->state_ = checkpoint->state;
   return session;

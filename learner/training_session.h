@@ -30,13 +30,13 @@
 #include <span>
 #include <vector>
 
-#include "absl/functional/function_ref.h"
 #include "absl/status/statusor.h"
 #include "actor/evaluation.h"
 #include "actor/mlp_policy.h"
 #include "actor/policy.h"
 #include "actor/rollout.h"
 #include "actor/rollout_collector.h"
+#include "common/status_macros.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "learner/ppo_learner.h"
 #include "run/run_checkpoint.h"
@@ -123,8 +123,7 @@ class TrainingSession {
   TrainingSession(run::RunSpec spec, run::RunPlan plan, std::unique_ptr<PpoLearner> learner);
 
   static absl::StatusOr<std::unique_ptr<TrainingSession>> Create(
-      run::RunSpec spec, absl::StatusOr<run::RunPlan> plan,
-      absl::FunctionRef<run::PolicySpec(int context_size)> policy_spec,
+      run::RunSpec spec, run::RunPlan plan, const run::PolicySpec& policy,
       const run::Checkpoint* checkpoint);
 
   // Fixed at construction.
@@ -145,8 +144,10 @@ class TrainingSession {
 template <typename Env>
 absl::StatusOr<std::unique_ptr<TrainingSession>> TrainingSession::Create(
     run::RunSpec spec, const run::Checkpoint* checkpoint) {
-  absl::StatusOr<run::RunPlan> plan = run::PlanRun(spec, Env::Features());
-  return Create(std::move(spec), std::move(plan), run::PolicySpecFor<Env>, checkpoint);
+  DCS_ASSIGN_OR_RETURN(run::RunPlan plan, run::PlanRun(spec, Env::Features()));
+  const run::PolicySpec policy =
+      run::PolicySpecFor<Env>(static_cast<int>(plan.slot.observed_features.size()));
+  return Create(std::move(spec), std::move(plan), policy, checkpoint);
 }
 
 }  // namespace dcs::learner

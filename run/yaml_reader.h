@@ -10,9 +10,9 @@
 //
 // One number rule everywhere: a number is a plain (unquoted) scalar that std::from_chars reads
 // whole, after an optional '+'; it must be finite ("nan", "inf" are refused, ".inf" is not a
-// number). A quoted scalar is a string, never a number. An integer is written as digits or as
-// a number with an integral value ("3e6"), exactly representable (|n| <= 2^53) and within its
-// type. A mapping's keys are names, each given once.
+// number). A quoted scalar is a string, never a number. An integer is digits, or a number with
+// an integral value ("3e6") up to 2^53 (beyond it a double names no single integer), and within
+// its type. A mapping's keys are names, each given once.
 //
 // Errors found after reading (by validation) are formatted the same way, with the line of the
 // field when the reader saw it (errors(), run/config_errors.h). Thread-compatible.
@@ -83,15 +83,13 @@ class YamlReader {
   absl::StatusOr<std::vector<double>> Numbers(const YAML::Node& node, absl::string_view path);
   absl::StatusOr<std::vector<int>> Ints(const YAML::Node& node, absl::string_view path);
 
-  // Records that the field at `path` is `node`'s (for errors found later).
-  void Note(const std::string& path, const YAML::Node& node);
-
   // Errors at the fields read so far, for validation after reading. Borrows the reader's
   // lines: the reader must outlive it.
   ConfigErrors errors() const { return ConfigErrors(where_, &lines_); }
-  const std::string& where() const { return where_; }
 
  private:
+  // Records that the field at `path` is `node`'s (for errors found later).
+  void Note(const std::string& path, const YAML::Node& node);
   template <typename T>
   absl::StatusOr<T> Integer(const YAML::Node& node, absl::string_view path) const;
   absl::Status PlainScalar(const YAML::Node& node, absl::string_view path,
