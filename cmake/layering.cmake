@@ -1,5 +1,5 @@
-# The layering rule the build enforces (docs/architecture.md §1). Every DCS library has a
-# layer, declared once in cmake/layers.cmake with dcs_layer(); a library may link DCS
+# The layering rule the build enforces (docs/architecture.md §1). Every DCS library (and
+# program) has a layer, declared once in cmake/layers.cmake with dcs_layer(); it may link DCS
 # libraries of lower layers only, and gRPC or libtorch only where its layer allows them.
 #
 # dcs_check_layers(), called after every target exists, walks each library's whole link closure
@@ -8,8 +8,8 @@
 # writes ${PROJECT_BINARY_DIR}/layers_for_test.cmake (each library's folder and layer), which
 # cmake/check_includes.cmake reads to hold every file's #include lines to the same rule.
 
-# dcs_layer(<library> <rank> [GRPC] [TORCH]): <library> sits at layer <rank> (0 is the bottom)
-# and may link gRPC or libtorch only if marked so.
+# dcs_layer(<target> <rank> [GRPC] [TORCH]): the library or program <target> sits at layer
+# <rank> (0 is the bottom) and may link gRPC or libtorch only if marked so.
 function(dcs_layer library rank)
   cmake_parse_arguments(ARG "GRPC;TORCH" "" "" ${ARGN})
   set_property(GLOBAL APPEND PROPERTY DCS_LAYERED_LIBRARIES ${library})
@@ -114,7 +114,12 @@ function(dcs_check_layers)
     get_property(rank GLOBAL PROPERTY DCS_LAYER_RANK_${library})
     get_property(grpc GLOBAL PROPERTY DCS_LAYER_GRPC_${library})
     get_property(torch GLOBAL PROPERTY DCS_LAYER_TORCH_${library})
-    # The folder of its hand-written sources (none for generated-only libraries).
+    # The folder of a library's hand-written sources (none for generated-only libraries); the
+    # include check holds a folder to its library's layer (programs' mains sit in services/).
+    get_target_property(type ${library} TYPE)
+    if(NOT type STREQUAL "STATIC_LIBRARY")
+      continue()
+    endif()
     get_target_property(sources ${library} SOURCES)
     get_target_property(source_dir ${library} SOURCE_DIR)
     set(folder "")

@@ -1,6 +1,6 @@
 # DCS's layers, bottom up: the one table of the layering rule (cmake/layering.cmake checks it;
-# docs/architecture.md §1 draws it). A library may link DCS libraries of lower layers only;
-# gRPC and libtorch only where marked. Libraries of one layer do not link each other.
+# docs/architecture.md §1 draws it). A library or program may link DCS libraries of lower
+# layers only; gRPC and libtorch only where marked. Those of one layer do not link each other.
 dcs_layer(dcs_common 0)             # status macros, seed streams, small utilities
 dcs_layer(dcs_proto 0)              # protobuf messages of the wire contract
 dcs_layer(dcs_env 1)                # environments, schedules, the dynamic-context wrapper
@@ -11,3 +11,8 @@ dcs_layer(dcs_learner 4 TORCH)      # PPO in libtorch, training sessions
 dcs_layer(dcs_coordinator 4)        # workers, summaries, plots; sweeps and the store to come
 dcs_layer(dcs_services 5 GRPC)      # the servers' plumbing
 dcs_layer(dcs_cli 6 GRPC TORCH)     # the dcs client (it trains in process)
+# The programs: the servers beside the client library, so that none of them links it.
+dcs_layer(dcs-coordinator 6 GRPC)
+dcs_layer(dcs-learner 6 GRPC TORCH)
+dcs_layer(dcs-actor 6 GRPC)
+dcs_layer(dcs 7 GRPC TORCH)

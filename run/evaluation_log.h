@@ -38,6 +38,7 @@ std::string EvaluationCsvPath(const std::string& dir);
 
 // Writes evaluations.csv and evaluations.json into `dir`. Errors name the file
 // (RESOURCE_EXHAUSTED for a full disk); a file that fails keeps its previous contents.
+// REQUIRES: every context has a split, as logs from MakeEvaluationLog and ReadEvaluationLog do.
 absl::Status WriteEvaluationLog(const std::string& dir, const v1::EvaluationLog& log);
 
 // The evaluation log in `dir`. NOT_FOUND if it has none; DATA_LOSS naming the file if that is

@@ -12,7 +12,6 @@
 #include "coordinator/line_plot.h"
 #include "coordinator/schedule_preview.h"
 #include "run/schedule_yaml.h"
-#include "services/command_line.h"
 #include "services/exit_codes.h"
 
 namespace dcs::services::cli {
