@@ -10,8 +10,8 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "dcs/v1/evaluation.pb.h"
-#include "run/evaluation_log.h"
 #include "gtest/gtest.h"
+#include "run/evaluation_log.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/temp_dir.h"
 
