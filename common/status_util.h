@@ -19,8 +19,8 @@ absl::Status Annotate(const absl::Status& status, absl::string_view context);
 // The field an error is about, carried with it as a status payload. A validator names the field
 // in its own terms ("period"); each caller that nests it adds its own part in front
 // ("parts[1]" makes "parts[1].period"); the reader that knows where the config was written
-// turns the whole into a path and a line (run/yaml_reader.h). The message is unchanged; OK
-// stays OK.
+// turns the whole into a path and a line (run/schedule_yaml.h: ScheduleError). The message is
+// unchanged; OK stays OK.
 absl::Status ErrorInField(absl::Status status, absl::string_view field);
 // The field ErrorInField recorded, or nullopt.
 std::optional<std::string> ErrorField(const absl::Status& status);
