@@ -3,7 +3,7 @@
 #define DCS_LEARNER_TRAINING_SESSION_H_
 
 // One run's learning, a step at a time, as Stable-Baselines3's PPO.learn does it with the
-// paper's evaluation callback: the learner service hosts many of these, and `dcs train` drives
+// paper's evaluation callback: the learner service will host many of these; `dcs train` drives
 // one in its own process (learner/training_run.h). Whoever steps the environments collects
 // each rollout with the session's current policy; per rollout:
 //

@@ -30,9 +30,11 @@ v1::Evaluation ToProto(const actor::EvaluationResult& result) {
   evaluation.set_step(result.step);
   evaluation.set_updates(result.updates);
   evaluation.set_avg_combined(result.avg_combined);
+  // The proto's per-split fields, in actor::Split's order.
   v1::SplitSummary* splits[] = {evaluation.mutable_id(), evaluation.mutable_ood_low(),
                                 evaluation.mutable_ood_high()};
-  for (int split = 0; split < 3; ++split) {
+  static_assert(sizeof(splits) / sizeof(splits[0]) == actor::kNumSplits);
+  for (int split = 0; split < actor::kNumSplits; ++split) {
     splits[split]->set_mean(result.split_mean[split]);
     splits[split]->set_min(result.split_min[split]);
   }
