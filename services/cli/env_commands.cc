@@ -5,8 +5,8 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 
