@@ -1,0 +1,39 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COORDINATOR_RUN_STATE_H_
+#define DCS_COORDINATOR_RUN_STATE_H_
+
+// The life of a run in the coordinator, as one table of states and one of the moves between
+// them (spec/operations.md §5.3: every transition goes through one function):
+//
+//   queued ──▶ running ──▶ completed | failed
+//     ▲           │
+//     └───────────┘  its learner's lease lapsed: back to the queue, to resume from its last
+//                    checkpoint on whichever learner takes it next
+//   queued | running ──▶ cancelled
+//
+// Thread-safe (constant data, pure functions).
+
+#include "absl/status/status.h"
+#include "absl/strings/string_view.h"
+#include "common/enum_names.h"
+
+namespace dcs::coordinator {
+
+enum class RunState { kQueued, kRunning, kCompleted, kFailed, kCancelled };
+
+inline constexpr EnumName<RunState> kRunStateNames[] = {
+    {RunState::kQueued, "queued"},       {RunState::kRunning, "running"},
+    {RunState::kCompleted, "completed"}, {RunState::kFailed, "failed"},
+    {RunState::kCancelled, "cancelled"}};
+static_assert(InEnumOrder(kRunStateNames));
+
+// Completed, failed or cancelled: nothing moves it any more.
+bool IsTerminal(RunState state);
+
+// OK if a run may move from `from` to `to`; otherwise FAILED_PRECONDITION naming both (and the
+// run `run_id`).
+absl::Status CheckTransition(absl::string_view run_id, RunState from, RunState to);
+
+}  // namespace dcs::coordinator
+
+#endif  // DCS_COORDINATOR_RUN_STATE_H_

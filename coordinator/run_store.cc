@@ -1,0 +1,462 @@
+// Copyright 2026 The DCS Authors.
+#include "coordinator/run_store.h"
+
+#include <SQLiteCpp/Database.h>
+#include <SQLiteCpp/Statement.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "absl/strings/strip.h"
+#include "common/status_macros.h"
+#include "coordinator/store_schema.h"
+
+namespace dcs::coordinator {
+namespace {
+
+constexpr char kRunIdPrefix[] = "run-";
+
+int64_t Micros(absl::Time time) { return absl::ToUnixMicros(time); }
+absl::Time FromMicros(int64_t micros) { return absl::FromUnixMicros(micros); }
+
+std::string RunId(int64_t number) { return absl::StrCat(kRunIdPrefix, number); }
+
+// The row number of "run-<n>"; NOT_FOUND for anything else.
+absl::StatusOr<int64_t> RunNumber(absl::string_view run_id) {
+  int64_t number = 0;
+  absl::string_view digits = run_id;
+  if (!absl::ConsumePrefix(&digits, kRunIdPrefix) || !absl::SimpleAtoi(digits, &number)) {
+    return absl::NotFoundError(absl::StrCat("no run '", run_id, "' (run ids look like run-1)"));
+  }
+  return number;
+}
+
+std::string LeaseName(const LeaseKey& key) {
+  return key.slot == kLearnerSlot ? absl::StrCat("the learner lease of ", key.run_id)
+                                  : absl::StrCat("the lease of slot ", key.slot, " of ",
+                                                 key.run_id);
+}
+
+constexpr char kRunColumns[] =
+    "number, request_id, config, seed, env, n_envs, total_timesteps, state, error, numerics, "
+    "timesteps, policy_version, steps_per_second, recent_return, avg_combined, checkpoint, "
+    "created_at, updated_at";
+
+RunRecord ReadRun(SQLite::Statement& row) {
+  RunRecord run;
+  run.id = RunId(row.getColumn(0).getInt64());
+  run.submission = {.request_id = row.getColumn(1).getString(),
+                    .config = row.getColumn(2).getString(),
+                    .seed = static_cast<uint64_t>(row.getColumn(3).getInt64()),
+                    .env = row.getColumn(4).getString(),
+                    .n_envs = row.getColumn(5).getInt(),
+                    .total_timesteps = row.getColumn(6).getInt64()};
+  run.state = FindByName(kRunStateNames, row.getColumn(7).getString()).value_or(RunState::kFailed);
+  run.error = row.getColumn(8).getString();
+  run.numerics = row.getColumn(9).getString();
+  run.progress = {.timesteps = row.getColumn(10).getInt64(),
+                  .policy_version = row.getColumn(11).getInt64(),
+                  .steps_per_second = row.getColumn(12).getDouble(),
+                  .recent_return = row.getColumn(13).isNull()
+                                       ? std::numeric_limits<double>::quiet_NaN()
+                                       : row.getColumn(13).getDouble()};
+  if (!row.getColumn(14).isNull()) run.progress.avg_combined = row.getColumn(14).getDouble();
+  run.checkpoint = row.getColumn(15).getString();
+  run.created_at = FromMicros(row.getColumn(16).getInt64());
+  run.updated_at = FromMicros(row.getColumn(17).getInt64());
+  return run;
+}
+
+absl::StatusOr<RunRecord> FindRun(SQLite::Database& db, absl::string_view run_id) {
+  DCS_ASSIGN_OR_RETURN(const int64_t number, RunNumber(run_id));
+  SQLite::Statement query(db, absl::StrCat("SELECT ", kRunColumns, " FROM runs WHERE number = ?"));
+  query.bind(1, number);
+  if (!query.executeStep()) return absl::NotFoundError(absl::StrCat("no run ", run_id));
+  return ReadRun(query);
+}
+
+// Moves a run to `to` through the one transition table.
+absl::Status SetRunState(SQLite::Database& db, const RunRecord& run, RunState to,
+                         absl::string_view error, absl::Time now) {
+  DCS_RETURN_IF_ERROR(CheckTransition(run.id, run.state, to));
+  SQLite::Statement update(db, "UPDATE runs SET state = ?, error = ?, updated_at = ? "
+                               "WHERE number = ?");
+  update.bind(1, std::string(NameOf(kRunStateNames, to)));
+  update.bind(2, std::string(error));
+  update.bind(3, Micros(now));
+  update.bind(4, *RunNumber(run.id));
+  update.exec();
+  return absl::OkStatus();
+}
+
+// Frees leases of run `number`: every slot lease, and the learner lease too if `learner`.
+void FreeLeases(SQLite::Database& db, int64_t number, bool learner) {
+  SQLite::Statement update(db, learner ? "UPDATE leases SET holder = '', address = '', "
+                                         "deadline = 0 WHERE run = ?"
+                                       : "UPDATE leases SET holder = '', address = '', "
+                                         "deadline = 0 WHERE run = ? AND slot >= 0");
+  update.bind(1, number);
+  update.exec();
+}
+
+// OK if `key` names the lease as it is held now: same epoch, still held, run not ended.
+absl::Status CheckHeld(SQLite::Database& db, const LeaseKey& key) {
+  DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(db, key.run_id));
+  SQLite::Statement query(db, "SELECT epoch, holder FROM leases WHERE run = ? AND slot = ?");
+  query.bind(1, *RunNumber(key.run_id));
+  query.bind(2, key.slot);
+  if (!query.executeStep()) {
+    return absl::NotFoundError(absl::StrCat(key.run_id, " has no slot ", key.slot));
+  }
+  if (IsTerminal(run.state)) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        LeaseName(key), " is void: the run is ", NameOf(kRunStateNames, run.state)));
+  }
+  const int64_t epoch = query.getColumn(0).getInt64();
+  if (epoch != key.epoch) {
+    return absl::FailedPreconditionError(absl::StrCat(LeaseName(key), " moved: epoch ", epoch,
+                                                      " was granted after epoch ", key.epoch));
+  }
+  if (query.getColumn(1).getString().empty()) {
+    return absl::FailedPreconditionError(
+        absl::StrCat(LeaseName(key), " (epoch ", key.epoch, ") lapsed and went back to the queue"));
+  }
+  return absl::OkStatus();
+}
+
+// Grants lease (number, slot) to `holder`: next epoch, deadline from now. Returns the epoch.
+int64_t Grant(SQLite::Database& db, int64_t number, int slot, absl::string_view holder,
+              absl::string_view address, absl::Time deadline) {
+  SQLite::Statement update(db, "UPDATE leases SET epoch = epoch + 1, holder = ?, address = ?, "
+                               "deadline = ? WHERE run = ? AND slot = ? RETURNING epoch");
+  update.bind(1, std::string(holder));
+  update.bind(2, std::string(address));
+  update.bind(3, Micros(deadline));
+  update.bind(4, number);
+  update.bind(5, slot);
+  update.executeStep();
+  return update.getColumn(0).getInt64();
+}
+
+absl::StatusOr<int> ExpireLapsed(SQLite::Database& db, absl::Time now) {
+  // Learner leases first: their runs go back to the queue with every slot lease freed.
+  SQLite::Statement learners(db, "SELECT run FROM leases WHERE slot = -1 AND holder != '' AND "
+                                 "deadline < ?");
+  learners.bind(1, Micros(now));
+  std::vector<int64_t> requeued;
+  while (learners.executeStep()) requeued.push_back(learners.getColumn(0).getInt64());
+  for (int64_t number : requeued) {
+    FreeLeases(db, number, /*learner=*/true);
+    DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(db, RunId(number)));
+    DCS_RETURN_IF_ERROR(SetRunState(db, run, RunState::kQueued, "", now));
+  }
+  SQLite::Statement slots(db, "UPDATE leases SET holder = '', address = '', deadline = 0 "
+                              "WHERE slot >= 0 AND holder != '' AND deadline < ?");
+  slots.bind(1, Micros(now));
+  return static_cast<int>(requeued.size()) + slots.exec();
+}
+
+}  // namespace
+
+RunStore::RunStore(std::unique_ptr<SQLite::Database> db, RunStoreOptions options)
+    : db_(std::move(db)), options_(options) {}
+
+RunStore::~RunStore() = default;
+
+template <typename Body>
+auto RunStore::Transaction(Body body) -> decltype(body()) {
+  absl::MutexLock lock(&mu_);
+  try {
+    db_->exec("BEGIN IMMEDIATE");
+    try {
+      auto result = body();
+      db_->exec(result.ok() ? "COMMIT" : "ROLLBACK");
+      return result;
+    } catch (...) {
+      db_->exec("ROLLBACK");
+      throw;
+    }
+  } catch (const SQLite::Exception& e) {
+    return absl::InternalError(absl::StrCat(db_->getFilename(), ": ", e.what()));
+  }
+}
+
+absl::StatusOr<std::unique_ptr<RunStore>> RunStore::Open(const std::string& path,
+                                                         RunStoreOptions options,
+                                                         absl::Time now) {
+  try {
+    auto db = std::make_unique<SQLite::Database>(
+        path, SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE | SQLite::OPEN_FULLMUTEX);
+    db->setBusyTimeout(5000);
+    db->exec("PRAGMA journal_mode = WAL");
+    db->exec("PRAGMA synchronous = FULL");
+    db->exec("PRAGMA foreign_keys = ON");
+    DCS_RETURN_IF_ERROR(MigrateSchema(*db));
+    // Holders could not renew while no coordinator ran: give them a full lease from now.
+    SQLite::Statement grace(*db, "UPDATE leases SET deadline = max(deadline, ?) WHERE holder != ''");
+    grace.bind(1, Micros(now + options.lease_duration));
+    grace.exec();
+    return std::unique_ptr<RunStore>(new RunStore(std::move(db), options));
+  } catch (const SQLite::Exception& e) {
+    return absl::InternalError(absl::StrCat("cannot open the coordinator database ", path, ": ",
+                                            e.what()));
+  }
+}
+
+absl::StatusOr<RunRecord> RunStore::SubmitRun(const RunSubmission& submission, absl::Time now) {
+  if (submission.request_id.empty()) {
+    return absl::InvalidArgumentError("a run submission needs a request id");
+  }
+  if (submission.config.empty()) return absl::InvalidArgumentError("the run config is empty");
+  if (submission.n_envs < 1) {
+    return absl::InvalidArgumentError(absl::StrCat("n_envs is ", submission.n_envs,
+                                                   "; a run needs at least one slot"));
+  }
+  return Transaction([&]() -> absl::StatusOr<RunRecord> {
+    SQLite::Statement existing(*db_, "SELECT number FROM runs WHERE request_id = ?");
+    existing.bind(1, submission.request_id);
+    if (existing.executeStep()) return FindRun(*db_, RunId(existing.getColumn(0).getInt64()));
+
+    SQLite::Statement insert(*db_,
+                             "INSERT INTO runs (request_id, config, seed, env, n_envs, "
+                             "total_timesteps, state, created_at, updated_at) "
+                             "VALUES (?, ?, ?, ?, ?, ?, 'queued', ?, ?) RETURNING number");
+    insert.bind(1, submission.request_id);
+    insert.bind(2, submission.config);
+    insert.bind(3, static_cast<int64_t>(submission.seed));
+    insert.bind(4, submission.env);
+    insert.bind(5, submission.n_envs);
+    insert.bind(6, submission.total_timesteps);
+    insert.bind(7, Micros(now));
+    insert.bind(8, Micros(now));
+    insert.executeStep();
+    const int64_t number = insert.getColumn(0).getInt64();
+    insert.reset();
+    for (int slot = kLearnerSlot; slot < submission.n_envs; ++slot) {
+      SQLite::Statement lease(*db_, "INSERT INTO leases (run, slot) VALUES (?, ?)");
+      lease.bind(1, number);
+      lease.bind(2, slot);
+      lease.exec();
+    }
+    return FindRun(*db_, RunId(number));
+  });
+}
+
+absl::StatusOr<RunRecord> RunStore::GetRun(absl::string_view run_id) {
+  return Transaction([&] { return FindRun(*db_, run_id); });
+}
+
+absl::StatusOr<std::vector<RunRecord>> RunStore::ListRuns() {
+  return Transaction([&]() -> absl::StatusOr<std::vector<RunRecord>> {
+    SQLite::Statement query(*db_, absl::StrCat("SELECT ", kRunColumns,
+                                               " FROM runs ORDER BY number"));
+    std::vector<RunRecord> runs;
+    while (query.executeStep()) runs.push_back(ReadRun(query));
+    return runs;
+  });
+}
+
+absl::StatusOr<RunRecord> RunStore::CancelRun(absl::string_view run_id, absl::Time now) {
+  return Transaction([&]() -> absl::StatusOr<RunRecord> {
+    DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(*db_, run_id));
+    DCS_RETURN_IF_ERROR(SetRunState(*db_, run, RunState::kCancelled, "cancelled by a client", now));
+    FreeLeases(*db_, *RunNumber(run_id), /*learner=*/true);
+    return FindRun(*db_, run_id);
+  });
+}
+
+absl::StatusOr<std::optional<LearnerLease>> RunStore::AcquireRun(absl::string_view holder,
+                                                                 absl::string_view address,
+                                                                 absl::string_view numerics,
+                                                                 absl::Time now) {
+  return Transaction([&]() -> absl::StatusOr<std::optional<LearnerLease>> {
+    DCS_RETURN_IF_ERROR(ExpireLapsed(*db_, now).status());
+    SQLite::Statement query(*db_, "SELECT number FROM runs WHERE state = 'queued' AND "
+                                  "(numerics = '' OR numerics = ?) ORDER BY number LIMIT 1");
+    query.bind(1, std::string(numerics));
+    if (!query.executeStep()) return std::nullopt;
+    const int64_t number = query.getColumn(0).getInt64();
+    query.reset();
+    DCS_ASSIGN_OR_RETURN(const RunRecord queued, FindRun(*db_, RunId(number)));
+    DCS_RETURN_IF_ERROR(SetRunState(*db_, queued, RunState::kRunning, "", now));
+    SQLite::Statement pin(*db_, "UPDATE runs SET numerics = ? WHERE number = ?");
+    pin.bind(1, std::string(numerics));
+    pin.bind(2, number);
+    pin.exec();
+    FreeLeases(*db_, number, /*learner=*/false);
+    const int64_t epoch =
+        Grant(*db_, number, kLearnerSlot, holder, address, now + options_.lease_duration);
+    DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(*db_, RunId(number)));
+    return LearnerLease{.key = {.run_id = run.id, .slot = kLearnerSlot, .epoch = epoch},
+                        .run = std::move(run)};
+  });
+}
+
+absl::StatusOr<std::optional<SlotLease>> RunStore::AcquireSlot(
+    absl::string_view holder, absl::string_view numerics, const std::vector<std::string>& except,
+    absl::Time now) {
+  return Transaction([&]() -> absl::StatusOr<std::optional<SlotLease>> {
+    DCS_RETURN_IF_ERROR(ExpireLapsed(*db_, now).status());
+    SQLite::Statement query(
+        *db_,
+        "SELECT s.run, s.slot, l.address, l.epoch FROM leases s "
+        "JOIN leases l ON l.run = s.run AND l.slot = -1 JOIN runs r ON r.number = s.run "
+        "WHERE s.slot >= 0 AND s.holder = '' AND l.holder != '' AND r.state = 'running' "
+        "AND r.numerics = ? ORDER BY s.run, s.slot");
+    query.bind(1, std::string(numerics));
+    while (query.executeStep()) {
+      const int64_t number = query.getColumn(0).getInt64();
+      if (std::find(except.begin(), except.end(), RunId(number)) != except.end()) continue;
+      const int slot = query.getColumn(1).getInt();
+      std::string learner_address = query.getColumn(2).getString();
+      const int64_t learner_epoch = query.getColumn(3).getInt64();
+      query.reset();
+      DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(*db_, RunId(number)));
+      const int64_t epoch = Grant(*db_, number, slot, holder, "", now + options_.lease_duration);
+      return SlotLease{.key = {.run_id = run.id, .slot = slot, .epoch = epoch},
+                       .learner_address = std::move(learner_address),
+                       .learner_epoch = learner_epoch,
+                       .seed = run.submission.seed,
+                       .config = std::move(run.submission.config)};
+    }
+    return std::nullopt;
+  });
+}
+
+absl::Status RunStore::RenewLease(const LeaseKey& key, absl::Time now) {
+  return Transaction([&]() -> absl::Status {
+    DCS_RETURN_IF_ERROR(CheckHeld(*db_, key));
+    SQLite::Statement update(*db_, "UPDATE leases SET deadline = ? WHERE run = ? AND slot = ?");
+    update.bind(1, Micros(now + options_.lease_duration));
+    update.bind(2, *RunNumber(key.run_id));
+    update.bind(3, key.slot);
+    update.exec();
+    return absl::OkStatus();
+  });
+}
+
+absl::Status RunStore::ReleaseLease(const LeaseKey& key, absl::Time now) {
+  return Transaction([&]() -> absl::Status {
+    DCS_RETURN_IF_ERROR(CheckHeld(*db_, key));
+    const int64_t number = *RunNumber(key.run_id);
+    if (key.slot == kLearnerSlot) {
+      FreeLeases(*db_, number, /*learner=*/true);
+      DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(*db_, key.run_id));
+      return SetRunState(*db_, run, RunState::kQueued, "", now);
+    }
+    SQLite::Statement update(*db_, "UPDATE leases SET holder = '', address = '', deadline = 0 "
+                                   "WHERE run = ? AND slot = ?");
+    update.bind(1, number);
+    update.bind(2, key.slot);
+    update.exec();
+    return absl::OkStatus();
+  });
+}
+
+absl::StatusOr<int> RunStore::ExpireLeases(absl::Time now) {
+  return Transaction([&]() -> absl::StatusOr<int> { return ExpireLapsed(*db_, now); });
+}
+
+absl::Status RunStore::ReportProgress(const LeaseKey& key, const RunProgress& progress,
+                                      absl::Time now) {
+  return Transaction([&]() -> absl::Status {
+    DCS_RETURN_IF_ERROR(CheckHeld(*db_, key));
+    SQLite::Statement update(*db_,
+                             "UPDATE runs SET timesteps = ?, policy_version = ?, "
+                             "steps_per_second = ?, recent_return = ?, avg_combined = ?, "
+                             "updated_at = ? WHERE number = ?");
+    update.bind(1, progress.timesteps);
+    update.bind(2, progress.policy_version);
+    update.bind(3, progress.steps_per_second);
+    if (std::isnan(progress.recent_return)) {
+      update.bind(4);
+    } else {
+      update.bind(4, progress.recent_return);
+    }
+    if (progress.avg_combined.has_value()) {
+      update.bind(5, *progress.avg_combined);
+    } else {
+      update.bind(5);
+    }
+    update.bind(6, Micros(now));
+    update.bind(7, *RunNumber(key.run_id));
+    update.exec();
+    return absl::OkStatus();
+  });
+}
+
+absl::Status RunStore::RecordCheckpoint(const LeaseKey& key, const CheckpointRecord& checkpoint,
+                                        absl::Time now) {
+  return Transaction([&]() -> absl::Status {
+    DCS_RETURN_IF_ERROR(CheckHeld(*db_, key));
+    const int64_t number = *RunNumber(key.run_id);
+    SQLite::Statement insert(*db_, "INSERT OR REPLACE INTO checkpoints (run, name, timesteps, "
+                                   "sha256, created_at) VALUES (?, ?, ?, ?, ?)");
+    insert.bind(1, number);
+    insert.bind(2, checkpoint.name);
+    insert.bind(3, checkpoint.timesteps);
+    insert.bind(4, checkpoint.sha256);
+    insert.bind(5, Micros(now));
+    insert.exec();
+    SQLite::Statement update(*db_, "UPDATE runs SET checkpoint = ?, updated_at = ? "
+                                   "WHERE number = ?");
+    update.bind(1, checkpoint.name);
+    update.bind(2, Micros(now));
+    update.bind(3, number);
+    update.exec();
+    return absl::OkStatus();
+  });
+}
+
+absl::StatusOr<std::vector<CheckpointRecord>> RunStore::ListCheckpoints(absl::string_view run_id) {
+  return Transaction([&]() -> absl::StatusOr<std::vector<CheckpointRecord>> {
+    DCS_ASSIGN_OR_RETURN(const int64_t number, RunNumber(run_id));
+    SQLite::Statement query(*db_, "SELECT name, timesteps, sha256 FROM checkpoints "
+                                  "WHERE run = ? ORDER BY timesteps");
+    query.bind(1, number);
+    std::vector<CheckpointRecord> checkpoints;
+    while (query.executeStep()) {
+      checkpoints.push_back({.name = query.getColumn(0).getString(),
+                             .timesteps = query.getColumn(1).getInt64(),
+                             .sha256 = query.getColumn(2).getString()});
+    }
+    return checkpoints;
+  });
+}
+
+absl::Status RunStore::FinishRun(const LeaseKey& key, RunState state, absl::string_view error,
+                                 absl::Time now) {
+  return Transaction([&]() -> absl::Status {
+    DCS_RETURN_IF_ERROR(CheckHeld(*db_, key));
+    DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(*db_, key.run_id));
+    DCS_RETURN_IF_ERROR(SetRunState(*db_, run, state, error, now));
+    FreeLeases(*db_, *RunNumber(key.run_id), /*learner=*/true);
+    return absl::OkStatus();
+  });
+}
+
+absl::StatusOr<StoreCounts> RunStore::Counts() {
+  return Transaction([&]() -> absl::StatusOr<StoreCounts> {
+    StoreCounts counts;
+    for (const auto& [state, name] : kRunStateNames) {
+      SQLite::Statement query(*db_, "SELECT count(*) FROM runs WHERE state = ?");
+      query.bind(1, std::string(name));
+      query.executeStep();
+      counts.runs_by_state.emplace_back(state, query.getColumn(0).getInt64());
+    }
+    counts.free_learner_leases =
+        db_->execAndGet("SELECT count(*) FROM runs WHERE state = 'queued'").getInt64();
+    counts.free_slot_leases =
+        db_->execAndGet("SELECT count(*) FROM leases s JOIN runs r ON r.number = s.run "
+                        "WHERE s.slot >= 0 AND s.holder = '' AND r.state = 'running'")
+            .getInt64();
+    return counts;
+  });
+}
+
+}  // namespace dcs::coordinator

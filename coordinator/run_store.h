@@ -1,0 +1,199 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COORDINATOR_RUN_STORE_H_
+#define DCS_COORDINATOR_RUN_STORE_H_
+
+// The coordinator's durable state: runs, their leases and their checkpoint index, in one SQLite
+// file (WAL, synchronous=FULL, schema versioned by PRAGMA user_version with forward-only
+// migrations: coordinator/store_schema.h). Every call is one transaction and returns after it
+// committed, so whatever a caller acknowledges on the strength of a call survives a crash.
+//
+// Leases (DESIGN.md §5). Each run has one learner lease (slot kLearnerSlot) and one lease per
+// env slot. A lease is free or held by a worker until a deadline; the holder renews it before
+// the deadline; a lapsed lease goes back to the queue (ExpireLeases, which every Acquire runs
+// first). Each grant raises the lease's epoch, and every call a holder makes names the epoch it
+// was granted, so a worker that comes back after its lease moved is refused
+// (FAILED_PRECONDITION), never counted twice. When a run's learner lease is granted anew, its
+// slot leases are freed: they pointed at the old learner.
+//
+// Numeric libraries (DESIGN.md §4): a run remembers the numeric fingerprint of the first
+// learner that took it; only workers with the same fingerprint get its leases.
+//
+// Times are passed in (tests drive the clock). Thread-safe: one connection behind a mutex.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/base/thread_annotations.h"
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "absl/synchronization/mutex.h"
+#include "absl/time/time.h"
+#include "coordinator/run_state.h"
+
+namespace SQLite {
+class Database;
+}  // namespace SQLite
+
+namespace dcs::coordinator {
+
+// The slot number of a run's learner lease.
+inline constexpr int kLearnerSlot = -1;
+
+// A run as submitted.
+struct RunSubmission {
+  std::string request_id;  // client-chosen; a repeated id returns the run it created
+  std::string config;      // the run config (YAML), with the seed applied
+  uint64_t seed = 0;
+  std::string env;
+  int n_envs = 1;
+  int64_t total_timesteps = 0;
+};
+
+// What a run's learner reports after each update.
+struct RunProgress {
+  int64_t timesteps = 0;
+  int64_t policy_version = 0;
+  double steps_per_second = 0;
+  double recent_return = 0;                  // NaN before the first episode
+  std::optional<double> avg_combined;        // of the latest evaluation
+};
+
+struct RunRecord {
+  std::string id;  // "run-<n>"
+  RunSubmission submission;
+  RunState state = RunState::kQueued;
+  std::string error;     // why it failed or was cancelled
+  std::string numerics;  // the numeric fingerprint of its learners
+  RunProgress progress;
+  std::string checkpoint;  // the latest checkpoint's name; empty before the first
+  absl::Time created_at;
+  absl::Time updated_at;
+};
+
+// Names a lease as its holder was granted it.
+struct LeaseKey {
+  std::string run_id;
+  int slot = kLearnerSlot;
+  int64_t epoch = 0;
+};
+
+// A run leased to a learner.
+struct LearnerLease {
+  LeaseKey key;
+  RunRecord run;
+};
+
+// An env slot leased to an actor, with where the run's learner listens.
+struct SlotLease {
+  LeaseKey key;
+  std::string learner_address;
+  int64_t learner_epoch = 0;
+  uint64_t seed = 0;
+  std::string config;
+};
+
+struct CheckpointRecord {
+  std::string name;
+  int64_t timesteps = 0;
+  std::string sha256;  // of the checkpoint's MANIFEST
+};
+
+// Counts for metrics.
+struct StoreCounts {
+  std::vector<std::pair<RunState, int64_t>> runs_by_state;  // every state, zeros included
+  int64_t free_learner_leases = 0;  // runs waiting for a learner
+  int64_t free_slot_leases = 0;     // slots of running runs waiting for an actor
+};
+
+struct RunStoreOptions {
+  absl::Duration lease_duration = absl::Seconds(10);
+};
+
+class RunStore {
+ public:
+  // Opens (creating) the database at `path` and migrates it to the current schema.
+  // Leases held when the previous coordinator stopped get a full lease_duration from `now`, so
+  // their holders can renew before anything moves. FAILED_PRECONDITION for a database written by
+  // a newer DCS (its schema version is unknown); INTERNAL naming the file for SQLite errors.
+  static absl::StatusOr<std::unique_ptr<RunStore>> Open(const std::string& path,
+                                                        RunStoreOptions options, absl::Time now);
+  ~RunStore();
+
+  RunStore(const RunStore&) = delete;
+  RunStore& operator=(const RunStore&) = delete;
+
+  // Queues a run (or returns the one `submission.request_id` already created).
+  // INVALID_ARGUMENT for an empty request id or config, or n_envs < 1.
+  absl::StatusOr<RunRecord> SubmitRun(const RunSubmission& submission, absl::Time now);
+
+  // NOT_FOUND for an unknown id.
+  absl::StatusOr<RunRecord> GetRun(absl::string_view run_id);
+  // Every run, oldest first.
+  absl::StatusOr<std::vector<RunRecord>> ListRuns();
+
+  // Cancels a queued or running run and frees its leases. NOT_FOUND, or FAILED_PRECONDITION if
+  // it already ended.
+  absl::StatusOr<RunRecord> CancelRun(absl::string_view run_id, absl::Time now);
+
+  // The oldest queued run a learner with `numerics` may take, leased to `holder` (listening at
+  // `address`) until now + lease_duration; the run becomes running. nullopt if there is none.
+  absl::StatusOr<std::optional<LearnerLease>> AcquireRun(absl::string_view holder,
+                                                         absl::string_view address,
+                                                         absl::string_view numerics,
+                                                         absl::Time now);
+
+  // A free env slot of a running run (whose learner holds its lease) that an actor with
+  // `numerics` may step, skipping the runs in `except`. nullopt if there is none.
+  absl::StatusOr<std::optional<SlotLease>> AcquireSlot(absl::string_view holder,
+                                                       absl::string_view numerics,
+                                                       const std::vector<std::string>& except,
+                                                       absl::Time now);
+
+  // Extends a held lease to now + lease_duration. FAILED_PRECONDITION if the lease moved (its
+  // epoch is newer), lapsed and went back to the queue, or its run ended (the message says
+  // which); NOT_FOUND for an unknown run or slot.
+  absl::Status RenewLease(const LeaseKey& key, absl::Time now);
+
+  // The holder gives a lease back (it stops stepping the slot, say). Errors as RenewLease.
+  absl::Status ReleaseLease(const LeaseKey& key, absl::Time now);
+
+  // Frees every lease whose deadline passed; a run whose learner lease lapsed goes back to
+  // queued (and its slot leases are freed). Returns how many leases lapsed.
+  absl::StatusOr<int> ExpireLeases(absl::Time now);
+
+  // The learner holding `key` (a learner lease) reports progress. Errors as RenewLease.
+  absl::Status ReportProgress(const LeaseKey& key, const RunProgress& progress, absl::Time now);
+
+  // Indexes a checkpoint the caller has stored durably. Errors as RenewLease.
+  absl::Status RecordCheckpoint(const LeaseKey& key, const CheckpointRecord& checkpoint,
+                                absl::Time now);
+  // A run's checkpoints, oldest first.
+  absl::StatusOr<std::vector<CheckpointRecord>> ListCheckpoints(absl::string_view run_id);
+
+  // The learner holding `key` ends its run: completed, or failed with `error`; every lease of
+  // the run is freed. Errors as RenewLease.
+  absl::Status FinishRun(const LeaseKey& key, RunState state, absl::string_view error,
+                         absl::Time now);
+
+  absl::StatusOr<StoreCounts> Counts();
+
+ private:
+  RunStore(std::unique_ptr<SQLite::Database> db, RunStoreOptions options);
+
+  // Runs `body` in one BEGIN IMMEDIATE transaction, committing if it returns OK; SQLite errors
+  // (thrown by SQLiteCpp) become INTERNAL.
+  template <typename Body>
+  auto Transaction(Body body) -> decltype(body());
+
+  absl::Mutex mu_;
+  const std::unique_ptr<SQLite::Database> db_ ABSL_GUARDED_BY(mu_);
+  const RunStoreOptions options_;
+};
+
+}  // namespace dcs::coordinator
+
+#endif  // DCS_COORDINATOR_RUN_STORE_H_

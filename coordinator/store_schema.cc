@@ -1,0 +1,87 @@
+// Copyright 2026 The DCS Authors.
+#include "coordinator/store_schema.h"
+
+#include <SQLiteCpp/Database.h>
+
+#include <iterator>
+
+#include "absl/strings/str_cat.h"
+
+namespace dcs::coordinator {
+namespace {
+
+// Times are microseconds since the Unix epoch, UTC.
+constexpr const char* kMigrations[] = {
+    // 0 -> 1: runs, their leases, their checkpoints.
+    R"sql(
+CREATE TABLE runs (
+  number INTEGER PRIMARY KEY AUTOINCREMENT,
+  request_id TEXT NOT NULL UNIQUE,
+  config TEXT NOT NULL,
+  seed INTEGER NOT NULL,
+  env TEXT NOT NULL,
+  n_envs INTEGER NOT NULL CHECK (n_envs >= 1),
+  total_timesteps INTEGER NOT NULL,
+  state TEXT NOT NULL
+    CHECK (state IN ('queued', 'running', 'completed', 'failed', 'cancelled')),
+  error TEXT NOT NULL DEFAULT '',
+  numerics TEXT NOT NULL DEFAULT '',
+  timesteps INTEGER NOT NULL DEFAULT 0,
+  policy_version INTEGER NOT NULL DEFAULT 0,
+  steps_per_second REAL NOT NULL DEFAULT 0,
+  recent_return REAL,
+  avg_combined REAL,
+  checkpoint TEXT NOT NULL DEFAULT '',
+  created_at INTEGER NOT NULL,
+  updated_at INTEGER NOT NULL
+);
+CREATE TABLE leases (
+  run INTEGER NOT NULL REFERENCES runs(number),
+  slot INTEGER NOT NULL,
+  epoch INTEGER NOT NULL DEFAULT 0,
+  holder TEXT NOT NULL DEFAULT '',
+  address TEXT NOT NULL DEFAULT '',
+  deadline INTEGER NOT NULL DEFAULT 0,
+  PRIMARY KEY (run, slot)
+);
+CREATE TABLE checkpoints (
+  run INTEGER NOT NULL REFERENCES runs(number),
+  name TEXT NOT NULL,
+  timesteps INTEGER NOT NULL,
+  sha256 TEXT NOT NULL,
+  created_at INTEGER NOT NULL,
+  PRIMARY KEY (run, name)
+);
+)sql",
+};
+
+int UserVersion(SQLite::Database& db) {
+  return db.execAndGet("PRAGMA user_version").getInt();
+}
+
+}  // namespace
+
+int CurrentSchemaVersion() { return static_cast<int>(std::size(kMigrations)); }
+
+absl::Status MigrateSchema(SQLite::Database& db) {
+  const int found = UserVersion(db);
+  if (found > CurrentSchemaVersion()) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        db.getFilename(), " has schema version ", found, "; this DCS knows versions up to ",
+        CurrentSchemaVersion(), " (the database was written by a newer DCS)"));
+  }
+  for (int version = found; version < CurrentSchemaVersion(); ++version) {
+    db.exec("BEGIN IMMEDIATE");
+    try {
+      db.exec(kMigrations[version]);
+      db.exec(absl::StrCat("PRAGMA user_version = ", version + 1));
+      db.exec("COMMIT");
+    } catch (...) {
+      db.exec("ROLLBACK");
+      throw;
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace dcs::coordinator

@@ -1,0 +1,289 @@
+// Copyright 2026 The DCS Authors.
+#include "coordinator/run_store.h"
+
+#include <SQLiteCpp/Database.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/time/time.h"
+#include "coordinator/run_state.h"
+#include "coordinator/store_schema.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::coordinator {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+const absl::Time kStart = absl::FromUnixSeconds(1'800'000'000);
+const absl::Duration kLease = absl::Seconds(10);
+
+RunSubmission Submission(std::string request_id, int n_envs = 2) {
+  return {.request_id = std::move(request_id),
+          .config = "env: cartpole\n",
+          .seed = 7,
+          .env = "cartpole",
+          .n_envs = n_envs,
+          .total_timesteps = 1000};
+}
+
+class RunStoreTest : public testing::TempDirTest {
+ protected:
+  std::unique_ptr<RunStore> Open(absl::Time now = kStart) {
+    absl::StatusOr<std::unique_ptr<RunStore>> store =
+        RunStore::Open(Path("coordinator.db"), {.lease_duration = kLease}, now);
+    EXPECT_TRUE(store.ok()) << store.status();
+    return store.ok() ? *std::move(store) : nullptr;
+  }
+
+  // Submits a run and leases it to learner "L" with fingerprint "N".
+  LearnerLease SubmitAndAcquire(RunStore& store, std::string request_id = "request-1") {
+    EXPECT_TRUE(store.SubmitRun(Submission(std::move(request_id)), kStart).ok());
+    absl::StatusOr<std::optional<LearnerLease>> lease =
+        store.AcquireRun("L", "127.0.0.1:5000", "N", kStart);
+    EXPECT_TRUE(lease.ok() && lease->has_value()) << lease.status();
+    return lease.ok() && lease->has_value() ? **lease : LearnerLease{};
+  }
+};
+
+TEST_F(RunStoreTest, SubmittingIsIdempotentByRequestId) {
+  std::unique_ptr<RunStore> store = Open();
+  absl::StatusOr<RunRecord> first = store->SubmitRun(Submission("request-1"), kStart);
+  absl::StatusOr<RunRecord> again = store->SubmitRun(Submission("request-1"), kStart);
+  absl::StatusOr<RunRecord> other = store->SubmitRun(Submission("request-2"), kStart);
+  ASSERT_TRUE(first.ok() && again.ok() && other.ok());
+  EXPECT_EQ(first->id, "run-1");
+  EXPECT_EQ(again->id, "run-1");
+  EXPECT_EQ(other->id, "run-2");
+  EXPECT_EQ(first->state, RunState::kQueued);
+  EXPECT_EQ(first->submission.seed, 7u);
+  absl::StatusOr<std::vector<RunRecord>> runs = store->ListRuns();
+  ASSERT_TRUE(runs.ok());
+  EXPECT_EQ(runs->size(), 2u);
+}
+
+TEST_F(RunStoreTest, RejectsASubmissionWithoutRequestIdOrSlots) {
+  std::unique_ptr<RunStore> store = Open();
+  EXPECT_EQ(store->SubmitRun(Submission(""), kStart).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(store->SubmitRun(Submission("r", /*n_envs=*/0), kStart).status().message(),
+              HasSubstr("n_envs is 0"));
+}
+
+TEST_F(RunStoreTest, UnknownRunsAreNotFound) {
+  std::unique_ptr<RunStore> store = Open();
+  EXPECT_EQ(store->GetRun("run-9").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(store->GetRun("nonsense").status().code(), absl::StatusCode::kNotFound);
+}
+
+TEST_F(RunStoreTest, ALearnerTakesTheOldestQueuedRun) {
+  std::unique_ptr<RunStore> store = Open();
+  const LearnerLease lease = SubmitAndAcquire(*store);
+  EXPECT_EQ(lease.key.run_id, "run-1");
+  EXPECT_EQ(lease.key.slot, kLearnerSlot);
+  EXPECT_EQ(lease.key.epoch, 1);
+  EXPECT_EQ(lease.run.state, RunState::kRunning);
+  EXPECT_EQ(lease.run.numerics, "N");
+  // Nothing else is queued.
+  absl::StatusOr<std::optional<LearnerLease>> none = store->AcquireRun("L2", "a", "N", kStart);
+  ASSERT_TRUE(none.ok());
+  EXPECT_FALSE(none->has_value());
+}
+
+TEST_F(RunStoreTest, SlotsGoToActorsOnlyOnceALearnerHoldsTheRun) {
+  std::unique_ptr<RunStore> store = Open();
+  ASSERT_TRUE(store->SubmitRun(Submission("request-1"), kStart).ok());
+  absl::StatusOr<std::optional<SlotLease>> early = store->AcquireSlot("A", "N", {}, kStart);
+  ASSERT_TRUE(early.ok());
+  EXPECT_FALSE(early->has_value());
+
+  const LearnerLease learner = SubmitAndAcquire(*store, "request-1");
+  absl::StatusOr<std::optional<SlotLease>> slot0 = store->AcquireSlot("A", "N", {}, kStart);
+  absl::StatusOr<std::optional<SlotLease>> slot1 = store->AcquireSlot("B", "N", {}, kStart);
+  absl::StatusOr<std::optional<SlotLease>> none = store->AcquireSlot("C", "N", {}, kStart);
+  ASSERT_TRUE(slot0.ok() && slot0->has_value() && slot1.ok() && slot1->has_value() && none.ok());
+  EXPECT_EQ((*slot0)->key.slot, 0);
+  EXPECT_EQ((*slot1)->key.slot, 1);
+  EXPECT_EQ((*slot0)->learner_address, "127.0.0.1:5000");
+  EXPECT_EQ((*slot0)->learner_epoch, learner.key.epoch);
+  EXPECT_EQ((*slot0)->seed, 7u);
+  EXPECT_FALSE(none->has_value());
+}
+
+TEST_F(RunStoreTest, WorkersWithOtherNumericLibrariesGetNoLeaseOfTheRun) {
+  std::unique_ptr<RunStore> store = Open();
+  SubmitAndAcquire(*store);
+  absl::StatusOr<std::optional<SlotLease>> slot = store->AcquireSlot("A", "other", {}, kStart);
+  ASSERT_TRUE(slot.ok());
+  EXPECT_FALSE(slot->has_value());
+}
+
+TEST_F(RunStoreTest, AnActorSkipsTheRunsItIsToldTo) {
+  std::unique_ptr<RunStore> store = Open();
+  SubmitAndAcquire(*store);
+  absl::StatusOr<std::optional<SlotLease>> slot = store->AcquireSlot("A", "N", {"run-1"}, kStart);
+  ASSERT_TRUE(slot.ok());
+  EXPECT_FALSE(slot->has_value());
+}
+
+TEST_F(RunStoreTest, ALapsedLeaseGoesBackToTheQueueAndItsOldHolderIsRefused) {
+  std::unique_ptr<RunStore> store = Open();
+  const LearnerLease first = SubmitAndAcquire(*store);
+  absl::StatusOr<std::optional<SlotLease>> slot = store->AcquireSlot("A", "N", {}, kStart);
+  ASSERT_TRUE(slot.ok() && slot->has_value());
+
+  // Renewed in time: still held.
+  ASSERT_TRUE(store->RenewLease(first.key, kStart + absl::Seconds(5)).ok());
+  absl::StatusOr<int> lapsed = store->ExpireLeases(kStart + absl::Seconds(12));
+  ASSERT_TRUE(lapsed.ok());
+  EXPECT_EQ(*lapsed, 1);  // the slot's; the learner renewed
+  // The learner stops renewing.
+  const absl::Time later = kStart + absl::Seconds(30);
+  lapsed = store->ExpireLeases(later);
+  ASSERT_TRUE(lapsed.ok());
+  EXPECT_EQ(*lapsed, 1);
+  EXPECT_EQ(store->GetRun("run-1")->state, RunState::kQueued);
+  absl::Status stale = store->RenewLease(first.key, later);
+  EXPECT_EQ(stale.code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT(stale.message(), HasSubstr("lapsed"));
+
+  absl::StatusOr<std::optional<LearnerLease>> second = store->AcquireRun("L2", "b", "N", later);
+  ASSERT_TRUE(second.ok() && second->has_value());
+  EXPECT_EQ((*second)->key.epoch, 2);
+  stale = store->ReportProgress(first.key, {.timesteps = 5}, later);
+  EXPECT_EQ(stale.code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT(stale.message(), HasSubstr("moved: epoch 2 was granted after epoch 1"));
+  EXPECT_EQ(store->RenewLease((*slot)->key, later).code(), absl::StatusCode::kFailedPrecondition);
+}
+
+TEST_F(RunStoreTest, ANewLearnerLeaseFreesTheSlotLeases) {
+  std::unique_ptr<RunStore> store = Open();
+  const LearnerLease first = SubmitAndAcquire(*store);
+  absl::StatusOr<std::optional<SlotLease>> slot = store->AcquireSlot("A", "N", {}, kStart);
+  ASSERT_TRUE(slot.ok() && slot->has_value());
+  ASSERT_TRUE(store->ReleaseLease(first.key, kStart).ok());
+  EXPECT_EQ(store->GetRun("run-1")->state, RunState::kQueued);
+  absl::StatusOr<std::optional<LearnerLease>> second = store->AcquireRun("L2", "b", "N", kStart);
+  ASSERT_TRUE(second.ok() && second->has_value());
+  EXPECT_EQ(store->RenewLease((*slot)->key, kStart).code(),
+            absl::StatusCode::kFailedPrecondition);
+  absl::StatusOr<std::optional<SlotLease>> again = store->AcquireSlot("A", "N", {}, kStart);
+  ASSERT_TRUE(again.ok() && again->has_value());
+  EXPECT_EQ((*again)->key.slot, 0);
+  EXPECT_EQ((*again)->key.epoch, 2);
+  EXPECT_EQ((*again)->learner_address, "b");
+}
+
+TEST_F(RunStoreTest, ProgressAndCheckpointsAreRecorded) {
+  std::unique_ptr<RunStore> store = Open();
+  const LearnerLease lease = SubmitAndAcquire(*store);
+  ASSERT_TRUE(store->ReportProgress(lease.key,
+                                    {.timesteps = 256,
+                                     .policy_version = 2,
+                                     .steps_per_second = 1000,
+                                     .recent_return = 21.5,
+                                     .avg_combined = 42.25},
+                                    kStart)
+                  .ok());
+  ASSERT_TRUE(store->RecordCheckpoint(lease.key, {"000000000256", 256, "abc"}, kStart).ok());
+  absl::StatusOr<RunRecord> run = store->GetRun("run-1");
+  ASSERT_TRUE(run.ok());
+  EXPECT_EQ(run->progress.timesteps, 256);
+  EXPECT_EQ(run->progress.policy_version, 2);
+  EXPECT_EQ(run->progress.recent_return, 21.5);
+  EXPECT_EQ(run->progress.avg_combined, 42.25);
+  EXPECT_EQ(run->checkpoint, "000000000256");
+  absl::StatusOr<std::vector<CheckpointRecord>> checkpoints = store->ListCheckpoints("run-1");
+  ASSERT_TRUE(checkpoints.ok());
+  ASSERT_EQ(checkpoints->size(), 1u);
+  EXPECT_EQ((*checkpoints)[0].sha256, "abc");
+}
+
+TEST_F(RunStoreTest, AFinishedRunVoidsItsLeases) {
+  std::unique_ptr<RunStore> store = Open();
+  const LearnerLease lease = SubmitAndAcquire(*store);
+  ASSERT_TRUE(store->FinishRun(lease.key, RunState::kCompleted, "", kStart).ok());
+  EXPECT_EQ(store->GetRun("run-1")->state, RunState::kCompleted);
+  absl::Status late = store->RenewLease(lease.key, kStart);
+  EXPECT_EQ(late.code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT(late.message(), HasSubstr("the run is completed"));
+  EXPECT_EQ(store->CancelRun("run-1", kStart).status().code(),
+            absl::StatusCode::kFailedPrecondition);
+}
+
+TEST_F(RunStoreTest, CancellingARunFreesItsLeases) {
+  std::unique_ptr<RunStore> store = Open();
+  const LearnerLease lease = SubmitAndAcquire(*store);
+  absl::StatusOr<RunRecord> cancelled = store->CancelRun("run-1", kStart);
+  ASSERT_TRUE(cancelled.ok());
+  EXPECT_EQ(cancelled->state, RunState::kCancelled);
+  EXPECT_THAT(store->RenewLease(lease.key, kStart).message(), HasSubstr("cancelled"));
+  absl::StatusOr<std::optional<SlotLease>> slot = store->AcquireSlot("A", "N", {}, kStart);
+  ASSERT_TRUE(slot.ok());
+  EXPECT_FALSE(slot->has_value());
+}
+
+TEST_F(RunStoreTest, EverythingSurvivesAReopenAndHoldersGetAFullLease) {
+  LeaseKey key;
+  {
+    std::unique_ptr<RunStore> store = Open();
+    key = SubmitAndAcquire(*store).key;
+    ASSERT_TRUE(store->RecordCheckpoint(key, {"000000000256", 256, "abc"}, kStart).ok());
+  }
+  // The coordinator was down for longer than a lease.
+  const absl::Time restart = kStart + absl::Seconds(60);
+  std::unique_ptr<RunStore> store = Open(restart);
+  EXPECT_EQ(store->GetRun("run-1")->state, RunState::kRunning);
+  EXPECT_EQ(store->GetRun("run-1")->checkpoint, "000000000256");
+  EXPECT_TRUE(store->RenewLease(key, restart + absl::Seconds(9)).ok());
+}
+
+TEST_F(RunStoreTest, RefusesADatabaseOfANewerSchema) {
+  Open();
+  {
+    SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READWRITE);
+    db.exec("PRAGMA user_version = " + std::to_string(CurrentSchemaVersion() + 1));
+  }
+  absl::StatusOr<std::unique_ptr<RunStore>> store =
+      RunStore::Open(Path("coordinator.db"), {.lease_duration = kLease}, kStart);
+  EXPECT_EQ(store.status().code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT(store.status().message(), HasSubstr("newer DCS"));
+}
+
+TEST_F(RunStoreTest, CountsRunsByStateAndWaitingWork) {
+  std::unique_ptr<RunStore> store = Open();
+  SubmitAndAcquire(*store);
+  ASSERT_TRUE(store->SubmitRun(Submission("request-2"), kStart).ok());
+  absl::StatusOr<StoreCounts> counts = store->Counts();
+  ASSERT_TRUE(counts.ok());
+  EXPECT_THAT(counts->runs_by_state,
+              ElementsAre(std::pair(RunState::kQueued, 1), std::pair(RunState::kRunning, 1),
+                          std::pair(RunState::kCompleted, 0), std::pair(RunState::kFailed, 0),
+                          std::pair(RunState::kCancelled, 0)));
+  EXPECT_EQ(counts->free_learner_leases, 1);
+  EXPECT_EQ(counts->free_slot_leases, 2);
+}
+
+TEST(RunStateTest, OnlyTheTableMovesARun) {
+  EXPECT_TRUE(CheckTransition("run-1", RunState::kQueued, RunState::kRunning).ok());
+  EXPECT_TRUE(CheckTransition("run-1", RunState::kRunning, RunState::kQueued).ok());
+  const absl::Status illegal = CheckTransition("run-1", RunState::kCompleted, RunState::kRunning);
+  EXPECT_EQ(illegal.code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_EQ(illegal.message(), "run run-1 is completed and cannot become running");
+  EXPECT_FALSE(CheckTransition("run-1", RunState::kQueued, RunState::kCompleted).ok());
+  for (const auto& [state, name] : kRunStateNames) {
+    EXPECT_EQ(IsTerminal(state), state == RunState::kCompleted || state == RunState::kFailed ||
+                                     state == RunState::kCancelled)
+        << name;
+  }
+}
+
+}  // namespace
+}  // namespace dcs::coordinator
