@@ -12,8 +12,11 @@
 // reset, the actions so far): with deterministic environments that is all a resumed run needs to
 // rebuild the slot exactly (VectorEnv::ReplaySlot).
 //
-// Randomness: slot s samples rollout r's actions from StreamSeed(run_seed, "actions", {s, r}).
-// Confined to one thread.
+// Randomness: slot s samples rollout r's actions from StreamSeed(run_seed, "actions", {s, r}),
+// s being the slot's index in the run (DynamicContextEnv::slot_index), not its row in the
+// VectorEnv. So a slot collected alone, in a VectorEnv of that one slot with the run's
+// run_slots(), gives exactly its part of the rollout the whole run's collector gives
+// (actor/slot_rollout.h merges the parts). Confined to one thread.
 
 #include <algorithm>
 #include <cstdint>
@@ -40,6 +43,7 @@ struct SlotJournal {
 struct EpisodeSummary {
   double episode_return = 0;
   int64_t length = 0;
+  int step = 0;  // the rollout step (0 .. num_steps - 1) whose transition ended it
 };
 
 // The policy's input for one slot: [observation, context] as floats (image environments: the
@@ -91,7 +95,8 @@ class RolloutCollector {
   }
 
   // Collects `n_steps` transitions of every slot with `policy` into `out` (replacing it) as
-  // rollout number `rollout_index`; appends the episodes that finished to `finished`.
+  // rollout number `rollout_index`; appends the episodes that finished to `finished`, by step,
+  // then by row.
   void Collect(Policy& policy, int n_steps, int64_t rollout_index, Rollout& out,
                std::vector<EpisodeSummary>& finished);
 
@@ -126,7 +131,7 @@ void RolloutCollector<Env>::Collect(Policy& policy, int n_steps, int64_t rollout
   std::vector<Random> randoms;
   for (int i = 0; i < slots; ++i) {
     randoms.emplace_back(StreamSeed(run_seed_, "actions",
-                                    {static_cast<uint64_t>(i),
+                                    {envs_.slot(i).slot_index(),
                                      static_cast<uint64_t>(rollout_index)}));
   }
   std::vector<float> input;
@@ -149,7 +154,7 @@ void RolloutCollector<Env>::Collect(Policy& policy, int n_steps, int64_t rollout
       ToEnvAction<Env>(action, std::span(env_actions).subspan(static_cast<size_t>(i) * kAct,
                                                               kAct));
     }
-    const int64_t next_reset_step = envs_.global_steps() + slots;
+    const int64_t next_reset_step = envs_.global_steps() + envs_.run_slots();
     envs_.Step(env_actions);
     for (int i = 0; i < slots; ++i) {
       const float reward = envs_.rewards()[i];
@@ -171,7 +176,8 @@ void RolloutCollector<Env>::Collect(Policy& policy, int n_steps, int64_t rollout
         out.truncations.push_back(std::move(cut));
       }
       finished.push_back({.episode_return = journal.episode_return,
-                          .length = static_cast<int64_t>(journal.actions.size() / kAct)});
+                          .length = static_cast<int64_t>(journal.actions.size() / kAct),
+                          .step = t});
       journal = SlotJournal{.episode = envs_.slot(i).episode(), .reset_step = next_reset_step};
     }
   }

@@ -8,11 +8,13 @@ dcs_layer(dcs_proto_grpc 1 GRPC)    # gRPC stubs of the wire contract
 dcs_layer(dcs_actor 2)              # policies, rollout collection, evaluation
 dcs_layer(dcs_run 3)                # a run as data: configs, plans, records
 dcs_layer(dcs_learner 4 TORCH)      # PPO in libtorch, training sessions
-dcs_layer(dcs_coordinator 4)        # workers, summaries, plots; sweeps and the store to come
-dcs_layer(dcs_services 5 GRPC)      # the servers' plumbing
-dcs_layer(dcs_cli 6 GRPC TORCH)     # the dcs client (it trains in process)
-# The programs: the servers beside the client library, so that none of them links it.
-dcs_layer(dcs-coordinator 6 GRPC)
-dcs_layer(dcs-learner 6 GRPC TORCH)
-dcs_layer(dcs-actor 6 GRPC)
-dcs_layer(dcs 7 GRPC TORCH)
+dcs_layer(dcs_coordinator 4)        # workers, the run store and leases, summaries, plots
+dcs_layer(dcs_services 5 GRPC)      # the servers' plumbing, the coordinator's service
+dcs_layer(dcs_learner_service 6 GRPC TORCH)  # runs hosted for actors, LearnerService
+dcs_layer(dcs_actor_service 6 GRPC) # env slots stepped for learners
+# The servers beside the client library, so that none of them links it; the client above.
+dcs_layer(dcs-coordinator 7 GRPC)
+dcs_layer(dcs-learner 7 GRPC TORCH)
+dcs_layer(dcs-actor 7 GRPC)
+dcs_layer(dcs_cli 7 GRPC TORCH)     # the dcs client (it trains in process)
+dcs_layer(dcs 8 GRPC TORCH)

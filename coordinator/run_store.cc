@@ -43,9 +43,10 @@ std::string LeaseName(const LeaseKey& key) {
 }
 
 constexpr char kRunColumns[] =
-    "number, request_id, config, seed, env, n_envs, total_timesteps, state, error, numerics, "
-    "timesteps, policy_version, steps_per_second, recent_return, avg_combined, checkpoint, "
-    "created_at, updated_at";
+    "number, request_id, config, seed, env, n_envs, total_timesteps, state, error, "
+    "learner_numerics, actor_numerics, "
+    "timesteps, policy_version, steps_per_second, recent_return, avg_combined, evaluation_step, "
+    "checkpoint, created_at, updated_at";
 
 RunRecord ReadRun(SQLite::Statement& row) {
   RunRecord run;
@@ -58,17 +59,19 @@ RunRecord ReadRun(SQLite::Statement& row) {
                     .total_timesteps = row.getColumn(6).getInt64()};
   run.state = FindByName(kRunStateNames, row.getColumn(7).getString()).value_or(RunState::kFailed);
   run.error = row.getColumn(8).getString();
-  run.numerics = row.getColumn(9).getString();
-  run.progress = {.timesteps = row.getColumn(10).getInt64(),
-                  .policy_version = row.getColumn(11).getInt64(),
-                  .steps_per_second = row.getColumn(12).getDouble(),
-                  .recent_return = row.getColumn(13).isNull()
+  run.learner_numerics = row.getColumn(9).getString();
+  run.actor_numerics = row.getColumn(10).getString();
+  run.progress = {.timesteps = row.getColumn(11).getInt64(),
+                  .policy_version = row.getColumn(12).getInt64(),
+                  .steps_per_second = row.getColumn(13).getDouble(),
+                  .recent_return = row.getColumn(14).isNull()
                                        ? std::numeric_limits<double>::quiet_NaN()
-                                       : row.getColumn(13).getDouble()};
-  if (!row.getColumn(14).isNull()) run.progress.avg_combined = row.getColumn(14).getDouble();
-  run.checkpoint = row.getColumn(15).getString();
-  run.created_at = FromMicros(row.getColumn(16).getInt64());
-  run.updated_at = FromMicros(row.getColumn(17).getInt64());
+                                       : row.getColumn(14).getDouble()};
+  if (!row.getColumn(15).isNull()) run.progress.avg_combined = row.getColumn(15).getDouble();
+  if (!row.getColumn(16).isNull()) run.progress.evaluation_step = row.getColumn(16).getInt64();
+  run.checkpoint = row.getColumn(17).getString();
+  run.created_at = FromMicros(row.getColumn(18).getInt64());
+  run.updated_at = FromMicros(row.getColumn(19).getInt64());
   return run;
 }
 
@@ -277,14 +280,15 @@ absl::StatusOr<std::optional<LearnerLease>> RunStore::AcquireRun(absl::string_vi
   return Transaction([&]() -> absl::StatusOr<std::optional<LearnerLease>> {
     DCS_RETURN_IF_ERROR(ExpireLapsed(*db_, now).status());
     SQLite::Statement query(*db_, "SELECT number FROM runs WHERE state = 'queued' AND "
-                                  "(numerics = '' OR numerics = ?) ORDER BY number LIMIT 1");
+                                  "(learner_numerics = '' OR learner_numerics = ?) "
+                                  "ORDER BY number LIMIT 1");
     query.bind(1, std::string(numerics));
     if (!query.executeStep()) return std::nullopt;
     const int64_t number = query.getColumn(0).getInt64();
     query.reset();
     DCS_ASSIGN_OR_RETURN(const RunRecord queued, FindRun(*db_, RunId(number)));
     DCS_RETURN_IF_ERROR(SetRunState(*db_, queued, RunState::kRunning, "", now));
-    SQLite::Statement pin(*db_, "UPDATE runs SET numerics = ? WHERE number = ?");
+    SQLite::Statement pin(*db_, "UPDATE runs SET learner_numerics = ? WHERE number = ?");
     pin.bind(1, std::string(numerics));
     pin.bind(2, number);
     pin.exec();
@@ -307,7 +311,7 @@ absl::StatusOr<std::optional<SlotLease>> RunStore::AcquireSlot(
         "SELECT s.run, s.slot, l.address, l.epoch FROM leases s "
         "JOIN leases l ON l.run = s.run AND l.slot = -1 JOIN runs r ON r.number = s.run "
         "WHERE s.slot >= 0 AND s.holder = '' AND l.holder != '' AND r.state = 'running' "
-        "AND r.numerics = ? ORDER BY s.run, s.slot");
+        "AND (r.actor_numerics = '' OR r.actor_numerics = ?) ORDER BY s.run, s.slot");
     query.bind(1, std::string(numerics));
     while (query.executeStep()) {
       const int64_t number = query.getColumn(0).getInt64();
@@ -318,6 +322,10 @@ absl::StatusOr<std::optional<SlotLease>> RunStore::AcquireSlot(
       query.reset();
       DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(*db_, RunId(number)));
       const int64_t epoch = Grant(*db_, number, slot, holder, "", now + options_.lease_duration);
+      SQLite::Statement pin(*db_, "UPDATE runs SET actor_numerics = ? WHERE number = ?");
+      pin.bind(1, std::string(numerics));
+      pin.bind(2, number);
+      pin.exec();
       return SlotLease{.key = {.run_id = run.id, .slot = slot, .epoch = epoch},
                        .learner_address = std::move(learner_address),
                        .learner_epoch = learner_epoch,
@@ -369,7 +377,7 @@ absl::Status RunStore::ReportProgress(const LeaseKey& key, const RunProgress& pr
     SQLite::Statement update(*db_,
                              "UPDATE runs SET timesteps = ?, policy_version = ?, "
                              "steps_per_second = ?, recent_return = ?, avg_combined = ?, "
-                             "updated_at = ? WHERE number = ?");
+                             "evaluation_step = ?, updated_at = ? WHERE number = ?");
     update.bind(1, progress.timesteps);
     update.bind(2, progress.policy_version);
     update.bind(3, progress.steps_per_second);
@@ -383,8 +391,13 @@ absl::Status RunStore::ReportProgress(const LeaseKey& key, const RunProgress& pr
     } else {
       update.bind(5);
     }
-    update.bind(6, Micros(now));
-    update.bind(7, *RunNumber(key.run_id));
+    if (progress.evaluation_step.has_value()) {
+      update.bind(6, *progress.evaluation_step);
+    } else {
+      update.bind(6);
+    }
+    update.bind(7, Micros(now));
+    update.bind(8, *RunNumber(key.run_id));
     update.exec();
     return absl::OkStatus();
   });
@@ -431,6 +444,10 @@ absl::StatusOr<std::vector<CheckpointRecord>> RunStore::ListCheckpoints(absl::st
 
 absl::Status RunStore::FinishRun(const LeaseKey& key, RunState state, absl::string_view error,
                                  absl::Time now) {
+  if (state != RunState::kCompleted && state != RunState::kFailed) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "a run finishes completed or failed, not ", NameOf(kRunStateNames, state)));
+  }
   return Transaction([&]() -> absl::Status {
     DCS_RETURN_IF_ERROR(CheckHeld(*db_, key));
     DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(*db_, key.run_id));

@@ -16,7 +16,8 @@
 // slot leases are freed: they pointed at the old learner.
 //
 // Numeric libraries (DESIGN.md §4): a run remembers the numeric fingerprint of the first
-// learner that took it; only workers with the same fingerprint get its leases.
+// learner that took it and of the first actor that stepped one of its slots; only workers
+// with the same fingerprint as their role's get its leases.
 //
 // Times are passed in (tests drive the clock). Thread-safe: one connection behind a mutex.
 
@@ -60,6 +61,7 @@ struct RunProgress {
   double steps_per_second = 0;
   double recent_return = 0;                  // NaN before the first episode
   std::optional<double> avg_combined;        // of the latest evaluation
+  std::optional<int64_t> evaluation_step;    // its step
 };
 
 struct RunRecord {
@@ -67,7 +69,8 @@ struct RunRecord {
   RunSubmission submission;
   RunState state = RunState::kQueued;
   std::string error;     // why it failed or was cancelled
-  std::string numerics;  // the numeric fingerprint of its learners
+  std::string learner_numerics;  // the numeric fingerprint of its learners
+  std::string actor_numerics;    // of its actors
   RunProgress progress;
   std::string checkpoint;  // the latest checkpoint's name; empty before the first
   absl::Time created_at;
@@ -175,7 +178,7 @@ class RunStore {
   absl::StatusOr<std::vector<CheckpointRecord>> ListCheckpoints(absl::string_view run_id);
 
   // The learner holding `key` ends its run: completed, or failed with `error`; every lease of
-  // the run is freed. Errors as RenewLease.
+  // the run is freed. Errors as RenewLease; INVALID_ARGUMENT for another state.
   absl::Status FinishRun(const LeaseKey& key, RunState state, absl::string_view error,
                          absl::Time now);
 

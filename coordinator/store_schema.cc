@@ -25,12 +25,14 @@ CREATE TABLE runs (
   state TEXT NOT NULL
     CHECK (state IN ('queued', 'running', 'completed', 'failed', 'cancelled')),
   error TEXT NOT NULL DEFAULT '',
-  numerics TEXT NOT NULL DEFAULT '',
+  learner_numerics TEXT NOT NULL DEFAULT '',
+  actor_numerics TEXT NOT NULL DEFAULT '',
   timesteps INTEGER NOT NULL DEFAULT 0,
   policy_version INTEGER NOT NULL DEFAULT 0,
   steps_per_second REAL NOT NULL DEFAULT 0,
   recent_return REAL,
   avg_combined REAL,
+  evaluation_step INTEGER,
   checkpoint TEXT NOT NULL DEFAULT '',
   created_at INTEGER NOT NULL,
   updated_at INTEGER NOT NULL

@@ -85,6 +85,8 @@ class DynamicContextEnv {
                   std::span<Observation, Env::kObservationSize> observation,
                   std::span<float> context);
 
+  // The slot's index in its run (DynamicContextOptions::slot): the key of its randomness.
+  uint64_t slot_index() const { return options_.slot; }
   // Every feature's current value, by index.
   double feature(int index) const { return env_.GetFeature(index); }
   // The episode count of this slot (the first episode is 0).

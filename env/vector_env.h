@@ -11,8 +11,12 @@
 // once, so observations() holds the next episode's first observation. Rows of slots that did
 // not finish leave their final_* rows unspecified.
 //
-// The batch counts environment steps (N per Step); multi-stage schedules switch stage by that
-// count (env/staged_schedule.h). Confined to one thread.
+// The batch may hold a subset of a run's slots (each slot keeps its run index in
+// DynamicContextOptions::slot, which keys its randomness). The environment-step count is the
+// run's: every Step advances it by run_slots(), the number of slots of the whole run, however
+// many of them this batch holds. Multi-stage schedules switch stage by that count
+// (env/staged_schedule.h), so a slot stepped alone, with run_slots() the run's, sees the stage
+// switches it would see in the full batch. Confined to one thread.
 
 #include <cstdint>
 #include <cstring>
@@ -33,17 +37,25 @@ class VectorEnv {
   static constexpr int kActionSize = Env::kActionSize;
 
   // One options per slot; every slot must observe the same number of context values.
-  // Errors as DynamicContextEnv::Create, naming the slot.
-  static absl::StatusOr<VectorEnv> Create(std::vector<DynamicContextOptions> slots);
+  // `run_slots` is the number of slots of the whole run; 0 means size() (the batch is the run).
+  // Errors as DynamicContextEnv::Create, naming the slot; INVALID_ARGUMENT for a run_slots
+  // that is negative or below size().
+  static absl::StatusOr<VectorEnv> Create(std::vector<DynamicContextOptions> slots,
+                                          int run_slots = 0);
 
   int size() const { return static_cast<int>(slots_.size()); }
+  // The number of slots of the whole run: what each Step adds to global_steps().
+  int run_slots() const { return run_slots_; }
   int context_size() const { return context_size_; }
+  // Environment steps of the run so far (not of this batch alone).
   int64_t global_steps() const { return global_steps_; }
 
   // Starts an episode in every slot.
   void Reset();
 
-  // One step of every slot; `actions` holds size() x kActionSize elements, row by row.
+  // One step of every slot; `actions` holds size() x kActionSize elements, row by row. A slot
+  // whose episode ends resets at global step global_steps() + run_slots(), the run's count
+  // after this step; then global_steps() advances by run_slots().
   void Step(std::span<const ActionElement> actions);
 
   std::span<const Observation> observations() const { return observations_; }
@@ -63,12 +75,14 @@ class VectorEnv {
   void ReplaySlot(int i, int64_t episode, int64_t reset_step,
                   std::span<const ActionElement> actions);
 
-  // Sets the environment-step count (a resumed run continues its count).
+  // Sets the run's environment-step count (a resumed run, or a slot rebuilt on another
+  // process, continues the run's count).
   void set_global_steps(int64_t steps) { global_steps_ = steps; }
 
  private:
-  VectorEnv(std::vector<DynamicContextEnv<Env>> slots, int context_size)
+  VectorEnv(std::vector<DynamicContextEnv<Env>> slots, int run_slots, int context_size)
       : slots_(std::move(slots)),
+        run_slots_(run_slots),
         context_size_(context_size),
         observations_(slots_.size() * kObservationSize),
         contexts_(slots_.size() * context_size),
@@ -87,6 +101,7 @@ class VectorEnv {
   }
 
   std::vector<DynamicContextEnv<Env>> slots_;
+  const int run_slots_;
   const int context_size_;
   int64_t global_steps_ = 0;
   std::vector<Observation> observations_;
@@ -101,8 +116,15 @@ class VectorEnv {
 // Implementation details.
 
 template <typename Env>
-absl::StatusOr<VectorEnv<Env>> VectorEnv<Env>::Create(std::vector<DynamicContextOptions> slots) {
+absl::StatusOr<VectorEnv<Env>> VectorEnv<Env>::Create(std::vector<DynamicContextOptions> slots,
+                                                      int run_slots) {
   if (slots.empty()) return absl::InvalidArgumentError("a vector of environments needs a slot");
+  if (run_slots == 0) run_slots = static_cast<int>(slots.size());
+  if (run_slots < static_cast<int>(slots.size())) {
+    return absl::InvalidArgumentError(absl::StrCat("a run of ", run_slots,
+                                                   " slots cannot hold a batch of ",
+                                                   slots.size()));
+  }
   std::vector<DynamicContextEnv<Env>> envs;
   envs.reserve(slots.size());
   for (size_t i = 0; i < slots.size(); ++i) {
@@ -121,7 +143,7 @@ absl::StatusOr<VectorEnv<Env>> VectorEnv<Env>::Create(std::vector<DynamicContext
           context_size, ": every slot must observe the same"));
     }
   }
-  return VectorEnv(std::move(envs), context_size);
+  return VectorEnv(std::move(envs), run_slots, context_size);
 }
 
 template <typename Env>
@@ -161,10 +183,10 @@ void VectorEnv<Env>::Step(std::span<const ActionElement> actions) {
                   sizeof(Observation) * kObservationSize);
       std::memcpy(ContextRow(final_contexts_, i).data(), context.data(),
                   sizeof(float) * context_size_);
-      slots_[i].Reset(global_steps_ + size(), observation, context);
+      slots_[i].Reset(global_steps_ + run_slots_, observation, context);
     }
   }
-  global_steps_ += size();
+  global_steps_ += run_slots_;
 }
 
 }  // namespace dcs::env

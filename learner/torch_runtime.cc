@@ -1,7 +1,9 @@
 // Copyright 2026 The DCS Authors.
 #include "learner/torch_runtime.h"
 
+#include <ATen/Context.h>
 #include <ATen/Parallel.h>
+#include <ATen/Version.h>
 #include <c10/util/Exception.h>
 #include <dlfcn.h>
 #include <torch/version.h>
@@ -10,13 +12,59 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <vector>
 
+#include "absl/status/statusor.h"
+#include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
+#include "common/status_macros.h"
 
 namespace dcs::learner {
+namespace {
+
+constexpr absl::string_view kNoMatch = "results will not match other machines' bit for bit";
+
+// Whether convolutions go through oneDNN ("on") or ATen and OpenBLAS ("off").
+std::string OneDnnState() {
+  return at::hasMKLDNN() && at::globalContext().userEnabledMkldnn() ? "on" : "off";
+}
+
+std::string OrUnknown(std::string name) { return name.empty() ? "unknown" : name; }
+
+// The arguments this process was started with, empty ones included.
+absl::StatusOr<std::vector<std::string>> OwnArguments() {
+  DCS_ASSIGN_OR_RETURN(std::string text, ReadFile("/proc/self/cmdline"));
+  // Each argument ends with a NUL.
+  if (!text.empty() && text.back() == '\0') text.pop_back();
+  return std::vector<std::string>(absl::StrSplit(text, '\0'));
+}
+
+std::string FormatVariables(const std::vector<KernelVariable>& variables) {
+  return absl::StrJoin(variables, " ", [](std::string* out, const KernelVariable& variable) {
+    absl::StrAppend(out, variable.name, "=", variable.value);
+  });
+}
+
+// Runs this program again with `unpinned` set, silently (what it runs with is in `dcs version`
+// and every run's summary). Returns only if that failed, with the reason.
+std::string RestartWith(const std::vector<KernelVariable>& unpinned) {
+  absl::StatusOr<std::vector<std::string>> arguments = OwnArguments();
+  if (!arguments.ok()) return std::string(arguments.status().message());
+  std::vector<char*> argv;
+  for (std::string& argument : *arguments) argv.push_back(argument.data());
+  argv.push_back(nullptr);
+  for (const KernelVariable& variable : unpinned) {
+    if (setenv(variable.name, variable.value, /*overwrite=*/1) != 0) return std::strerror(errno);
+  }
+  execv("/proc/self/exe", argv.data());
+  return std::strerror(errno);
+}
+
+}  // namespace
 
 absl::Status PinTorchThreads(int threads) {
   if (threads < 1) {
@@ -35,12 +83,33 @@ absl::Status PinTorchThreads(int threads) {
   return absl::OkStatus();
 }
 
-std::vector<LibraryVersion> LibraryVersions() {
-  std::vector<LibraryVersion> versions = {{"libtorch", TORCH_VERSION}};
-  if (const std::string core = BlasCoreName(); !core.empty()) {
-    versions.push_back({"openblas core", core});
+bool CanPinNumericKernels() {
+  // GCC reports AVX2 only when the OS also saves the AVX registers.
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+}
+
+std::vector<KernelVariable> UnpinnedKernelVariables() {
+  std::vector<KernelVariable> unpinned;
+  for (const KernelVariable& pinned : kPinnedKernels) {
+    const char* value = std::getenv(pinned.name);
+    if (value == nullptr || std::strcmp(value, pinned.value) != 0) unpinned.push_back(pinned);
   }
-  return versions;
+  return unpinned;
+}
+
+void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note) {
+  // A runtime switch, read at each convolution: the same on every machine.
+  at::globalContext().setUserEnabledMkldnn(false);
+  if (!CanPinNumericKernels()) {
+    note(absl::StrCat("this CPU lacks AVX2 or FMA, so DCS cannot pin its numeric kernels: ",
+                      kNoMatch, " (", NumericFingerprint(), ")"));
+    return;
+  }
+  const std::vector<KernelVariable> unpinned = UnpinnedKernelVariables();
+  if (unpinned.empty()) return;
+  const std::string failure = RestartWith(unpinned);
+  note(absl::StrCat("cannot restart with ", FormatVariables(unpinned), " (", failure,
+                    "); going on with the kernels the libraries chose: ", kNoMatch));
 }
 
 std::string BlasCoreName() {
@@ -51,39 +120,37 @@ std::string BlasCoreName() {
   return core_name == nullptr ? "" : core_name();
 }
 
-std::optional<std::string> BetterBlasCore() {
-  if (std::getenv("OPENBLAS_CORETYPE") != nullptr || BlasCoreName() != "Prescott") {
-    return std::nullopt;
-  }
-  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq")) {
-    return "SkylakeX";
-  }
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "Haswell";
-  return std::nullopt;
+std::string AtenCpuCapability() {
+  // libtorch 1.13 exports no reader of its dispatch level (at::native::get_cpu_capability,
+  // declared in ATen/native/DispatchStub.h, is hidden in libtorch_cpu.so), but show_config
+  // prints the level dispatch uses, once computed from ATEN_CPU_CAPABILITY and the CPU:
+  // "CPU capability usage: AVX2" ("NO AVX", "AVX2" or "AVX512").
+  constexpr absl::string_view kLabel = "CPU capability usage: ";
+  const std::string config = at::show_config();
+  absl::string_view usage = config;
+  const size_t start = usage.find(kLabel);
+  if (start == absl::string_view::npos) return "";
+  usage.remove_prefix(start + kLabel.size());
+  usage = usage.substr(0, usage.find('\n'));
+  if (usage == "NO AVX") return "default";
+  return absl::AsciiStrToLower(usage);
 }
 
-void RestartWithBestBlasKernels(absl::FunctionRef<void(absl::string_view)> note) {
-  const std::optional<std::string> core = BetterBlasCore();
-  if (!core.has_value()) return;
-  absl::StatusOr<std::string> command_line = ReadFile("/proc/self/cmdline");
-  if (!command_line.ok()) {
-    note(absl::StrCat("cannot restart with OPENBLAS_CORETYPE=", *core, " (",
-                      command_line.status().message(), "); going on with OpenBLAS's generic "
-                      "kernels"));
-    return;
+std::string NumericFingerprint() {
+  return absl::StrCat("libtorch ", TORCH_VERSION, ", openblas ", OrUnknown(BlasCoreName()),
+                      ", aten ", OrUnknown(AtenCpuCapability()), ", onednn ", OneDnnState());
+}
+
+std::vector<LibraryVersion> LibraryVersions() {
+  std::vector<LibraryVersion> versions = {{"libtorch", TORCH_VERSION}};
+  if (const std::string core = BlasCoreName(); !core.empty()) {
+    versions.push_back({"openblas core", core});
   }
-  std::vector<std::string> words = absl::StrSplit(*command_line, '\0', absl::SkipEmpty());
-  std::vector<char*> argv;
-  for (std::string& word : words) argv.push_back(word.data());
-  argv.push_back(nullptr);
-  note(absl::StrCat("OpenBLAS does not recognise this CPU and chose its generic kernels; "
-                    "restarting with OPENBLAS_CORETYPE=",
-                    *core, " (set OPENBLAS_CORETYPE to choose)"));
-  setenv("OPENBLAS_CORETYPE", core->c_str(), /*overwrite=*/1);
-  execv("/proc/self/exe", argv.data());
-  note(absl::StrCat("cannot restart (", std::strerror(errno),
-                    "); going on with OpenBLAS's generic kernels"));
+  if (const std::string capability = AtenCpuCapability(); !capability.empty()) {
+    versions.push_back({"aten cpu capability", capability});
+  }
+  versions.push_back({"onednn convolutions", OneDnnState()});
+  return versions;
 }
 
 }  // namespace dcs::learner

@@ -2,14 +2,14 @@
 #ifndef DCS_LEARNER_TORCH_RUNTIME_H_
 #define DCS_LEARNER_TORCH_RUNTIME_H_
 
-// Process-wide settings of the numeric libraries behind libtorch. Every process that trains or
-// updates calls RestartWithBestBlasKernels first thing in main, then PinTorchThreads. Not
+// Process-wide settings of libtorch and the numeric libraries behind it. Every process that
+// trains or updates calls PinNumericKernels first thing in main, then PinTorchThreads. Not
 // thread-safe: call from main before any torch work.
 //
-// DESIGN.md §4: with libtorch pinned to one thread per run, the same sweep gives the same
-// report bit for bit however many learners share a machine.
+// DESIGN.md §4: with libtorch pinned to one thread per run and its numeric kernels pinned to
+// one choice, the same sweep gives the same report bit for bit however many learners share a
+// machine, on any x86-64 machine with AVX2 and FMA, Intel or AMD.
 
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,27 +25,67 @@ namespace dcs::learner {
 // started its inter-op pool (it can be sized only once per process).
 absl::Status PinTorchThreads(int threads);
 
-// libtorch, as compiled against, and the OpenBLAS core its matrix products run on (results
-// are bit-for-bit reproducible only on the same core).
-std::vector<LibraryVersion> LibraryVersions();
+// An environment variable a numeric library reads when the process starts, and the value DCS
+// pins it to.
+struct KernelVariable {
+  const char* name;
+  const char* value;
+};
 
-// The OpenBLAS core in use ("SkylakeX", "Haswell", ...), or empty if libtorch's BLAS is not
+// The pinned kernels. OpenBLAS and ATen (libtorch's operators) each pick their kernels from
+// the CPU they run on (OpenBLAS by CPU model, ATen by instruction set), and kernels for other
+// CPUs add in other orders, so two machines would give two runs from one seed. DCS fixes both
+// to their AVX2 and FMA kernels, the best that every such x86-64 CPU runs:
+// OpenBLAS's "Haswell" core (whose blocking sizes are constants, not read from the cache
+// sizes) and ATen's "avx2" dispatch. Both are read once, when the library loads or first
+// dispatches, so only a process started with them set has them.
+inline constexpr KernelVariable kPinnedKernels[] = {
+    {"OPENBLAS_CORETYPE", "Haswell"},
+    {"ATEN_CPU_CAPABILITY", "avx2"},
+};
+
+// Whether this CPU runs the pinned kernels: it has AVX2 and FMA (and the OS saves their
+// registers).
+bool CanPinNumericKernels();
+
+// The entries of kPinnedKernels whose environment variable is unset or holds another value.
+// Empty when this process was started with the pinned kernels.
+std::vector<KernelVariable> UnpinnedKernelVariables();
+
+// Pins the numeric kernels of this process:
+// - Convolutions are computed by ATen and OpenBLAS, not by oneDNN (libtorch's MKL-DNN), which
+//   picks its own kernels and blocking from the CPU's instruction set and cache sizes and
+//   promises equal results only on identical hardware. NatureCNN updates take about 1.8 times
+//   as long (bench/RESULTS.md).
+// - If UnpinnedKernelVariables is not empty, runs this program again, from /proc/self/exe with
+//   the same arguments, with those variables set, silently (`dcs version` and every run's
+//   summary name the kernels). The call does not return then.
+// Returns when the kernels are pinned, or when they cannot be: on a CPU without AVX2 and FMA
+// (CanPinNumericKernels), or if the restart failed. Then `note` gets a line saying why and that
+// results will not match other machines' bit for bit, and the process goes on with the kernels
+// its libraries chose.
+void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note);
+
+// The OpenBLAS core in use ("Haswell", "SkylakeX", ...), or empty if libtorch's BLAS is not
 // OpenBLAS.
 std::string BlasCoreName();
 
-// OpenBLAS picks its kernels from the CPU's model; one it does not know (OpenBLAS 0.3.21, as in
-// Debian 12, predates Emerald Rapids Xeons) gets its generic SSE3 "Prescott" kernels, which make
-// PPO updates about 1.3x slower than the AVX-512 ones. When that happened on a CPU with AVX-512
-// (or AVX2 and FMA), the core to ask for with OPENBLAS_CORETYPE: "SkylakeX" (or "Haswell");
-// otherwise, or when OPENBLAS_CORETYPE is already set, nullopt.
-std::optional<std::string> BetterBlasCore();
+// The instruction set ATen dispatches its operators for, named as ATEN_CPU_CAPABILITY names
+// it: "default" (no AVX), "avx2" or "avx512"; empty if libtorch does not report it. Fixes
+// the choice for the rest of the process if no operator has run yet.
+std::string AtenCpuCapability();
 
-// When BetterBlasCore names a core, runs this program again, with the same arguments and
-// OPENBLAS_CORETYPE set to it (OpenBLAS reads it once, when the program loads, so it cannot be
-// set later); `note` gets one line saying so first. Returns when there is nothing to do, or if
-// the restart failed: then `note` gets the reason, and the process goes on with the generic
-// kernels (only slower).
-void RestartWithBestBlasKernels(absl::FunctionRef<void(absl::string_view)> note);
+// The numeric libraries and the kernels this process computes with, in one line (results are
+// bit-for-bit reproducible only under the same fingerprint):
+// "libtorch 1.13.0, openblas Haswell, aten avx2, onednn off". libtorch's version is the one
+// compiled against; "openblas unknown" if the BLAS is not OpenBLAS; "onednn off" once
+// PinNumericKernels has run.
+std::string NumericFingerprint();
+
+// libtorch, as compiled against, and the kernels its operators run on: the OpenBLAS core, the
+// ATen instruction set, and whether convolutions go through oneDNN (the parts of
+// NumericFingerprint, for `dcs version` and worker registration).
+std::vector<LibraryVersion> LibraryVersions();
 
 }  // namespace dcs::learner
 

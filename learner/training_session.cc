@@ -23,7 +23,11 @@ absl::StatusOr<std::unique_ptr<TrainingSession>> TrainingSession::Create(
                        PpoLearner::Create(policy, spec.ppo, spec.n_envs, spec.seed));
   std::unique_ptr<TrainingSession> session(
       new TrainingSession(std::move(spec), std::move(plan), std::move(learner)));
-  if (checkpoint == nullptr) return session;
+  if (checkpoint == nullptr) {
+    // Every slot stands at the reset of its first episode.
+    session->state_.journals.resize(session->spec_.n_envs);
+    return session;
+  }
   DCS_RETURN_IF_ERROR(session->learner_->LoadState(checkpoint->learner));
   const int n_envs = session->spec_.n_envs;
   if (static_cast<int>(checkpoint->state.journals.size()) != n_envs) {
@@ -116,7 +120,9 @@ void TrainingSession::RecordEvaluation(const EvaluationDue& due,
 absl::StatusOr<run::Checkpoint> TrainingSession::Checkpoint() const {
   DCS_ASSIGN_OR_RETURN(std::string learner, learner_->SaveState());
   return run::Checkpoint{
-      .name = absl::StrCat(state_.timesteps), .state = state_, .learner = std::move(learner)};
+      .name = run::CheckpointName(state_.timesteps),
+      .state = state_,
+      .learner = std::move(learner)};
 }
 
 v1::EvaluationLog TrainingSession::EvaluationLog() const {

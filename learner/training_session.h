@@ -73,7 +73,8 @@ class TrainingSession {
 
   const run::RunSpec& spec() const { return spec_; }
   const run::RunPlan& plan() const { return plan_; }
-  // Counters, the slots' journals, the last training episodes' returns, the evaluations.
+  // Counters, the slots' journals (one per slot; in a new run each at the reset of episode 0),
+  // the last training episodes' returns, the evaluations.
   const run::RunState& state() const { return state_; }
   bool complete() const { return state_.timesteps >= spec_.total_timesteps; }
 

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <map>
 #include <optional>
+#include <tuple>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
@@ -29,17 +30,6 @@ constexpr char kManifest[] = "MANIFEST";
 // The files of a checkpoint besides its manifest, in the order they are written.
 constexpr const char* kFiles[] = {"learner.bin", "run.yaml"};
 
-std::string Sha256Hex(absl::string_view bytes) {
-  unsigned char digest[SHA256_DIGEST_LENGTH];
-  SHA256(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), digest);
-  std::string hex;
-  for (unsigned char byte : digest) absl::StrAppendFormat(&hex, "%02x", byte);
-  return hex;
-}
-
-// Checkpoint names sort as numbers: fixed width.
-std::string CheckpointName(int64_t timesteps) { return absl::StrFormat("%012d", timesteps); }
-
 fs::path CheckpointsDir(const std::string& run_dir) { return fs::path(run_dir) / "checkpoints"; }
 
 // Doubles as exact text (YAML's own formatting would round them).
@@ -50,7 +40,39 @@ void EmitNumbers(YAML::Emitter& out, const Values& values) {
   out << YAML::EndSeq;
 }
 
-std::string ToYaml(const RunState& state) {
+// Reads one checkpoint directory. DATA_LOSS for a file that is missing, does not match the
+// manifest, or does not parse.
+absl::StatusOr<Checkpoint> ReadCheckpoint(const fs::path& dir) {
+  DCS_ASSIGN_OR_RETURN(const std::string manifest, ReadFile(dir / kManifest));
+  std::map<std::string, std::string> contents;
+  for (const char* file : kFiles) {
+    DCS_ASSIGN_OR_RETURN(contents[file], ReadFile(dir / file));
+    if (!absl::StrContains(manifest, absl::StrCat(Sha256Hex(contents[file]), "  ", file, "\n"))) {
+      return absl::DataLossError(absl::StrCat((dir / file).string(),
+                                              " does not match the checkpoint's MANIFEST ",
+                                              "(truncated or corrupt)"));
+    }
+  }
+  DCS_ASSIGN_OR_RETURN(RunState state,
+                       DecodeRunState(contents["run.yaml"], (dir / "run.yaml").string()));
+  return Checkpoint{.name = dir.filename().string(),
+                    .state = std::move(state),
+                    .learner = contents["learner.bin"]};
+}
+
+}  // namespace
+
+std::string CheckpointName(int64_t timesteps) { return absl::StrFormat("%012d", timesteps); }
+
+std::string Sha256Hex(absl::string_view bytes) {
+  unsigned char digest[SHA256_DIGEST_LENGTH];
+  SHA256(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), digest);
+  std::string hex;
+  for (unsigned char byte : digest) absl::StrAppendFormat(&hex, "%02x", byte);
+  return hex;
+}
+
+std::string EncodeRunState(const RunState& state) {
   YAML::Emitter out;
   out << YAML::BeginMap;
   out << YAML::Key << "timesteps" << YAML::Value << state.timesteps;
@@ -89,24 +111,10 @@ std::string ToYaml(const RunState& state) {
   return absl::StrCat(out.c_str(), "\n");
 }
 
-// Reads one checkpoint directory. DATA_LOSS for a file that is missing, does not match the
-// manifest, or does not parse.
-absl::StatusOr<Checkpoint> ReadCheckpoint(const fs::path& dir) {
-  DCS_ASSIGN_OR_RETURN(const std::string manifest, ReadFile(dir / kManifest));
-  std::map<std::string, std::string> contents;
-  for (const char* file : kFiles) {
-    DCS_ASSIGN_OR_RETURN(contents[file], ReadFile(dir / file));
-    if (!absl::StrContains(manifest, absl::StrCat(Sha256Hex(contents[file]), "  ", file, "\n"))) {
-      return absl::DataLossError(absl::StrCat((dir / file).string(),
-                                              " does not match the checkpoint's MANIFEST ",
-                                              "(truncated or corrupt)"));
-    }
-  }
-  Checkpoint checkpoint{.name = dir.filename().string(), .learner = contents["learner.bin"]};
-  const std::string& text = contents["run.yaml"];
+absl::StatusOr<RunState> DecodeRunState(const std::string& text, const std::string& source) {
+  RunState state;
   try {
     const YAML::Node root = YAML::Load(text);
-    RunState& state = checkpoint.state;
     state.timesteps = root["timesteps"].as<int64_t>();
     state.rollouts = root["rollouts"].as<int64_t>();
     state.recent_returns = root["recent_returns"].as<std::vector<double>>();
@@ -123,8 +131,8 @@ absl::StatusOr<Checkpoint> ReadCheckpoint(const fs::path& dir) {
         const std::string split_name = context["split"].as<std::string>();
         const std::optional<actor::Split> split = FindByName(actor::kSplitNames, split_name);
         if (!split.has_value()) {
-          return absl::DataLossError(absl::StrCat(dir.string(), "/run.yaml names an unknown ",
-                                                  "evaluation split '", split_name, "'"));
+          return absl::DataLossError(absl::StrCat(source, " names an unknown evaluation split '",
+                                                  split_name, "'"));
         }
         evaluation.contexts.push_back(
             {.context = {.split = *split, .value = context["value"].as<double>()},
@@ -135,12 +143,41 @@ absl::StatusOr<Checkpoint> ReadCheckpoint(const fs::path& dir) {
       state.evaluations.push_back(std::move(evaluation));
     }
   } catch (const YAML::Exception& e) {
-    return absl::DataLossError(absl::StrCat(dir.string(), "/run.yaml is unreadable: ", e.what()));
+    return absl::DataLossError(absl::StrCat(source, " is unreadable: ", e.what()));
   }
-  return checkpoint;
+  return state;
 }
 
-}  // namespace
+PackedCheckpoint PackCheckpoint(const Checkpoint& checkpoint) {
+  PackedCheckpoint packed{.name = checkpoint.name,
+                          .learner = checkpoint.learner,
+                          .run_state = EncodeRunState(checkpoint.state)};
+  packed.learner_sha256 = Sha256Hex(packed.learner);
+  packed.run_state_sha256 = Sha256Hex(packed.run_state);
+  return packed;
+}
+
+absl::StatusOr<Checkpoint> UnpackCheckpoint(const PackedCheckpoint& packed) {
+  for (const auto& [file, bytes, sent] :
+       {std::tuple("learner.bin", &packed.learner, &packed.learner_sha256),
+        std::tuple("run.yaml", &packed.run_state, &packed.run_state_sha256)}) {
+    const std::string computed = Sha256Hex(*bytes);
+    if (computed != *sent) {
+      return absl::DataLossError(absl::StrCat(file, " of checkpoint ", packed.name,
+                                              " arrived corrupt: its SHA-256 is ", computed,
+                                              ", the sender's ", *sent));
+    }
+  }
+  DCS_ASSIGN_OR_RETURN(RunState state,
+                       DecodeRunState(packed.run_state,
+                                      absl::StrCat("run.yaml of checkpoint ", packed.name)));
+  if (packed.name != CheckpointName(state.timesteps)) {
+    return absl::InvalidArgumentError(absl::StrCat("checkpoint ", packed.name, " holds step ",
+                                                   state.timesteps, "; it must be named ",
+                                                   CheckpointName(state.timesteps)));
+  }
+  return Checkpoint{.name = packed.name, .state = std::move(state), .learner = packed.learner};
+}
 
 absl::Status WriteCheckpoint(const std::string& run_dir, const RunState& state,
                              const std::string& learner, int keep) {
@@ -154,7 +191,7 @@ absl::Status WriteCheckpoint(const std::string& run_dir, const RunState& state,
   }
   // The manifest (sha256sum's format: `sha256sum -c MANIFEST` checks it) after the files it
   // vouches for.
-  const std::string contents[] = {learner, ToYaml(state)};
+  const std::string contents[] = {learner, EncodeRunState(state)};
   std::string manifest;
   for (size_t i = 0; i < std::size(kFiles); ++i) {
     DCS_RETURN_IF_ERROR(WriteFileAtomically(root / name / kFiles[i], contents[i]));

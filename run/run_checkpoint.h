@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "actor/evaluation.h"
 #include "actor/rollout_collector.h"
 
@@ -38,6 +39,34 @@ struct Checkpoint {
   RunState state;
   std::string learner;  // PpoLearner::SaveState bytes
 };
+
+// The name of the checkpoint at step `timesteps`: fixed width, so names sort as numbers.
+std::string CheckpointName(int64_t timesteps);
+
+// The text of run.yaml for `state`, and back. DecodeRunState: DATA_LOSS naming `source` for text
+// that does not parse or names an unknown split.
+std::string EncodeRunState(const RunState& state);
+absl::StatusOr<RunState> DecodeRunState(const std::string& text, const std::string& source);
+
+// The SHA-256 of `bytes` in lower-case hex (as sha256sum prints it; MANIFEST holds these).
+std::string Sha256Hex(absl::string_view bytes);
+
+// A checkpoint as it travels between processes: its two files' bytes and the SHA-256 of each,
+// computed by the sender.
+struct PackedCheckpoint {
+  std::string name;
+  std::string learner;    // learner.bin
+  std::string run_state;  // run.yaml
+  std::string learner_sha256;
+  std::string run_state_sha256;
+};
+
+PackedCheckpoint PackCheckpoint(const Checkpoint& checkpoint);
+
+// The checkpoint `packed` holds. DATA_LOSS naming the file whose bytes do not match their
+// SHA-256, or whose run state does not parse; INVALID_ARGUMENT for a name other than its
+// step's.
+absl::StatusOr<Checkpoint> UnpackCheckpoint(const PackedCheckpoint& packed);
 
 // Writes `state` and `learner` as checkpoint `<state.timesteps>` of `run_dir`, points `latest`
 // at it, and deletes all but the newest `keep`. Errors name the file (RESOURCE_EXHAUSTED for a

@@ -1,15 +1,24 @@
 // Copyright 2026 The DCS Authors.
 //
-// dcs-coordinator: knows the cluster's workers; will assign seeds, schedules and work, run
-// sweeps and collect evaluation reports.
+// dcs-coordinator: knows the cluster's workers, keeps runs in its data directory (a SQLite
+// store and each run's files), leases runs to learners and env slots to actors, and takes back
+// the leases whose holders went silent.
 
+#include <filesystem>
 #include <memory>
+#include <thread>
 
+#include "absl/strings/str_cat.h"
+#include "absl/synchronization/notification.h"
 #include "absl/time/clock.h"
+#include "common/status_macros.h"
 #include "coordinator/library_versions.h"
+#include "coordinator/run_store.h"
 #include "coordinator/worker_registry.h"
 #include "services/command_line.h"
 #include "services/coordinator_service.h"
+#include "services/log.h"
+#include "services/run_collector.h"
 #include "services/service_main.h"
 #include "services/worker_collector.h"
 
@@ -25,6 +34,16 @@ class CoordinatorRole final : public ServiceRole {
                       "silence after which a worker is reported LOST");
     AddDurationOption(app, "--forget-after", &options_.forget_after,
                       "silence after which a LOST worker is forgotten");
+    app.add_option("--data-dir", runs_.data_dir,
+                   "where runs are kept: coordinator.db (SQLite) and runs/<run id>/")
+        ->capture_default_str();
+    AddDurationOption(app, "--lease-duration", &runs_.lease_duration,
+                      "how long a lease lasts unless renewed; a learner or actor silent this "
+                      "long loses its work to another");
+    app.add_option("--keep-checkpoints", runs_.keep_checkpoints,
+                   "checkpoints kept per run (the newest)")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
   }
 
   absl::Status Init(MetricsEndpoint& metrics, const BuildInfo& build) override {
@@ -32,8 +51,27 @@ class CoordinatorRole final : public ServiceRole {
         coordinator::WorkerRegistry::Create(options_);
     if (!registry.ok()) return registry.status();
     registry_ = *std::move(registry);
+    std::error_code error;
+    std::filesystem::create_directories(runs_.data_dir, error);
+    if (error) {
+      return absl::PermissionDeniedError(
+          absl::StrCat("cannot create the data directory ", runs_.data_dir, ": ",
+                       error.message()));
+    }
+    DCS_ASSIGN_OR_RETURN(store_, coordinator::RunStore::Open(
+                                     (std::filesystem::path(runs_.data_dir) / "coordinator.db")
+                                         .string(),
+                                     {.lease_duration = runs_.lease_duration}, absl::Now()));
+    runs_.store = store_.get();
     metrics.AddCollectable(std::make_shared<WorkerCollector>(*registry_));
-    service_ = std::make_unique<CoordinatorService>(*registry_, build, absl::Now(),
+    metrics.AddCollectable(std::make_shared<RunCollector>(*store_));
+    expired_ = &prometheus::BuildCounter()
+                    .Name("dcs_leases_expired_total")
+                    .Help("Leases that lapsed (their holders stopped renewing) and went back to "
+                          "the queue.")
+                    .Register(metrics.registry())
+                    .Add({});
+    service_ = std::make_unique<CoordinatorService>(*registry_, runs_, build, absl::Now(),
                                                     metrics.registry());
     return absl::OkStatus();
   }
@@ -43,16 +81,41 @@ class CoordinatorRole final : public ServiceRole {
   }
 
   absl::Status Start(Server& server, const std::string& /*listen_address*/) override {
+    reaper_ = std::thread([this] { ReapLapsedLeases(); });
     server.SetServing(true);
     return absl::OkStatus();
   }
 
-  void Stop() override {}
+  void Stop() override {
+    if (stopping_.HasBeenNotified()) return;
+    stopping_.Notify();
+    if (reaper_.joinable()) reaper_.join();
+  }
 
  private:
+  // Returns lapsed leases to the queue as they lapse (every Acquire does too, but queue depths
+  // and run states should not wait for one).
+  void ReapLapsedLeases() {
+    const absl::Duration period = std::min(absl::Seconds(1), runs_.lease_duration / 4);
+    while (!stopping_.WaitForNotificationWithTimeout(period)) {
+      absl::StatusOr<int> lapsed = store_->ExpireLeases(absl::Now());
+      if (!lapsed.ok()) {
+        Log(LogLevel::kError, "cannot expire leases", {{"error", lapsed.status().ToString()}});
+      } else if (*lapsed > 0) {
+        expired_->Increment(*lapsed);
+        Log(LogLevel::kWarning, "leases lapsed", {{"count", std::to_string(*lapsed)}});
+      }
+    }
+  }
+
   coordinator::WorkerRegistryOptions options_;
+  RunStorage runs_{.data_dir = "dcs-coordinator-data"};
   std::unique_ptr<coordinator::WorkerRegistry> registry_;
+  std::unique_ptr<coordinator::RunStore> store_;
+  prometheus::Counter* expired_ = nullptr;
   std::unique_ptr<CoordinatorService> service_;
+  absl::Notification stopping_;
+  std::thread reaper_;
 };
 
 }  // namespace

@@ -19,22 +19,40 @@ prometheus::Family<prometheus::Counter>& RegistrationsFamily(prometheus::Registr
       .Register(metrics);
 }
 
-grpc::ServerUnaryReactor* Finish(grpc::CallbackServerContext* context,
-                                 const absl::Status& status) {
-  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-  reactor->Finish(ToGrpcStatus(status));
-  return reactor;
+prometheus::Family<prometheus::Counter>& LeasesFamily(prometheus::Registry& metrics) {
+  return prometheus::BuildCounter()
+      .Name("dcs_leases_granted_total")
+      .Help("Leases granted by the coordinator, by kind (run: to a learner; slot: to an actor).")
+      .Register(metrics);
 }
 
 }  // namespace
 
-CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, BuildInfo build,
-                                       absl::Time start_time, prometheus::Registry& metrics)
+CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, RunStorage runs,
+                                       BuildInfo build, absl::Time start_time,
+                                       prometheus::Registry& metrics)
     : registry_(registry),
+      runs_(std::move(runs)),
       build_(BuildInfoToProto(build)),
       start_time_(start_time),
       learner_registrations_(RegistrationsFamily(metrics).Add({{"role", "learner"}})),
-      actor_registrations_(RegistrationsFamily(metrics).Add({{"role", "actor"}})) {}
+      actor_registrations_(RegistrationsFamily(metrics).Add({{"role", "actor"}})),
+      learner_leases_(LeasesFamily(metrics).Add({{"kind", "run"}})),
+      slot_leases_(LeasesFamily(metrics).Add({{"kind", "slot"}})),
+      rejected_(prometheus::BuildCounter()
+                    .Name("dcs_requests_rejected_total")
+                    .Help("Requests the coordinator refused, by reason (the status code).")
+                    .Register(metrics)) {}
+
+grpc::ServerUnaryReactor* CoordinatorService::Finish(grpc::CallbackServerContext* context,
+                                                     const absl::Status& status) {
+  if (!status.ok()) {
+    rejected_.Add({{"reason", absl::StatusCodeToString(status.code())}}).Increment();
+  }
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  reactor->Finish(ToGrpcStatus(status));
+  return reactor;
+}
 
 grpc::ServerUnaryReactor* CoordinatorService::RegisterWorker(
     grpc::CallbackServerContext* context, const v1::RegisterWorkerRequest* request,

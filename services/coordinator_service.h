@@ -3,25 +3,38 @@
 #define DCS_SERVICES_COORDINATOR_SERVICE_H_
 
 // dcs.v1.CoordinatorService over the coordinator library: each method decodes the request,
-// calls the library, encodes the reply and converts the status. Thread-safe.
-// Borrows the registry (must outlive the service); owns its metrics' registration.
+// calls the library, encodes the reply and converts the status. Workers' membership is in
+// coordinator_service.cc, runs and leases in coordinator_runs.cc. Thread-safe.
+// Borrows the registry and the store (must outlive the service); owns its metrics'
+// registration.
 
 #include <prometheus/counter.h>
 #include <prometheus/registry.h>
 
+#include <string>
+
 #include "absl/time/time.h"
+#include "coordinator/run_store.h"
 #include "coordinator/worker_registry.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "services/build_info.h"
 
 namespace dcs::services {
 
+// Where the coordinator keeps runs.
+struct RunStorage {
+  coordinator::RunStore* store = nullptr;  // borrowed
+  std::string data_dir;                    // runs' directories: coordinator/run_files.h
+  absl::Duration lease_duration = absl::Seconds(10);
+  int keep_checkpoints = 3;
+};
+
 class CoordinatorService final : public v1::CoordinatorService::CallbackService {
  public:
-  // Registers dcs_worker_registrations_total{role} in `metrics`, which must outlive the
-  // service.
-  CoordinatorService(coordinator::WorkerRegistry& registry, BuildInfo build, absl::Time start_time,
-                     prometheus::Registry& metrics);
+  // Registers dcs_worker_registrations_total{role}, dcs_leases_granted_total{kind} and
+  // dcs_requests_rejected_total{reason} in `metrics`, which must outlive the service.
+  CoordinatorService(coordinator::WorkerRegistry& registry, RunStorage runs, BuildInfo build,
+                     absl::Time start_time, prometheus::Registry& metrics);
 
   grpc::ServerUnaryReactor* RegisterWorker(grpc::CallbackServerContext* context,
                                            const v1::RegisterWorkerRequest* request,
@@ -36,12 +49,58 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
                                              const v1::GetClusterStatusRequest* request,
                                              v1::GetClusterStatusResponse* response) override;
 
+
+  grpc::ServerUnaryReactor* SubmitRun(grpc::CallbackServerContext* context,
+                                      const v1::SubmitRunRequest* request,
+                                      v1::SubmitRunResponse* response) override;
+  grpc::ServerUnaryReactor* GetRun(grpc::CallbackServerContext* context,
+                                   const v1::GetRunRequest* request,
+                                   v1::GetRunResponse* response) override;
+  grpc::ServerUnaryReactor* ListRuns(grpc::CallbackServerContext* context,
+                                     const v1::ListRunsRequest* request,
+                                     v1::ListRunsResponse* response) override;
+  grpc::ServerUnaryReactor* CancelRun(grpc::CallbackServerContext* context,
+                                      const v1::CancelRunRequest* request,
+                                      v1::CancelRunResponse* response) override;
+  grpc::ServerUnaryReactor* GetRunFiles(grpc::CallbackServerContext* context,
+                                        const v1::GetRunFilesRequest* request,
+                                        v1::GetRunFilesResponse* response) override;
+  grpc::ServerUnaryReactor* AcquireRun(grpc::CallbackServerContext* context,
+                                       const v1::AcquireRunRequest* request,
+                                       v1::AcquireRunResponse* response) override;
+  grpc::ServerUnaryReactor* AcquireSlot(grpc::CallbackServerContext* context,
+                                        const v1::AcquireSlotRequest* request,
+                                        v1::AcquireSlotResponse* response) override;
+  grpc::ServerUnaryReactor* RenewLease(grpc::CallbackServerContext* context,
+                                       const v1::RenewLeaseRequest* request,
+                                       v1::RenewLeaseResponse* response) override;
+  grpc::ServerUnaryReactor* ReleaseLease(grpc::CallbackServerContext* context,
+                                         const v1::ReleaseLeaseRequest* request,
+                                         v1::ReleaseLeaseResponse* response) override;
+  grpc::ServerUnaryReactor* ReportProgress(grpc::CallbackServerContext* context,
+                                           const v1::ReportProgressRequest* request,
+                                           v1::ReportProgressResponse* response) override;
+  grpc::ServerUnaryReactor* PutCheckpoint(grpc::CallbackServerContext* context,
+                                          const v1::PutCheckpointRequest* request,
+                                          v1::PutCheckpointResponse* response) override;
+  grpc::ServerUnaryReactor* FinishRun(grpc::CallbackServerContext* context,
+                                      const v1::FinishRunRequest* request,
+                                      v1::FinishRunResponse* response) override;
+
  private:
+  // Finishes the call with `status`, counting a refusal under its reason.
+  grpc::ServerUnaryReactor* Finish(grpc::CallbackServerContext* context,
+                                   const absl::Status& status);
+
   coordinator::WorkerRegistry& registry_;
+  const RunStorage runs_;
   const v1::BuildInfo build_;
   const absl::Time start_time_;
   prometheus::Counter& learner_registrations_;
   prometheus::Counter& actor_registrations_;
+  prometheus::Counter& learner_leases_;
+  prometheus::Counter& slot_leases_;
+  prometheus::Family<prometheus::Counter>& rejected_;
 };
 
 }  // namespace dcs::services

@@ -40,8 +40,9 @@ absl::Status WorkerServiceRole::Start(Server& server, const std::string& listen_
     host = HostOf(listen_address);
     if (host == "0.0.0.0" || host == "[::]" || host.empty()) host = HostName();
   }
+  advertised_address_ = absl::StrCat(host, ":", server.port());
   coordinator::WorkerInfo info{.role = role_,
-                               .address = absl::StrCat(host, ":", server.port()),
+                               .address = advertised_address_,
                                .hostname = HostName(),
                                .pid = ::getpid(),
                                .version = build_.version,

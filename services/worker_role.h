@@ -27,8 +27,14 @@ class WorkerServiceRole : public ServiceRole {
   absl::Status Start(Server& server, const std::string& listen_address) override;
   void Stop() override;
 
+ protected:
+  const std::string& coordinator_address() const { return coordinator_address_; }
+  // host:port others reach this worker at; set by Start.
+  const std::string& advertised_address() const { return advertised_address_; }
+
  private:
   const coordinator::WorkerRole role_;
+  std::string advertised_address_;
   std::string coordinator_address_ = "127.0.0.1:50051";
   std::string advertise_host_;
   MetricsEndpoint* metrics_ = nullptr;  // borrowed from RunService, which outlives the role's work

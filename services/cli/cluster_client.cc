@@ -9,9 +9,18 @@
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "services/channel.h"
+#include "services/cli/local_cluster.h"
 #include "services/grpc_status.h"
 
 namespace dcs::services::cli {
+
+std::string CoordinatorAddress(const GlobalFlags& flags) {
+  if (!flags.addr.empty()) return flags.addr;
+  if (absl::StatusOr<ClusterState> state = ReadClusterState(flags.data_dir); state.ok()) {
+    return state->coordinator_address;
+  }
+  return "127.0.0.1:50051";
+}
 
 absl::StatusOr<bool> IsServing(const std::string& address, const std::string& service,
                                absl::Duration timeout) {

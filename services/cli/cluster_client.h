@@ -3,16 +3,21 @@
 #define DCS_SERVICES_CLI_CLUSTER_CLIENT_H_
 
 // The calls that the `dcs` client, `dcs up` and the tests make to a running cluster: health
-// checks and the coordinator's status. Each opens its own channel and sets a deadline.
-// Thread-safe.
+// checks and the coordinator's status; and where the coordinator is. Each call opens its own
+// channel and sets a deadline. Thread-safe.
 
 #include <string>
 
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
 #include "dcs/v1/coordinator_service.pb.h"
+#include "services/cli/cli_command.h"
 
 namespace dcs::services::cli {
+
+// The coordinator's address: --addr (or DCS_ADDR), else the local cluster's in --data-dir
+// (`dcs up`), else 127.0.0.1:50051.
+std::string CoordinatorAddress(const GlobalFlags& flags);
 
 // Asks the server at `address` (host:port) whether `service` is SERVING ("" = the whole
 // server). UNAVAILABLE or DEADLINE_EXCEEDED if it cannot be reached; NOT_FOUND if it does not

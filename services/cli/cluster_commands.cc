@@ -4,10 +4,12 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
@@ -22,17 +24,6 @@ namespace dcs::services::cli {
 namespace {
 
 constexpr char kProgram[] = "dcs";
-constexpr char kDefaultCoordinator[] = "127.0.0.1:50051";
-
-// --addr (or DCS_ADDR), else the local cluster in --data-dir, else the default port.
-std::string CoordinatorAddress(const GlobalFlags& flags) {
-  if (!flags.addr.empty()) return flags.addr;
-  if (absl::StatusOr<ClusterState> state = ReadClusterState(flags.data_dir); state.ok()) {
-    return state->coordinator_address;
-  }
-  return kDefaultCoordinator;
-}
-
 int PrintStatus(const GlobalFlags& flags, const std::string& coordinator) {
   absl::StatusOr<v1::GetClusterStatusResponse> status =
       GetClusterStatus(coordinator, flags.timeout);
@@ -42,7 +33,7 @@ int PrintStatus(const GlobalFlags& flags, const std::string& coordinator) {
 }
 
 struct UpFlags {
-  int actors = 2;
+  int actors = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bool detach = false;
   std::string coordinator_listen = "127.0.0.1:0";
   absl::Duration start_timeout = absl::Seconds(30);
@@ -122,7 +113,7 @@ std::vector<CliCommand> AddClusterCommands(CLI::App& dcs, const GlobalFlags& fla
   CLI::App* up = dcs.add_subcommand(
       "up", "Start a local cluster (coordinator, learner, actors) as child processes on "
             "loopback; Ctrl-C stops it");
-  up->add_option("--actors", up_flags->actors, "number of actors")
+  up->add_option("--actors", up_flags->actors, "number of actors (default: one per core)")
       ->capture_default_str()
       ->check(CLI::Range(0, 256));
   up->add_flag("-d,--detach", up_flags->detach,

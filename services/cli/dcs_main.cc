@@ -14,6 +14,7 @@
 #include "services/cli/cli_command.h"
 #include "services/cli/cluster_commands.h"
 #include "services/cli/env_commands.h"
+#include "services/cli/runs_commands.h"
 #include "services/cli/schedule_commands.h"
 #include "services/cli/summarize_command.h"
 #include "services/cli/train_command.h"
@@ -27,8 +28,8 @@ namespace {
 
 // Every command file of `dcs`, in the order `dcs --help` lists their commands.
 constexpr AddCommandsFunction kCommandFiles[] = {
-    AddClusterCommands, AddVersionCommand, AddEnvCommands,
-    AddScheduleCommands, AddTrainCommand,  AddSummarizeCommand,
+    AddClusterCommands, AddVersionCommand, AddEnvCommands,     AddScheduleCommands,
+    AddTrainCommand,    AddRunsCommands,   AddSummarizeCommand,
 };
 
 int Main(int argc, char** argv) {

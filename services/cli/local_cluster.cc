@@ -127,7 +127,8 @@ absl::StatusOr<std::unique_ptr<LocalCluster>> LocalCluster::Start(
   cluster->state_.supervisor_pid = options.detach ? 0 : ::getpid();
   DCS_RETURN_IF_ERROR(cluster->StartProcess(
       "coordinator", "dcs-coordinator",
-      {absl::StrCat("--listen=", options.coordinator_listen), "--reflection"}));
+      {absl::StrCat("--listen=", options.coordinator_listen), "--reflection",
+       absl::StrCat("--data-dir=", (fs::path(options.data_dir) / "coordinator").string())}));
   const std::string coordinator = cluster->state_.processes.front().grpc_address;
   cluster->state_.coordinator_address = coordinator;
   DCS_RETURN_IF_ERROR(cluster->StartProcess("learner", "dcs-learner",

@@ -1,8 +1,6 @@
 // Copyright 2026 The DCS Authors.
 #include "services/cli/train_command.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <csignal>
@@ -13,16 +11,16 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_format.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
-#include "dcs/proto_json.h"
-#include "dcs/v1/evaluation.pb.h"
 #include "env/env_registry.h"
 #include "learner/torch_runtime.h"
 #include "learner/training_run.h"
-#include "run/evaluation_log.h"
 #include "run/run_directory.h"
+#include "services/cli/cluster_client.h"
+#include "services/cli/run_client.h"
+#include "services/cli/run_follower.h"
+#include "services/cli/training_report.h"
 #include "services/exit_codes.h"
 
 namespace dcs::services::cli {
@@ -35,6 +33,7 @@ struct TrainFlags {
   bool seed_given = false;
   bool resume = false;
   int keep = 3;
+  bool cluster = false;
 };
 
 // Set by SIGINT and SIGTERM: the run stops after its current update, with a checkpoint.
@@ -72,67 +71,31 @@ absl::StatusOr<run::RunRequest> CheckRunRequest(const TrainFlags& flags,
   return request;
 }
 
-std::string FormatEvaluation(const actor::EvaluationResult& evaluation) {
-  return absl::StrFormat("eval@%d %.1f", evaluation.step, evaluation.avg_combined);
-}
-
-// On a terminal, one line rewritten after every update; otherwise a line per evaluation.
-class ProgressPrinter {
- public:
-  ProgressPrinter() : terminal_(isatty(STDERR_FILENO) == 1) {}
-
-  void Update(const learner::TrainingProgress& p) {
-    const bool new_evaluation = p.evaluation != nullptr && p.evaluation != last_evaluation_;
-    last_evaluation_ = p.evaluation;
-    if (!terminal_ && !new_evaluation) return;
-    const int64_t shown = std::min(p.timesteps, p.total_timesteps);
-    std::string line = absl::StrFormat(
-        "step %d/%d (%d%%)  %.0f steps/s  return %.1f", p.timesteps, p.total_timesteps,
-        shown * 100 / p.total_timesteps, p.steps_per_second, p.recent_return);
-    if (p.evaluation != nullptr) absl::StrAppend(&line, "  ", FormatEvaluation(*p.evaluation));
-    if (terminal_) {
-      std::cerr << "\r\033[K" << line << std::flush;
-    } else {
-      std::cerr << line << std::endl;
-    }
-  }
-
-  void Finish() {
-    if (terminal_) std::cerr << std::endl;
-  }
-
- private:
-  const bool terminal_;
-  const actor::EvaluationResult* last_evaluation_ = nullptr;
-};
-
-void PrintSummary(const std::string& out_dir, const learner::TrainingResult& result,
-                  OutputFormat format) {
-  const v1::EvaluationLog& log = result.log;
-  if (format == OutputFormat::kJson) {
-    std::cout << ProtoToJson(log) << std::endl;
-    return;
-  }
-  std::cout << "run           " << out_dir << "\n"
-            << "steps         " << result.state.timesteps << " (" << result.state.rollouts
-            << " updates)\n";
-  if (log.evaluations_size() == 0) return;
-  const v1::Evaluation& last = log.evaluations(log.evaluations_size() - 1);
-  std::cout << absl::StrFormat(
-      "last          avg_combined %.1f at step %d (id %.1f, ood_low %.1f, ood_high %.1f)\n",
-      log.last(), last.step(), last.id().mean(), last.ood_low().mean(), last.ood_high().mean());
-  if (log.best_anytime_index() >= 0) {
-    std::cout << absl::StrFormat("best-anytime  avg_combined %.1f at step %d\n",
-                                 log.best_anytime(),
-                                 log.evaluations(log.best_anytime_index()).step());
-  }
-  std::cout << "evaluations   " << run::EvaluationCsvPath(out_dir) << std::endl;
+// The run submitted to the cluster, followed to its end and downloaded into its directory;
+// checked here first, as in process, for quick feedback (the coordinator checks again).
+int RunTrainOnCluster(const TrainFlags& flags, const GlobalFlags& global,
+                      const run::RunRequest& request) {
+  const std::string address = CoordinatorAddress(global);
+  absl::StatusOr<std::string> text = ReadFile(flags.config);
+  if (!text.ok()) return FailCommand(text.status());
+  absl::StatusOr<v1::Run> run =
+      SubmitRun(address, *text, flags.config,
+                flags.seed_given ? std::optional<uint64_t>(flags.seed) : std::nullopt,
+                global.timeout);
+  if (!run.ok()) return FailCommand(run.status());
+  std::cerr << "dcs: submitted " << run->run_id() << " to " << address << std::endl;
+  return FollowRun(address, run->run_id(), request.dir, global);
 }
 
 int RunTrain(const TrainFlags& flags, const GlobalFlags& global) {
+  if (flags.cluster && flags.resume) {
+    return FailCommand(absl::InvalidArgumentError(
+        "--resume is for runs in this process; a cluster resumes its runs itself (dcs runs)"));
+  }
   absl::StatusOr<run::RunRequest> request = CheckRunRequest(flags, global);
   if (!request.ok()) return FailCommand(request.status());
-  learner::RestartWithBestBlasKernels(
+  if (flags.cluster) return RunTrainOnCluster(flags, global, *request);
+  learner::PinNumericKernels(
       [](absl::string_view note) { std::cerr << "dcs: " << note << std::endl; });
   if (!flags.resume) {
     if (absl::Status status = run::CreateRunDirectory(*request); !status.ok()) {
@@ -153,7 +116,15 @@ int RunTrain(const TrainFlags& flags, const GlobalFlags& global) {
       .keep_checkpoints = flags.keep,
       .on_update =
           [&progress](const learner::TrainingProgress& p) {
-            progress.Update(p);
+            ProgressLine line{.timesteps = p.timesteps,
+                              .total_timesteps = p.total_timesteps,
+                              .steps_per_second = p.steps_per_second,
+                              .recent_return = p.recent_return};
+            if (p.evaluation != nullptr) {
+              line.evaluation_step = p.evaluation->step;
+              line.avg_combined = p.evaluation->avg_combined;
+            }
+            progress.Update(line);
             return !stop_requested;
           }};
   std::optional<learner::TrainingResult> result;
@@ -169,7 +140,12 @@ int RunTrain(const TrainFlags& flags, const GlobalFlags& global) {
               << "; continue with: dcs train --resume --out " << out_dir << std::endl;
     return kExitInterrupted;
   }
-  PrintSummary(out_dir, *result, global.output);
+  PrintRunSummary({.dir = out_dir,
+                   .timesteps = result->state.timesteps,
+                   .updates = result->state.rollouts,
+                   .kernels = learner::NumericFingerprint(),
+                   .log = result->log},
+                  global.output);
   return kExitOk;
 }
 
@@ -178,7 +154,8 @@ int RunTrain(const TrainFlags& flags, const GlobalFlags& global) {
 std::vector<CliCommand> AddTrainCommand(CLI::App& dcs, const GlobalFlags& flags) {
   auto train_flags = std::make_shared<TrainFlags>();
   CLI::App* train = dcs.add_subcommand(
-      "train", "Train one run of a config in this process (PPO, with the paper's evaluation)");
+      "train", "Train one run of a config (PPO, with the paper's evaluation) in this process, "
+             "or on a cluster");
   train->add_option("--config", train_flags->config,
                     "the run config (YAML; examples in configs/, every key in "
                     "run/run_spec_yaml.h)");
@@ -193,6 +170,10 @@ std::vector<CliCommand> AddTrainCommand(CLI::App& dcs, const GlobalFlags& flags)
   train->add_option("--keep", train_flags->keep, "checkpoints to keep")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  train->add_flag("--cluster", train_flags->cluster,
+                  "submit the run to the cluster at --addr (default: the local cluster of "
+                  "`dcs up`), follow it (Ctrl-C detaches; the run goes on), then download it "
+                  "into --out");
   return {{train, [train_flags, &flags] { return RunTrain(*train_flags, flags); }}};
 }
 

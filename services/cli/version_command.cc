@@ -4,6 +4,7 @@
 #include <iostream>
 #include <string>
 
+#include "absl/strings/string_view.h"
 #include "coordinator/library_versions.h"
 #include "env/library_versions.h"
 #include "learner/torch_runtime.h"
@@ -15,6 +16,9 @@ namespace dcs::services::cli {
 namespace {
 
 int RunVersion() {
+  // The kernels rows show what `dcs train` computes with on this machine: the pinned ones.
+  learner::PinNumericKernels(
+      [](absl::string_view note) { std::cerr << "dcs: " << note << std::endl; });
   BuildInfo build = ProcessBuildInfo(coordinator::LibraryVersions());
   for (const auto& libraries : {env::LibraryVersions(), learner::LibraryVersions()}) {
     build.libraries.insert(build.libraries.end(), libraries.begin(), libraries.end());

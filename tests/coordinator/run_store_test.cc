@@ -90,7 +90,7 @@ TEST_F(RunStoreTest, ALearnerTakesTheOldestQueuedRun) {
   EXPECT_EQ(lease.key.slot, kLearnerSlot);
   EXPECT_EQ(lease.key.epoch, 1);
   EXPECT_EQ(lease.run.state, RunState::kRunning);
-  EXPECT_EQ(lease.run.numerics, "N");
+  EXPECT_EQ(lease.run.learner_numerics, "N");
   // Nothing else is queued.
   absl::StatusOr<std::optional<LearnerLease>> none = store->AcquireRun("L2", "a", "N", kStart);
   ASSERT_TRUE(none.ok());
@@ -119,10 +119,25 @@ TEST_F(RunStoreTest, SlotsGoToActorsOnlyOnceALearnerHoldsTheRun) {
 
 TEST_F(RunStoreTest, WorkersWithOtherNumericLibrariesGetNoLeaseOfTheRun) {
   std::unique_ptr<RunStore> store = Open();
-  SubmitAndAcquire(*store);
-  absl::StatusOr<std::optional<SlotLease>> slot = store->AcquireSlot("A", "other", {}, kStart);
-  ASSERT_TRUE(slot.ok());
-  EXPECT_FALSE(slot->has_value());
+  const LearnerLease learner = SubmitAndAcquire(*store);
+  // The first actor pins the run's actor numerics; one with others gets nothing.
+  absl::StatusOr<std::optional<SlotLease>> first = store->AcquireSlot("A", "E", {}, kStart);
+  ASSERT_TRUE(first.ok() && first->has_value());
+  absl::StatusOr<std::optional<SlotLease>> other = store->AcquireSlot("B", "F", {}, kStart);
+  ASSERT_TRUE(other.ok());
+  EXPECT_FALSE(other->has_value());
+  absl::StatusOr<std::optional<SlotLease>> same = store->AcquireSlot("C", "E", {}, kStart);
+  ASSERT_TRUE(same.ok());
+  EXPECT_TRUE(same->has_value());
+  EXPECT_EQ(store->GetRun("run-1")->actor_numerics, "E");
+  // Nor can a learner with other numerics take the run back.
+  ASSERT_TRUE(store->ReleaseLease(learner.key, kStart).ok());
+  absl::StatusOr<std::optional<LearnerLease>> refused = store->AcquireRun("L2", "b", "M", kStart);
+  ASSERT_TRUE(refused.ok());
+  EXPECT_FALSE(refused->has_value());
+  absl::StatusOr<std::optional<LearnerLease>> taken = store->AcquireRun("L2", "b", "N", kStart);
+  ASSERT_TRUE(taken.ok());
+  EXPECT_TRUE(taken->has_value());
 }
 
 TEST_F(RunStoreTest, AnActorSkipsTheRunsItIsToldTo) {
@@ -189,7 +204,8 @@ TEST_F(RunStoreTest, ProgressAndCheckpointsAreRecorded) {
                                      .policy_version = 2,
                                      .steps_per_second = 1000,
                                      .recent_return = 21.5,
-                                     .avg_combined = 42.25},
+                                     .avg_combined = 42.25,
+                                     .evaluation_step = 200},
                                     kStart)
                   .ok());
   ASSERT_TRUE(store->RecordCheckpoint(lease.key, {"000000000256", 256, "abc"}, kStart).ok());
@@ -199,6 +215,7 @@ TEST_F(RunStoreTest, ProgressAndCheckpointsAreRecorded) {
   EXPECT_EQ(run->progress.policy_version, 2);
   EXPECT_EQ(run->progress.recent_return, 21.5);
   EXPECT_EQ(run->progress.avg_combined, 42.25);
+  EXPECT_EQ(run->progress.evaluation_step, 200);
   EXPECT_EQ(run->checkpoint, "000000000256");
   absl::StatusOr<std::vector<CheckpointRecord>> checkpoints = store->ListCheckpoints("run-1");
   ASSERT_TRUE(checkpoints.ok());

@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -31,7 +32,9 @@ namespace {
 
 using dcs::testing::MakeTempDir;
 using dcs::testing::PickFreePort;
+using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::SizeIs;
 
 RunResult Dcs(const std::vector<std::string>& args) { return RunProgram(BinaryPath("dcs"), args); }
@@ -224,6 +227,25 @@ TEST(DcsCliTest, VersionListsTheLinkedLibraries) {
   for (const char* library : {"grpc", "protobuf", "libtorch", "box2d", "sqlite", "eigen"}) {
     EXPECT_THAT(version.output, HasSubstr(library));
   }
+}
+
+// `dcs version` shows the kernels `dcs train` computes with: started with others, it runs
+// itself again with the pinned ones (learner/torch_runtime.h) and says so.
+TEST(DcsCliTest, VersionRestartsWithThePinnedNumericKernels) {
+  if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) {
+    GTEST_SKIP() << "this CPU cannot run the pinned kernels";
+  }
+  // dcs inherits them.
+  setenv("OPENBLAS_CORETYPE", "Prescott", /*overwrite=*/1);
+  setenv("ATEN_CPU_CAPABILITY", "default", /*overwrite=*/1);
+  const RunResult version = Dcs({"version"});
+  unsetenv("OPENBLAS_CORETYPE");
+  unsetenv("ATEN_CPU_CAPABILITY");
+  ASSERT_EQ(version.exit_code, 0) << version.output;
+  EXPECT_THAT(version.output, Not(HasSubstr("restarting")));  // silently
+  EXPECT_THAT(version.output, ContainsRegex("openblas core +Haswell"));
+  EXPECT_THAT(version.output, ContainsRegex("aten cpu capability +avx2"));
+  EXPECT_THAT(version.output, ContainsRegex("onednn convolutions +off"));
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ namespace dcs::integration {
 namespace {
 
 using dcs::testing::MakeTempDir;
+using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
 using ::testing::SizeIs;
 
@@ -61,6 +62,10 @@ TEST(TrainCliTest, TrainsIntoItsDirectoryAndRefusesToOverwriteIt) {
   ASSERT_EQ(train.exit_code, 0) << train.output;
   EXPECT_THAT(train.output, HasSubstr("last          avg_combined"));
   EXPECT_THAT(train.output, HasSubstr("best-anytime  avg_combined"));
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
+    EXPECT_THAT(train.output, ContainsRegex("kernels +libtorch [0-9.]+, openblas Haswell, "
+                                            "aten avx2, onednn off"));
+  }
   const v1::EvaluationLog log = ReadLog(out);
   EXPECT_TRUE(log.complete());
   EXPECT_THAT(log.evaluations(), SizeIs(5));  // 256, 512, 768, 1024 and the end

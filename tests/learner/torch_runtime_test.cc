@@ -1,19 +1,58 @@
 // Copyright 2026 The DCS Authors.
 #include "learner/torch_runtime.h"
 
+#include <ATen/Context.h>
+#include <ATen/Parallel.h>
+#include <torch/version.h>
+
 #include <algorithm>
 #include <cstdlib>
+#include <iostream>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <ATen/Parallel.h>
-
 #include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
 namespace dcs::learner {
 namespace {
+
+using ::testing::AnyOf;
+using ::testing::Contains;
+using ::testing::ElementsAre;
+using ::testing::Field;
+using ::testing::HasSubstr;
+using ::testing::IsEmpty;
+using ::testing::StrEq;
+
+// Sets (or, with nullopt, unsets) an environment variable for one scope.
+class ScopedVariable {
+ public:
+  ScopedVariable(const char* name, std::optional<std::string> value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    if (value.has_value()) {
+      setenv(name, value->c_str(), /*overwrite=*/1);
+    } else {
+      unsetenv(name);
+    }
+  }
+  ~ScopedVariable() {
+    if (old_.has_value()) {
+      setenv(name_, old_->c_str(), /*overwrite=*/1);
+    } else {
+      unsetenv(name_);
+    }
+  }
+  ScopedVariable(const ScopedVariable&) = delete;
+  ScopedVariable& operator=(const ScopedVariable&) = delete;
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
 
 TEST(PinTorchThreadsTest, RejectsLessThanOneThread) {
   EXPECT_EQ(PinTorchThreads(0).code(), absl::StatusCode::kInvalidArgument);
@@ -35,32 +74,101 @@ TEST(PinTorchThreadsTest, PinsOnceThenRefusesToResize) {
   EXPECT_EQ(at::get_num_threads(), 1);
 }
 
-TEST(LibraryVersionsTest, ReportsLibtorch) {
+TEST(UnpinnedKernelVariablesTest, NamesEachVariableThatIsUnsetOrDiffers) {
+  const auto name = [](const char* n) { return Field(&KernelVariable::name, StrEq(n)); };
+  {
+    ScopedVariable blas("OPENBLAS_CORETYPE", std::nullopt);
+    ScopedVariable aten("ATEN_CPU_CAPABILITY", std::nullopt);
+    EXPECT_THAT(UnpinnedKernelVariables(),
+                ElementsAre(name("OPENBLAS_CORETYPE"), name("ATEN_CPU_CAPABILITY")));
+  }
+  {
+    ScopedVariable blas("OPENBLAS_CORETYPE", "SkylakeX");
+    ScopedVariable aten("ATEN_CPU_CAPABILITY", "avx2");
+    EXPECT_THAT(UnpinnedKernelVariables(), ElementsAre(name("OPENBLAS_CORETYPE")));
+  }
+  {
+    ScopedVariable blas("OPENBLAS_CORETYPE", "Haswell");
+    ScopedVariable aten("ATEN_CPU_CAPABILITY", "avx512");
+    EXPECT_THAT(UnpinnedKernelVariables(), ElementsAre(name("ATEN_CPU_CAPABILITY")));
+  }
+  {
+    ScopedVariable blas("OPENBLAS_CORETYPE", "Haswell");
+    ScopedVariable aten("ATEN_CPU_CAPABILITY", "avx2");
+    EXPECT_THAT(UnpinnedKernelVariables(), IsEmpty());
+  }
+}
+
+// In a process started with the pinned variables there is nothing to restart for: the call
+// returns, says nothing, and routes convolutions away from oneDNN. (The restart itself is
+// checked through `dcs version`: tests/integration/dcs_cli_test.cc.)
+TEST(PinNumericKernelsTest, LeavesAPinnedProcessRunningAndTurnsOneDnnOff) {
+  ScopedVariable blas("OPENBLAS_CORETYPE", "Haswell");
+  ScopedVariable aten("ATEN_CPU_CAPABILITY", "avx2");
+  std::vector<std::string> notes;
+  PinNumericKernels([&notes](absl::string_view note) { notes.emplace_back(note); });
+  if (CanPinNumericKernels()) {
+    EXPECT_THAT(notes, IsEmpty());
+  } else {
+    ASSERT_THAT(notes, ElementsAre(HasSubstr("lacks AVX2 or FMA")));
+    EXPECT_THAT(notes[0], HasSubstr("will not match other machines"));
+  }
+  EXPECT_FALSE(at::globalContext().userEnabledMkldnn());
+  EXPECT_THAT(NumericFingerprint(), HasSubstr("onednn off"));
+  at::globalContext().setUserEnabledMkldnn(true);
+}
+
+TEST(NumericFingerprintTest, NamesTheLibraryAndTheKernelsInUse) {
+  EXPECT_THAT(AtenCpuCapability(), AnyOf("default", "avx2", "avx512"));
+  const std::string fingerprint = NumericFingerprint();
+  EXPECT_THAT(fingerprint, HasSubstr(absl::StrCat("libtorch ", TORCH_VERSION, ", ")));
+  EXPECT_THAT(fingerprint, HasSubstr(absl::StrCat("openblas ", BlasCoreName(), ", ")));
+  EXPECT_THAT(fingerprint, HasSubstr(absl::StrCat("aten ", AtenCpuCapability(), ", ")));
+}
+
+// OpenBLAS and ATen read their variables when the process starts, so these checks run in a
+// process started with them: a death test's child, which the "threadsafe" style starts anew
+// (with this test's environment) rather than forking.
+void ExpectFingerprintOfAProcessStartedWith(const char* blas_core, const char* aten_capability,
+                                            const std::string& expected) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  ScopedVariable blas("OPENBLAS_CORETYPE", blas_core);
+  ScopedVariable aten("ATEN_CPU_CAPABILITY", aten_capability);
+  EXPECT_EXIT(
+      {
+        std::cerr << "fingerprint: " << NumericFingerprint() << std::endl;
+        std::exit(0);
+      },
+      ::testing::ExitedWithCode(0), expected);
+}
+
+TEST(NumericFingerprintTest, NamesThePinnedKernelsInAProcessStartedWithThem) {
+  if (!CanPinNumericKernels()) GTEST_SKIP() << "this CPU cannot run the pinned kernels";
+  ExpectFingerprintOfAProcessStartedWith("Haswell", "avx2", "openblas Haswell, aten avx2, ");
+}
+
+// The same with other kernels: the fingerprint reads what is in effect, not what DCS pins.
+TEST(NumericFingerprintTest, NamesOtherKernelsInAProcessStartedWithThem) {
+  ExpectFingerprintOfAProcessStartedWith("Prescott", "default",
+                                         "openblas Prescott, aten default, ");
+}
+
+TEST(LibraryVersionsTest, ReportsLibtorchAndItsKernels) {
   const std::vector<LibraryVersion> libraries = LibraryVersions();
   const auto libtorch = std::find_if(libraries.begin(), libraries.end(),
                                      [](const LibraryVersion& l) { return l.name == "libtorch"; });
   ASSERT_NE(libtorch, libraries.end());
   EXPECT_FALSE(libtorch->version.empty());
   EXPECT_NE(libtorch->version.find('.'), std::string::npos) << libtorch->version;
+  EXPECT_THAT(libraries, Contains(LibraryVersion{"aten cpu capability", AtenCpuCapability()}));
+  EXPECT_THAT(libraries, Contains(Field(&LibraryVersion::name, "onednn convolutions")));
 }
 
 // bootstrap installs the serial OpenBLAS as libtorch's BLAS.
 TEST(BlasCoreTest, ReportsTheOpenBlasCoreInUse) {
   const std::string core = BlasCoreName();
   ASSERT_FALSE(core.empty());
-  const std::vector<LibraryVersion> libraries = LibraryVersions();
-  EXPECT_NE(std::find(libraries.begin(), libraries.end(), LibraryVersion{"openblas core", core}),
-            libraries.end());
-}
-
-TEST(BlasCoreTest, AChosenCoreIsLeftAlone) {
-  ASSERT_EQ(setenv("OPENBLAS_CORETYPE", "Haswell", /*overwrite=*/1), 0);
-  EXPECT_EQ(BetterBlasCore(), std::nullopt);
-  ASSERT_EQ(unsetenv("OPENBLAS_CORETYPE"), 0);
-  // Without it, a better core is named only when OpenBLAS fell back to its generic one.
-  if (BlasCoreName() != "Prescott") {
-    EXPECT_EQ(BetterBlasCore(), std::nullopt);
-  }
+  EXPECT_THAT(LibraryVersions(), Contains(LibraryVersion{"openblas core", core}));
 }
 
 }  // namespace

@@ -148,7 +148,7 @@ TEST_F(TrainingSessionTest, ASessionFromItsCheckpointContinuesExactly) {
   }
   absl::StatusOr<run::Checkpoint> checkpoint = first->session().Checkpoint();
   ASSERT_TRUE(checkpoint.ok()) << checkpoint.status();
-  EXPECT_EQ(checkpoint->name, "384");
+  EXPECT_EQ(checkpoint->name, "000000000384");
   std::unique_ptr<Driver> resumed = Driver::Make(&*checkpoint);
   ASSERT_NE(resumed, nullptr);
   EXPECT_EQ(resumed->session().policy_version(), 3);
@@ -178,7 +178,7 @@ TEST_F(TrainingSessionTest, RefusesACheckpointOfAnotherRun) {
   const absl::Status slots =
       TrainingSession::Create<env::CartPole>(other_slots, &*checkpoint).status();
   EXPECT_EQ(slots.code(), absl::StatusCode::kFailedPrecondition);
-  EXPECT_THAT(slots.message(), HasSubstr("checkpoint 128 has 2 environment slots"));
+  EXPECT_THAT(slots.message(), HasSubstr("checkpoint 000000000128 has 2 environment slots"));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
+#include "tests/testing/temp_dir.h"
 
 namespace dcs::testing {
 
@@ -16,9 +17,17 @@ absl::StatusOr<std::unique_ptr<InProcessCoordinator>> InProcessCoordinator::Star
       coordinator::WorkerRegistry::Create(options.registry);
   if (!registry.ok()) return registry.status();
   coordinator->registry_ = *std::move(registry);
+  const std::string data_dir = options.data_dir.empty() ? MakeTempDir() : options.data_dir;
+  absl::StatusOr<std::unique_ptr<coordinator::RunStore>> store = coordinator::RunStore::Open(
+      data_dir + "/coordinator.db", {.lease_duration = options.lease_duration}, absl::Now());
+  if (!store.ok()) return store.status();
+  coordinator->store_ = *std::move(store);
   coordinator->service_ = std::make_unique<services::CoordinatorService>(
-      *coordinator->registry_, options.build, options.start_time.value_or(absl::Now()),
-      *coordinator->metrics_);
+      *coordinator->registry_,
+      services::RunStorage{.store = coordinator->store_.get(),
+                           .data_dir = data_dir,
+                           .lease_duration = options.lease_duration},
+      options.build, options.start_time.value_or(absl::Now()), *coordinator->metrics_);
   absl::StatusOr<std::unique_ptr<services::Server>> server = services::Server::Start(
       {.listen_address = options.listen_address,
        .services = {{.full_name = "dcs.v1.CoordinatorService",

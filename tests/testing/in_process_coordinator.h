@@ -2,8 +2,9 @@
 #ifndef DCS_TESTS_TESTING_IN_PROCESS_COORDINATOR_H_
 #define DCS_TESTS_TESTING_IN_PROCESS_COORDINATOR_H_
 
-// A coordinator served inside the test process: a WorkerRegistry, the CoordinatorService over
-// it, and a services::Server serving that service, with its metrics in a prometheus::Registry.
+// A coordinator served inside the test process: a WorkerRegistry, a RunStore in a data
+// directory, the CoordinatorService over them, and a services::Server serving that service,
+// with its metrics in a prometheus::Registry.
 // For tests of code that talks to a coordinator over gRPC. Thread-compatible.
 
 #include <memory>
@@ -14,6 +15,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
+#include "coordinator/run_store.h"
 #include "coordinator/worker_registry.h"
 #include "services/build_info.h"
 #include "services/coordinator_service.h"
@@ -28,6 +30,8 @@ struct InProcessCoordinatorOptions {
   services::BuildInfo build = services::ProcessBuildInfo({});
   std::optional<absl::Time> start_time;  // absl::Now() if unset
   bool serving = false;                  // SetServing(true) once started
+  std::string data_dir;                  // a new temporary directory if empty
+  absl::Duration lease_duration = absl::Seconds(10);
 };
 
 class InProcessCoordinator {
@@ -54,6 +58,7 @@ class InProcessCoordinator {
   // Destroyed bottom-up: the server before the service, registry and metrics it uses.
   std::shared_ptr<prometheus::Registry> metrics_ = std::make_shared<prometheus::Registry>();
   std::unique_ptr<coordinator::WorkerRegistry> registry_;
+  std::unique_ptr<coordinator::RunStore> store_;
   std::unique_ptr<services::CoordinatorService> service_;
   std::unique_ptr<services::Server> server_;
 };

@@ -1,0 +1,46 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COORDINATOR_RUN_FILES_H_
+#define DCS_COORDINATOR_RUN_FILES_H_
+
+// What the coordinator keeps of each run on disk, in its data directory: the run's directory,
+// <data_dir>/runs/<run id>/, laid out as `dcs train --out` lays one out (run/run_directory.h):
+// the config, the checkpoints learners send, the evaluation log. So a learner's disk holds
+// nothing that matters, and `dcs runs get` hands users the same files `dcs train` writes.
+// Thread-compatible (one writer per run: its learner lease holder).
+
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "coordinator/run_store.h"
+#include "dcs/v1/evaluation.pb.h"
+#include "run/run_checkpoint.h"
+#include "run/run_directory.h"
+
+namespace dcs::coordinator {
+
+struct RunFile {
+  std::string path;  // relative to the run's directory
+  std::string contents;
+};
+
+// <data_dir>/runs/<run_id>.
+std::string RunDirectory(absl::string_view data_dir, absl::string_view run_id);
+
+// Checks `checkpoint` (errors as run::UnpackCheckpoint), then stores it in `run_dir` with `log` as run::WriteCheckpoint and run::WriteEvaluationLog do,
+// keeping the newest `keep`. Nothing is stored unless all of it checks. Returns its index entry
+// (the SHA-256 is learner.bin's).
+absl::StatusOr<CheckpointRecord> StoreCheckpoint(const std::string& run_dir, const run::PackedCheckpoint& checkpoint,
+                             const v1::EvaluationLog& log, int keep);
+
+// The newest readable checkpoint of `run_dir` as a learner receives it. Errors as
+// run::ReadLatestCheckpoint (NOT_FOUND when there is none yet).
+absl::StatusOr<run::PackedCheckpoint> LatestCheckpoint(const std::string& run_dir);
+
+// Every file under `run_dir`, by path. NOT_FOUND if there is no such directory.
+absl::StatusOr<std::vector<RunFile>> ReadRunFiles(const std::string& run_dir);
+
+}  // namespace dcs::coordinator
+
+#endif  // DCS_COORDINATOR_RUN_FILES_H_

@@ -1,0 +1,25 @@
+// Copyright 2026 The DCS Authors.
+#include "coordinator/run_submission.h"
+
+#include <utility>
+
+#include "common/status_macros.h"
+#include "env/env_registry.h"
+#include "run/run_plan.h"
+
+namespace dcs::coordinator {
+
+absl::StatusOr<run::RunRequest> CheckSubmittedRun(std::string config_text,
+                                                  const std::string& config_name,
+                                                  std::optional<uint64_t> seed) {
+  if (seed.has_value()) config_text = run::ConfigWithSeed(config_text, *seed);
+  DCS_ASSIGN_OR_RETURN(run::RunRequest request,
+                       run::RequestRun(std::move(config_text), config_name, /*dir=*/"-",
+                                       /*data_dir=*/""));
+  DCS_RETURN_IF_ERROR(env::VisitEnvironment(request.spec.env, [&]<typename Env>() {
+    return run::PlanRun(request.spec, Env::Features()).status();
+  }));
+  return request;
+}
+
+}  // namespace dcs::coordinator

@@ -1,0 +1,209 @@
+// Copyright 2026 The DCS Authors.
+#include "learner/run_host.h"
+
+#include <cmath>
+#include <span>
+#include <string>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+
+namespace dcs::learner {
+namespace {
+
+// OK if `values` holds `rows` rows of `row_size`.
+absl::Status CheckSize(absl::string_view field, size_t size, int64_t rows, int64_t row_size) {
+  if (static_cast<int64_t>(size) == rows * row_size) return absl::OkStatus();
+  return absl::InvalidArgumentError(absl::StrCat(field, " has ", size, " values; the run takes ",
+                                                 rows, " x ", row_size));
+}
+
+// OK if every value is finite; otherwise names the field and the row of the first that is not.
+absl::Status CheckFinite(absl::string_view field, std::span<const float> values, int row_size) {
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      return absl::InvalidArgumentError(absl::StrCat(field, " at step ", i / row_size, " is ",
+                                                     values[i], "; values must be finite"));
+    }
+  }
+  return absl::OkStatus();
+}
+
+// The whole of one slot's part checked against the run's shapes, before anything is taken.
+absl::Status CheckSlotRollout(const actor::SlotRollout& data, int n_steps, int input_size,
+                              int action_size) {
+  if (data.num_steps != n_steps) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("num_steps is ", data.num_steps, "; the run's n_steps is ", n_steps));
+  }
+  if (!data.images.empty() || !data.last_image.empty()) {
+    return absl::InvalidArgumentError("images sent for a policy without image observations");
+  }
+  DCS_RETURN_IF_ERROR(CheckSize("inputs", data.inputs.size(), n_steps, input_size));
+  DCS_RETURN_IF_ERROR(CheckSize("actions", data.actions.size(), n_steps, action_size));
+  DCS_RETURN_IF_ERROR(CheckSize("rewards", data.rewards.size(), n_steps, 1));
+  DCS_RETURN_IF_ERROR(CheckSize("episode_starts", data.episode_starts.size(), n_steps, 1));
+  DCS_RETURN_IF_ERROR(CheckSize("last_input", data.last_input.size(), 1, input_size));
+  DCS_RETURN_IF_ERROR(CheckFinite("inputs", data.inputs, input_size));
+  DCS_RETURN_IF_ERROR(CheckFinite("actions", data.actions, action_size));
+  DCS_RETURN_IF_ERROR(CheckFinite("rewards", data.rewards, 1));
+  DCS_RETURN_IF_ERROR(CheckFinite("last_input", data.last_input, input_size));
+  for (const actor::Rollout::Truncation& cut : data.truncations) {
+    if (cut.step < 0 || cut.step >= n_steps) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("a truncation at step ", cut.step, " is outside the rollout"));
+    }
+    DCS_RETURN_IF_ERROR(CheckSize("a truncation's input", cut.input.size(), 1, input_size));
+    DCS_RETURN_IF_ERROR(CheckFinite("a truncation's input", cut.input, input_size));
+  }
+  if (data.journal.actions.size() % action_size != 0) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "the journal has ", data.journal.actions.size(), " action values, not a multiple of ",
+        action_size));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+RunHost::RunHost(std::unique_ptr<TrainingSession> session, EvaluateFunction evaluate,
+                 int input_size, int action_size)
+    : session_(std::move(session)),
+      evaluate_(std::move(evaluate)),
+      n_envs_(session_->spec().n_envs),
+      n_steps_(session_->spec().ppo.n_steps),
+      input_size_(input_size),
+      action_size_(action_size),
+      start_(absl::Now()),
+      first_timesteps_(session_->state().timesteps),
+      epochs_(n_envs_, 0),
+      pending_(n_envs_) {}
+
+absl::Status RunHost::Publish() {
+  DCS_ASSIGN_OR_RETURN(policy_, actor::MlpPolicy::Create(session_->ActorWeights()));
+  auto weights = std::make_shared<const actor::MlpWeights>(session_->ActorWeights());
+  absl::MutexLock lock(&mu_);
+  rollout_ = session_->state().rollouts;
+  start_timesteps_ = session_->state().timesteps;
+  weights_ = std::move(weights);
+  published_at_ = absl::Now();
+  journals_ = session_->state().journals;
+  complete_ = session_->complete();
+  // The slots' parts are learnt from: freeing them releases the slots waiting for new work.
+  for (std::optional<actor::SlotRollout>& part : pending_) part.reset();
+  pending_count_ = 0;
+  return absl::OkStatus();
+}
+
+absl::Status RunHost::CheckEpoch(int slot, int64_t epoch) {
+  if (slot < 0 || slot >= n_envs_) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("slot ", slot, " is not a slot of the run (n_envs ", n_envs_, ")"));
+  }
+  if (epoch < epochs_[slot]) {
+    return absl::FailedPreconditionError(absl::StrCat("slot ", slot, "'s lease moved to epoch ",
+                                                      epochs_[slot], "; this holder has epoch ",
+                                                      epoch));
+  }
+  epochs_[slot] = epoch;
+  return absl::OkStatus();
+}
+
+absl::StatusOr<SlotWork> RunHost::GetSlotWork(int slot, int64_t epoch, int64_t positioned_at,
+                                              absl::Duration wait) {
+  absl::MutexLock lock(&mu_);
+  DCS_RETURN_IF_ERROR(CheckEpoch(slot, epoch));
+  // The slot's part of the current rollout is in: its next work comes with the update.
+  auto answerable = [this, slot]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_) {
+    return !pending_[slot].has_value() || stopped_ || complete_;
+  };
+  mu_.AwaitWithTimeout(absl::Condition(&answerable), wait);
+  SlotWork work{.run_complete = complete_, .n_steps = n_steps_};
+  if (complete_ || pending_[slot].has_value()) return work;
+  work.ready = true;
+  work.rollout = rollout_;
+  work.start_timesteps = start_timesteps_;
+  work.weights = weights_;
+  work.published_at = published_at_;
+  if (positioned_at != rollout_) work.journal = journals_[slot];
+  return work;
+}
+
+absl::StatusOr<bool> RunHost::PushRollout(int64_t epoch, int64_t rollout, int64_t policy_version,
+                                          actor::SlotRollout data) {
+  const int slot = data.slot;
+  if (policy_version != rollout) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        "rollout ", rollout, " is collected with policy version ", rollout, ", not ",
+        policy_version));
+  }
+  DCS_RETURN_IF_ERROR(CheckSlotRollout(data, n_steps_, input_size_, action_size_));
+  absl::MutexLock lock(&mu_);
+  DCS_RETURN_IF_ERROR(CheckEpoch(slot, epoch));
+  if (rollout < rollout_ || (rollout == rollout_ && pending_[slot].has_value())) return true;
+  if (rollout > rollout_ || complete_) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        "rollout ", rollout, " is not being collected: ",
+        complete_ ? "the run is complete" : absl::StrCat("rollout ", rollout_, " is")));
+  }
+  pending_[slot] = std::move(data);
+  ++pending_count_;
+  return false;
+}
+
+absl::Status RunHost::Evaluate(const EvaluationDue& due) {
+  DCS_ASSIGN_OR_RETURN(const actor::EvaluationResult result,
+                       evaluate_(*policy_, session_->plan()));
+  session_->RecordEvaluation(due, result);
+  return absl::OkStatus();
+}
+
+absl::StatusOr<HostStep> RunHost::Step() {
+  std::vector<actor::SlotRollout> parts;
+  {
+    absl::MutexLock lock(&mu_);
+    auto ready = [this]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_) {
+      return stopped_ || pending_count_ == n_envs_;
+    };
+    mu_.Await(absl::Condition(&ready));
+    if (stopped_) return absl::CancelledError("the run host was stopped");
+    for (std::optional<actor::SlotRollout>& part : pending_) parts.push_back(*std::move(part));
+  }
+  DCS_ASSIGN_OR_RETURN(actor::MergedRollout merged, actor::MergeSlotRollouts(std::move(parts)));
+  const int64_t episodes = static_cast<int64_t>(merged.finished.size());
+  DCS_ASSIGN_OR_RETURN(const std::optional<EvaluationDue> due,
+                       session_->AddRollout(std::move(merged.rollout), merged.finished,
+                                            std::move(merged.journals)));
+  if (due.has_value()) DCS_RETURN_IF_ERROR(Evaluate(*due));
+  DCS_ASSIGN_OR_RETURN(const SessionUpdate update, session_->Update());
+  DCS_RETURN_IF_ERROR(Publish());
+  if (update.final_evaluation.has_value()) DCS_RETURN_IF_ERROR(Evaluate(*update.final_evaluation));
+
+  const run::RunState& state = session_->state();
+  const double seconds = absl::ToDoubleSeconds(absl::Now() - start_);
+  HostStep step{
+      .progress = {.timesteps = state.timesteps,
+                   .total_timesteps = session_->spec().total_timesteps,
+                   .updates = session_->policy_version(),
+                   .steps_per_second =
+                       static_cast<double>(state.timesteps - first_timesteps_) / seconds,
+                   .recent_return = session_->recent_return(),
+                   .update = update.stats,
+                   .evaluation = state.evaluations.empty() ? nullptr : &state.evaluations.back()},
+      .steps = static_cast<int64_t>(n_envs_) * n_steps_,
+      .episodes = episodes,
+      .complete = session_->complete()};
+  if (session_->checkpoint_due()) {
+    DCS_ASSIGN_OR_RETURN(step.checkpoint, session_->Checkpoint());
+    step.evaluation_log = session_->EvaluationLog();
+  }
+  return step;
+}
+
+void RunHost::Stop() {
+  absl::MutexLock lock(&mu_);
+  stopped_ = true;
+}
+
+}  // namespace dcs::learner

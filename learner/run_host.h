@@ -1,0 +1,183 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_LEARNER_RUN_HOST_H_
+#define DCS_LEARNER_RUN_HOST_H_
+
+// One run hosted by a learner for remote actors: a TrainingSession (learner/training_session.h)
+// fed one env slot at a time. The learner service adapts it to the wire; it knows nothing of
+// gRPC and runs in one process in tests.
+//
+//   actors, on any thread            the run's own thread
+//   ───────────────────────          ────────────────────
+//   SlotWork(slot) ─▶ rollout r, policy version r, the slot's journal if it must rebuild
+//   PushRollout(slot, r, data) ─▶    Step(): once every slot's rollout r is in, learns from
+//                                    it (evaluating when one falls due) and publishes r + 1
+//
+// On-policy, as SB3 and `dcs train`: rollout r is collected with policy version r by every
+// slot; a run hosted here ends with the same weights and evaluations, bit for bit, as
+// `dcs train` in one process, whichever actors step its slots and however often they change
+// (a slot is rebuilt from its journal: env/vector_env.h ReplaySlot).
+//
+// Slot leases: each slot's holder names the epoch its lease was granted at; the host serves
+// the newest epoch it has seen per slot and refuses older ones (FAILED_PRECONDITION).
+//
+// Thread-safety: SlotWork and PushRollout from any thread; Step from one thread at a time.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "absl/base/thread_annotations.h"
+#include "absl/status/statusor.h"
+#include "absl/synchronization/mutex.h"
+#include "absl/time/time.h"
+#include "actor/evaluation.h"
+#include "actor/mlp_policy.h"
+#include "actor/rollout_collector.h"
+#include "actor/slot_rollout.h"
+#include "common/status_macros.h"
+#include "dcs/v1/evaluation.pb.h"
+#include "learner/training_run.h"
+#include "learner/training_session.h"
+#include "run/run_checkpoint.h"
+#include "run/run_spec.h"
+
+namespace dcs::learner {
+
+// What a slot collects next.
+struct SlotWork {
+  bool ready = false;         // false: the rollout it delivered is not learnt from yet
+  bool run_complete = false;  // nothing more to collect
+  int64_t rollout = 0;        // collect this rollout with policy version `rollout`
+  int64_t start_timesteps = 0;
+  int n_steps = 0;
+  std::shared_ptr<const actor::MlpWeights> weights;  // policy version `rollout`
+  absl::Time published_at;                           // when that version was published
+  // Where the slot's episode stands before `rollout`: given when the holder is not
+  // positioned there (it must rebuild the slot).
+  std::optional<actor::SlotJournal> journal;
+};
+
+// What one Step did.
+struct HostStep {
+  TrainingProgress progress;  // `evaluation` points into the host; valid until the next Step
+  int64_t steps = 0;          // environment steps learnt from
+  int64_t episodes = 0;       // training episodes that finished in them
+  bool complete = false;
+  // When the session says one is due (after an evaluation, and at the end).
+  std::optional<run::Checkpoint> checkpoint;
+  v1::EvaluationLog evaluation_log;  // with the checkpoint
+};
+
+class RunHost {
+ public:
+  // A host for `spec` on `Env`, continuing from `checkpoint` if given. Errors as
+  // TrainingSession::Create; UNIMPLEMENTED for image policies (their CNN does not run on
+  // actors yet).
+  template <typename Env>
+  static absl::StatusOr<std::unique_ptr<RunHost>> Create(run::RunSpec spec,
+                                                         const run::Checkpoint* checkpoint);
+
+  RunHost(const RunHost&) = delete;
+  RunHost& operator=(const RunHost&) = delete;
+
+  int n_envs() const { return n_envs_; }
+  int n_steps() const { return n_steps_; }
+
+  // The work of `slot` for its holder at `epoch`, positioned to collect rollout
+  // `positioned_at` (-1: not at all). Waits up to `wait` for the next rollout if the slot's
+  // current one is in. INVALID_ARGUMENT for a slot out of range; FAILED_PRECONDITION for an
+  // epoch older than one seen.
+  absl::StatusOr<SlotWork> GetSlotWork(int slot, int64_t epoch, int64_t positioned_at,
+                                       absl::Duration wait);
+
+  // Takes `data`, slot `data.slot`'s part of rollout `rollout`, collected with policy version
+  // `policy_version` by the holder at `epoch`. Returns true for a rollout taken already (a
+  // retry). Everything is checked before anything is taken: INVALID_ARGUMENT for a wrong shape
+  // or a non-finite value (naming the field and step); FAILED_PRECONDITION for an old epoch,
+  // a policy version other than the rollout's, or a rollout not being collected.
+  absl::StatusOr<bool> PushRollout(int64_t epoch, int64_t rollout, int64_t policy_version,
+                                   actor::SlotRollout data);
+
+  // Waits until every slot's part of the current rollout is in (or Stop), then learns from it
+  // as Train<Env> does and publishes the next policy version. CANCELLED after Stop; errors of
+  // the session otherwise (the host is then not to be stepped again).
+  absl::StatusOr<HostStep> Step();
+
+  // Wakes Step and every waiting GetSlotWork; Step then returns CANCELLED.
+  void Stop();
+
+  // Every parameter of the current policy (runs are compared with it). Call from Step's thread.
+  std::vector<float> Parameters() const { return session_->Parameters(); }
+
+ private:
+  using EvaluateFunction = std::function<absl::StatusOr<actor::EvaluationResult>(
+      actor::Policy& policy, const run::RunPlan& plan)>;
+
+  RunHost(std::unique_ptr<TrainingSession> session, EvaluateFunction evaluate, int input_size,
+          int action_size);
+
+  // Publishes the session's current policy and journals, and frees the slots' parts of the
+  // rollout learnt from. Called from Step's thread.
+  absl::Status Publish();
+  absl::Status Evaluate(const EvaluationDue& due);
+  // OK if `epoch` is not older than the newest seen for `slot`, which it then becomes.
+  absl::Status CheckEpoch(int slot, int64_t epoch) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_);
+
+  // Fixed at construction.
+  const std::unique_ptr<TrainingSession> session_;  // Step's thread only
+  const EvaluateFunction evaluate_;
+  const int n_envs_;
+  const int n_steps_;
+  const int input_size_;
+  const int action_size_;
+  const absl::Time start_;
+  const int64_t first_timesteps_;
+
+  std::optional<actor::MlpPolicy> policy_;  // Step's thread only: acts in evaluations
+
+  absl::Mutex mu_;
+  bool stopped_ ABSL_GUARDED_BY(mu_) = false;
+  bool complete_ ABSL_GUARDED_BY(mu_) = false;
+  int64_t rollout_ ABSL_GUARDED_BY(mu_) = 0;  // being collected
+  int64_t start_timesteps_ ABSL_GUARDED_BY(mu_) = 0;
+  std::shared_ptr<const actor::MlpWeights> weights_ ABSL_GUARDED_BY(mu_);
+  absl::Time published_at_ ABSL_GUARDED_BY(mu_);
+  std::vector<actor::SlotJournal> journals_ ABSL_GUARDED_BY(mu_);  // before rollout_
+  std::vector<int64_t> epochs_ ABSL_GUARDED_BY(mu_);
+  std::vector<std::optional<actor::SlotRollout>> pending_ ABSL_GUARDED_BY(mu_);
+  int pending_count_ ABSL_GUARDED_BY(mu_) = 0;
+};
+
+// Implementation details.
+
+template <typename Env>
+absl::StatusOr<std::unique_ptr<RunHost>> RunHost::Create(run::RunSpec spec,
+                                                         const run::Checkpoint* checkpoint) {
+  if constexpr (std::is_same_v<typename Env::Observation, uint8_t>) {
+    return absl::UnimplementedError(
+        "image policies (CarRacing's CNN) cannot run on actors yet: train it with `dcs train` "
+        "in one process");
+  } else {
+    DCS_ASSIGN_OR_RETURN(std::unique_ptr<TrainingSession> session,
+                         TrainingSession::Create<Env>(std::move(spec), checkpoint));
+    const int input_size =
+        Env::kObservationSize + static_cast<int>(session->plan().slot.observed_features.size());
+    const uint64_t seed = session->spec().seed;
+    const int episodes = session->spec().eval_episodes;
+    EvaluateFunction evaluate = [seed, episodes](actor::Policy& policy,
+                                                 const run::RunPlan& plan) {
+      return actor::Evaluate<Env>(policy, plan.slot, plan.feature, plan.evaluation_contexts,
+                                  episodes, seed);
+    };
+    std::unique_ptr<RunHost> host(new RunHost(std::move(session), std::move(evaluate), input_size,
+                                              Env::kActionSize));
+    DCS_RETURN_IF_ERROR(host->Publish());
+    return host;
+  }
+}
+
+}  // namespace dcs::learner
+
+#endif  // DCS_LEARNER_RUN_HOST_H_

@@ -1,0 +1,314 @@
+// Copyright 2026 The DCS Authors.
+#include "services/actor/slot_workers.h"
+
+#include <grpcpp/grpcpp.h>
+#include <prometheus/counter.h>
+#include <prometheus/histogram.h>
+
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "absl/random/random.h"
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+#include "actor/mlp_policy.h"
+#include "actor/slot_stepper.h"
+#include "common/status_macros.h"
+#include "dcs/v1/learner_service.grpc.pb.h"
+#include "env/env_registry.h"
+#include "run/run_plan.h"
+#include "run/run_spec_yaml.h"
+#include "services/backoff.h"
+#include "services/channel.h"
+#include "services/log.h"
+#include "services/run_proto.h"
+#include "services/time_proto.h"
+#include "services/trajectory_proto.h"
+#include "services/unary_call.h"
+
+namespace dcs::services {
+
+struct SlotWorkers::Slot {
+  coordinator::LeaseKey lease;
+  std::string learner_address;
+  int64_t learner_epoch = 0;
+  std::string config;
+  absl::Duration lease_duration;
+  std::atomic<bool> done{false};
+  std::thread thread;
+};
+
+namespace {
+
+constexpr BackoffPolicy kRetryBackoff{.initial = absl::Milliseconds(50),
+                                      .max = absl::Seconds(1)};
+
+bool IsTransient(const absl::Status& status) {
+  return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status);
+}
+
+std::string SlotName(const coordinator::LeaseKey& lease) {
+  return absl::StrCat(lease.run_id, "/", lease.slot);
+}
+
+// A slot's key among the held ones: a slot given up may be granted again before its old
+// thread is reaped.
+std::string LeaseName(const coordinator::LeaseKey& lease) {
+  return absl::StrCat(SlotName(lease), "@", lease.epoch);
+}
+
+// The stepper of slot `slot` of the run `config` describes.
+absl::StatusOr<std::unique_ptr<actor::SlotStepper>> MakeStepper(const std::string& config,
+                                                                const std::string& run_id,
+                                                                int slot) {
+  DCS_ASSIGN_OR_RETURN(const run::RunSpec spec, run::ParseRunSpecYaml(config, run_id));
+  std::unique_ptr<actor::SlotStepper> stepper;
+  DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(run::RunPlan plan, run::PlanRun(spec, Env::Features()));
+    plan.slot.slot = static_cast<uint64_t>(slot);
+    DCS_ASSIGN_OR_RETURN(stepper, actor::MakeSlotStepper<Env>(plan.slot, spec.n_envs));
+    return absl::OkStatus();
+  }));
+  return stepper;
+}
+
+}  // namespace
+
+SlotWorkers::SlotWorkers(SlotWorkersOptions options, prometheus::Registry& metrics)
+    : options_(std::move(options)),
+      coordinator_(v1::CoordinatorService::NewStub(OpenChannel(options_.coordinator_address))),
+      steps_(prometheus::BuildCounter()
+                 .Name("dcs_actor_env_steps_total")
+                 .Help("Environment steps this actor took for training rollouts.")
+                 .Register(metrics)
+                 .Add({})),
+      rollouts_(prometheus::BuildCounter()
+                    .Name("dcs_actor_rollouts_total")
+                    .Help("Slots' rollouts this actor delivered to learners.")
+                    .Register(metrics)
+                    .Add({})),
+      rebuilds_(prometheus::BuildCounter()
+                    .Name("dcs_actor_slot_rebuilds_total")
+                    .Help("Slots rebuilt from their journals (taken over, or after a learner "
+                          "resumed from a checkpoint).")
+                    .Register(metrics)
+                    .Add({})),
+      update_latency_(prometheus::BuildHistogram()
+                          .Name("dcs_policy_update_latency_seconds")
+                          .Help("From a policy version's publication by the learner to this "
+                                "actor's first step with it.")
+                          .Register(metrics)
+                          .Add({}, prometheus::Histogram::BucketBoundaries{
+                                       0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1,
+                                       0.25, 0.5, 1, 2.5, 5, 10})),
+      manager_([this] { Manage(); }) {}
+
+SlotWorkers::~SlotWorkers() { Stop(); }
+
+void SlotWorkers::Stop() {
+  if (stopping_.HasBeenNotified()) return;  // stopped already
+  stopping_.Notify();
+  if (manager_.joinable()) manager_.join();
+  std::map<std::string, std::shared_ptr<Slot>> slots;
+  {
+    absl::MutexLock lock(&mu_);
+    slots.swap(slots_);
+  }
+  for (auto& [name, slot] : slots) {
+    if (slot->thread.joinable()) slot->thread.join();
+  }
+}
+
+void SlotWorkers::Manage() {
+  while (!stopping_.WaitForNotificationWithTimeout(options_.poll_interval)) {
+    std::vector<std::shared_ptr<Slot>> finished;
+    {
+      absl::MutexLock lock(&mu_);
+      for (auto it = slots_.begin(); it != slots_.end();) {
+        if (it->second->done) {
+          finished.push_back(it->second);
+          it = slots_.erase(it);
+        } else {
+          ++it;
+        }
+      }
+    }
+    for (const std::shared_ptr<Slot>& slot : finished) slot->thread.join();
+    AcquireSlot();
+  }
+}
+
+void SlotWorkers::AcquireSlot() {
+  {
+    absl::MutexLock lock(&mu_);
+    if (static_cast<int>(slots_.size()) >= options_.max_slots) return;
+  }
+  v1::AcquireSlotRequest request;
+  request.set_holder(options_.holder);
+  request.set_numerics(options_.numerics);
+  v1::AcquireSlotResponse response;
+  const absl::Status status =
+      CallUnary(*coordinator_, &v1::CoordinatorService::Stub::AcquireSlot, request, response,
+                options_.rpc_timeout, "coordinator");
+  if (!status.ok() || !response.has_lease()) {
+    if (!status.ok() && !IsTransient(status)) {
+      Log(LogLevel::kWarning, "cannot take a slot", {{"error", status.ToString()}});
+    }
+    return;
+  }
+  absl::StatusOr<coordinator::LeaseKey> lease = LeaseFromProto(response.lease());
+  if (!lease.ok()) return;
+  auto slot = std::make_shared<Slot>();
+  slot->lease = *lease;
+  slot->learner_address = response.learner_address();
+  slot->learner_epoch = response.learner_epoch();
+  slot->config = response.config();
+  slot->lease_duration = DurationFromProto(response.lease_duration());
+  Log(LogLevel::kInfo, "stepping a slot",
+      {{"slot", SlotName(slot->lease)}, {"epoch", std::to_string(slot->lease.epoch)},
+       {"learner", slot->learner_address}});
+  absl::MutexLock lock(&mu_);
+  slot->thread = std::thread([this, slot] {
+    Work(*slot);
+    slot->done = true;
+  });
+  slots_[LeaseName(slot->lease)] = std::move(slot);
+}
+
+void SlotWorkers::Work(Slot& slot) {
+  const std::string name = SlotName(slot.lease);
+  absl::StatusOr<std::unique_ptr<actor::SlotStepper>> stepper =
+      MakeStepper(slot.config, slot.lease.run_id, slot.lease.slot);
+  if (!stepper.ok()) {
+    Log(LogLevel::kError, "cannot build a slot",
+        {{"slot", name}, {"error", stepper.status().ToString()}});
+    return;  // the lease lapses; nothing here can step this run
+  }
+  auto learner = v1::LearnerService::NewStub(OpenChannel(slot.learner_address));
+  const v1::Lease lease = LeaseToProto(slot.lease);
+  std::optional<actor::MlpPolicy> policy;
+  int64_t policy_version = -1;
+  absl::Time renewed_at = absl::Now();
+  absl::Time learner_answered_at = absl::Now();
+  absl::Duration lease_duration = slot.lease_duration;
+  absl::BitGen random;
+  int failures = 0;
+
+  // Gives the lease back when the slot is done with (the run ended, or the actor stops).
+  auto release = [&] {
+    v1::ReleaseLeaseRequest request;
+    *request.mutable_lease() = lease;
+    v1::ReleaseLeaseResponse response;
+    CallUnary(*coordinator_, &v1::CoordinatorService::Stub::ReleaseLease, request, response,
+              options_.rpc_timeout, "coordinator")
+        .IgnoreError();
+  };
+  // Backs off after a failed call; false once the learner has been silent for a lease.
+  auto back_off = [&](const absl::Status& status) {
+    Log(LogLevel::kWarning, "learner call failed",
+        {{"slot", name}, {"error", status.ToString()}});
+    absl::SleepFor(BackoffDelay(kRetryBackoff, ++failures, random));
+    return absl::Now() - learner_answered_at < lease_duration;
+  };
+
+  while (!stopping_.HasBeenNotified()) {
+    if (absl::Now() - renewed_at >= lease_duration / 3) {
+      v1::RenewLeaseRequest request;
+      *request.mutable_lease() = lease;
+      v1::RenewLeaseResponse response;
+      const absl::Status renewed =
+          CallUnary(*coordinator_, &v1::CoordinatorService::Stub::RenewLease, request, response,
+                    options_.rpc_timeout, "coordinator");
+      if (renewed.ok()) {
+        renewed_at = absl::Now();
+        lease_duration = DurationFromProto(response.lease_duration());
+      } else if (!IsTransient(renewed)) {
+        Log(LogLevel::kInfo, "slot lease lost", {{"slot", name}, {"error", renewed.ToString()}});
+        return;
+      }
+    }
+
+    v1::GetSlotWorkRequest ask;
+    *ask.mutable_lease() = lease;
+    ask.set_learner_epoch(slot.learner_epoch);
+    ask.set_positioned_at((*stepper)->positioned_at());
+    ask.set_policy_version(policy_version);
+    *ask.mutable_wait() = DurationToProto(options_.work_wait);
+    v1::GetSlotWorkResponse work;
+    const absl::Status asked =
+        CallUnary(*learner, &v1::LearnerService::Stub::GetSlotWork, ask, work,
+                  options_.rpc_timeout + options_.work_wait, slot.learner_address);
+    if (!asked.ok()) {
+      if (IsTransient(asked) && back_off(asked)) continue;
+      Log(LogLevel::kInfo, "giving up a slot", {{"slot", name}, {"error", asked.ToString()}});
+      return;
+    }
+    learner_answered_at = absl::Now();
+    failures = 0;
+    if (work.run_complete()) {
+      release();
+      return;
+    }
+    if (!work.ready()) continue;
+    if (work.has_weights()) {
+      absl::StatusOr<actor::MlpWeights> weights = WeightsFromProto(work.weights());
+      absl::StatusOr<actor::MlpPolicy> made =
+          weights.ok() ? actor::MlpPolicy::Create(*weights) : weights.status();
+      if (!made.ok()) {
+        Log(LogLevel::kError, "bad policy from the learner",
+            {{"slot", name}, {"error", made.status().ToString()}});
+        return;
+      }
+      policy = *std::move(made);
+      policy_version = work.rollout();
+    }
+    if (work.has_journal()) {
+      absl::StatusOr<actor::SlotJournal> journal = JournalFromProto(work.journal());
+      if (!journal.ok()) {
+        Log(LogLevel::kError, "bad journal from the learner",
+            {{"slot", name}, {"error", journal.status().ToString()}});
+        return;
+      }
+      (*stepper)->Rebuild(*journal, work.rollout(), work.start_timesteps());
+      rebuilds_.Increment();
+    }
+    if (!policy.has_value() || policy_version != work.rollout() ||
+        (*stepper)->positioned_at() != work.rollout()) {
+      // The learner answered as if we held what we do not: ask again from scratch.
+      policy_version = -1;
+      continue;
+    }
+
+    v1::PushRolloutRequest push;
+    {
+      absl::MutexLock stepping(&step_mu_);
+      update_latency_.Observe(
+          absl::ToDoubleSeconds(absl::Now() - TimeFromProto(work.publish_time())));
+      *push.mutable_data() = SlotRolloutToProto((*stepper)->Collect(*policy, work.n_steps()));
+    }
+    steps_.Increment(work.n_steps());
+    *push.mutable_lease() = lease;
+    push.set_learner_epoch(slot.learner_epoch);
+    push.set_rollout(work.rollout());
+    push.set_policy_version(policy_version);
+    while (!stopping_.HasBeenNotified()) {
+      v1::PushRolloutResponse pushed;
+      const absl::Status status =
+          CallUnary(*learner, &v1::LearnerService::Stub::PushRollout, push, pushed,
+                    options_.rpc_timeout, slot.learner_address);
+      if (status.ok()) {
+        rollouts_.Increment();
+        learner_answered_at = absl::Now();
+        failures = 0;
+        break;
+      }
+      if (IsTransient(status) && back_off(status)) continue;
+      Log(LogLevel::kInfo, "giving up a slot", {{"slot", name}, {"error", status.ToString()}});
+      return;
+    }
+  }
+  release();
+}
+
+}  // namespace dcs::services

@@ -1,0 +1,84 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_ACTOR_SLOT_WORKERS_H_
+#define DCS_SERVICES_ACTOR_SLOT_WORKERS_H_
+
+// An actor's work (DESIGN.md §3): env slots leased from the coordinator, stepped for their
+// runs' learners. Stateless between leases. A manager thread takes slot leases while fewer
+// than max_slots are held; each slot has a thread that renews its lease, asks the run's
+// learner for work (waiting there for the next policy version), rebuilds the slot from its
+// journal when it is not positioned where the learner says (actor/slot_stepper.h), collects
+// the slot's part of the rollout with the policy (Eigen) and pushes it, retrying a learner
+// that does not answer. Only one slot is stepped at a time, so an actor uses one core and the
+// slots of many runs share it: while one waits for its run's update, another steps.
+//
+// A slot is given up when its lease is lost (it moved, lapsed, or the run ended) or its
+// learner stops answering for longer than a lease: the coordinator then hands it out again.
+//
+// Thread-safe. The destructor stops everything.
+
+#include <prometheus/counter.h>
+#include <prometheus/histogram.h>
+#include <prometheus/registry.h>
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "absl/base/thread_annotations.h"
+#include "absl/synchronization/mutex.h"
+#include "absl/synchronization/notification.h"
+#include "absl/time/time.h"
+#include "dcs/v1/coordinator_service.grpc.pb.h"
+
+namespace dcs::services {
+
+struct SlotWorkersOptions {
+  std::string coordinator_address;
+  std::string holder;    // the actor's name in leases
+  std::string numerics;  // the numeric libraries' fingerprint
+  int max_slots = 64;
+  absl::Duration poll_interval = absl::Milliseconds(200);
+  absl::Duration rpc_timeout = absl::Seconds(10);
+  absl::Duration work_wait = absl::Seconds(2);  // how long a learner may hold GetSlotWork
+};
+
+class SlotWorkers {
+ public:
+  // Starts the manager thread. Borrows `metrics`, which must outlive this.
+  SlotWorkers(SlotWorkersOptions options, prometheus::Registry& metrics);
+  ~SlotWorkers();
+  SlotWorkers(const SlotWorkers&) = delete;
+  SlotWorkers& operator=(const SlotWorkers&) = delete;
+
+  // Stops taking slots, stops every slot's thread and gives the leases back.
+  void Stop();
+
+ private:
+  struct Slot;
+
+  void Manage();
+  void AcquireSlot();
+  void Work(Slot& slot);
+
+  const SlotWorkersOptions options_;
+  const std::unique_ptr<v1::CoordinatorService::Stub> coordinator_;
+  prometheus::Counter& steps_;
+  prometheus::Counter& rollouts_;
+  prometheus::Counter& rebuilds_;
+  prometheus::Histogram& update_latency_;
+
+  absl::Notification stopping_;
+  absl::Mutex step_mu_;  // one slot steps at a time
+
+  absl::Mutex mu_;
+  // By "run/slot@epoch".
+  std::map<std::string, std::shared_ptr<Slot>> slots_ ABSL_GUARDED_BY(mu_);
+
+  std::thread manager_;  // last: starts after everything above is initialised
+};
+
+}  // namespace dcs::services
+
+#endif  // DCS_SERVICES_ACTOR_SLOT_WORKERS_H_

@@ -1,0 +1,172 @@
+// Copyright 2026 The DCS Authors.
+#include "services/cli/run_client.h"
+
+#include <grpcpp/grpcpp.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <memory>
+
+#include "absl/random/random.h"
+#include "absl/strings/ascii.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/strip.h"
+#include "absl/time/clock.h"
+#include "common/atomic_file.h"
+#include "common/status_macros.h"
+#include "dcs/v1/coordinator_service.grpc.pb.h"
+#include "google/protobuf/util/message_differencer.h"
+#include "services/channel.h"
+#include "services/unary_call.h"
+
+namespace dcs::services::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::unique_ptr<v1::CoordinatorService::Stub> Coordinator(const std::string& address) {
+  return v1::CoordinatorService::NewStub(OpenChannel(address));
+}
+
+std::string Peer(const std::string& address) { return absl::StrCat("coordinator ", address); }
+
+std::string NewRequestId() {
+  absl::BitGen random;
+  return absl::StrFormat("%016x%016x", absl::Uniform<uint64_t>(random),
+                         absl::Uniform<uint64_t>(random));
+}
+
+}  // namespace
+
+absl::StatusOr<v1::Run> SubmitRun(const std::string& address, const std::string& config,
+                                  const std::string& config_name, std::optional<uint64_t> seed,
+                                  absl::Duration timeout) {
+  v1::SubmitRunRequest request;
+  request.set_request_id(NewRequestId());
+  request.set_config(config);
+  request.set_config_name(config_name);
+  if (seed.has_value()) request.set_seed(*seed);
+  v1::SubmitRunResponse response;
+  auto stub = Coordinator(address);
+  absl::Status status;
+  // The request id makes the retry safe if the first attempt was taken but not answered.
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    status = CallUnary(*stub, &v1::CoordinatorService::Stub::SubmitRun, request, response,
+                       timeout, Peer(address));
+    if (!absl::IsUnavailable(status) && !absl::IsDeadlineExceeded(status)) break;
+  }
+  DCS_RETURN_IF_ERROR(status);
+  return response.run();
+}
+
+absl::StatusOr<v1::Run> GetRun(const std::string& address, const std::string& run_id,
+                               absl::Duration timeout) {
+  v1::GetRunRequest request;
+  request.set_run_id(run_id);
+  v1::GetRunResponse response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address), &v1::CoordinatorService::Stub::GetRun,
+                                request, response, timeout, Peer(address)));
+  return response.run();
+}
+
+absl::StatusOr<std::vector<v1::Run>> ListRuns(const std::string& address,
+                                              absl::Duration timeout) {
+  v1::ListRunsResponse response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address), &v1::CoordinatorService::Stub::ListRuns,
+                                v1::ListRunsRequest(), response, timeout, Peer(address)));
+  return std::vector<v1::Run>(response.runs().begin(), response.runs().end());
+}
+
+absl::StatusOr<v1::Run> CancelRun(const std::string& address, const std::string& run_id,
+                                  absl::Duration timeout) {
+  v1::CancelRunRequest request;
+  request.set_run_id(run_id);
+  v1::CancelRunResponse response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address), &v1::CoordinatorService::Stub::CancelRun,
+                                request, response, timeout, Peer(address)));
+  return response.run();
+}
+
+absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& run_id,
+                                 absl::Duration timeout,
+                                 const std::function<void(const v1::Run&)>& on_change,
+                                 const std::function<bool()>& interrupted,
+                                 absl::Duration poll) {
+  auto stub = Coordinator(address);
+  std::optional<v1::Run> last;
+  while (!interrupted()) {
+    v1::GetRunRequest request;
+    request.set_run_id(run_id);
+    v1::GetRunResponse response;
+    const absl::Status status = CallUnary(*stub, &v1::CoordinatorService::Stub::GetRun, request,
+                                          response, timeout, Peer(address));
+    if (status.ok()) {
+      const v1::Run& run = response.run();
+      if (!last.has_value() ||
+          !google::protobuf::util::MessageDifferencer::Equals(last->progress(),
+                                                               run.progress()) ||
+          last->state() != run.state()) {
+        on_change(run);
+      }
+      last = run;
+      if (run.state() == v1::RUN_STATE_COMPLETED || run.state() == v1::RUN_STATE_FAILED ||
+          run.state() == v1::RUN_STATE_CANCELLED) {
+        return run;
+      }
+    } else if (!absl::IsUnavailable(status) && !absl::IsDeadlineExceeded(status)) {
+      return status;
+    }
+    absl::SleepFor(poll);
+  }
+  return absl::CancelledError(absl::StrCat("stopped following ", run_id));
+}
+
+absl::Status DownloadRun(const std::string& address, const std::string& run_id,
+                         const std::string& dir, absl::Duration timeout) {
+  v1::GetRunFilesRequest request;
+  request.set_run_id(run_id);
+  v1::GetRunFilesResponse response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address),
+                                &v1::CoordinatorService::Stub::GetRunFiles, request, response,
+                                timeout, Peer(address)));
+  for (const v1::RunFile& file : response.files()) {
+    const fs::path relative = fs::path(file.path()).lexically_normal();
+    if (relative.is_absolute() || relative.empty() || *relative.begin() == "..") {
+      return absl::InvalidArgumentError(
+          absl::StrCat("the coordinator sent a file outside the run's directory: ", file.path()));
+    }
+    const fs::path path = fs::path(dir) / relative;
+    std::error_code error;
+    fs::create_directories(path.parent_path(), error);
+    if (error) {
+      return absl::PermissionDeniedError(
+          absl::StrCat("cannot create ", path.parent_path().string(), ": ", error.message()));
+    }
+    DCS_RETURN_IF_ERROR(WriteFileAtomically(path.string(), file.contents()));
+  }
+  return absl::OkStatus();
+}
+
+ProgressLine ProgressLineOf(const v1::RunProgress& progress) {
+  ProgressLine line{.timesteps = progress.timesteps(),
+                    .total_timesteps = progress.total_timesteps(),
+                    .steps_per_second = progress.steps_per_second(),
+                    .recent_return = progress.has_recent_return()
+                                         ? progress.recent_return()
+                                         : std::numeric_limits<double>::quiet_NaN()};
+  if (progress.has_evaluation_step()) {
+    line.evaluation_step = progress.evaluation_step();
+    line.avg_combined = progress.avg_combined();
+  }
+  return line;
+}
+
+std::string RunStateName(v1::RunState state) {
+  absl::string_view name = v1::RunState_Name(state);
+  absl::ConsumePrefix(&name, "RUN_STATE_");
+  return absl::AsciiStrToLower(name);
+}
+
+}  // namespace dcs::services::cli

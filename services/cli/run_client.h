@@ -1,0 +1,58 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_CLI_RUN_CLIENT_H_
+#define DCS_SERVICES_CLI_RUN_CLIENT_H_
+
+// The coordinator's runs, as the `dcs` client uses them: submit, follow, list, cancel,
+// download. Every call has a deadline (`timeout`); errors are annotated with the coordinator's
+// address. Thread-safe.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/time/time.h"
+#include "dcs/v1/run.pb.h"
+#include "services/cli/training_report.h"
+
+namespace dcs::services::cli {
+
+// Queues the run of `config` (named `config_name` in errors), with `seed` if given, under a
+// new random request id (resent as is if the call must be retried). INVALID_ARGUMENT from the
+// coordinator names the field, its path and line.
+absl::StatusOr<v1::Run> SubmitRun(const std::string& address, const std::string& config,
+                                  const std::string& config_name, std::optional<uint64_t> seed,
+                                  absl::Duration timeout);
+
+absl::StatusOr<v1::Run> GetRun(const std::string& address, const std::string& run_id,
+                               absl::Duration timeout);
+absl::StatusOr<std::vector<v1::Run>> ListRuns(const std::string& address,
+                                              absl::Duration timeout);
+absl::StatusOr<v1::Run> CancelRun(const std::string& address, const std::string& run_id,
+                                  absl::Duration timeout);
+
+// Follows run `run_id` until it ends: `on_change` gets the run whenever its progress or state
+// changed (asked every `poll`). Returns the ended run; CANCELLED once `interrupted` says so
+// (the run goes on). A coordinator that does not answer is asked again until it does.
+absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& run_id,
+                                 absl::Duration timeout,
+                                 const std::function<void(const v1::Run&)>& on_change,
+                                 const std::function<bool()>& interrupted,
+                                 absl::Duration poll = absl::Milliseconds(250));
+
+// Writes run `run_id`'s files (config, checkpoints, evaluation log) into `dir`, as `dcs train
+// --out dir` lays them out. INVALID_ARGUMENT for a file path that would leave `dir`.
+absl::Status DownloadRun(const std::string& address, const std::string& run_id,
+                         const std::string& dir, absl::Duration timeout);
+
+// The progress line of a run (training_report.h).
+ProgressLine ProgressLineOf(const v1::RunProgress& progress);
+
+// "completed", "running", ...: the state as `dcs runs` shows it.
+std::string RunStateName(v1::RunState state);
+
+}  // namespace dcs::services::cli
+
+#endif  // DCS_SERVICES_CLI_RUN_CLIENT_H_

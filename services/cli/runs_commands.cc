@@ -1,0 +1,99 @@
+// Copyright 2026 The DCS Authors.
+#include "services/cli/runs_commands.h"
+
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_format.h"
+#include "dcs/proto_json.h"
+#include "services/cli/cluster_client.h"
+#include "services/cli/run_client.h"
+#include "services/cli/run_follower.h"
+#include "services/cli/text_table.h"
+#include "services/exit_codes.h"
+
+namespace dcs::services::cli {
+namespace {
+
+// Where `dcs runs watch` and `get` put a run's files unless told: <data-dir>/runs/<run id>.
+std::string DefaultOut(const GlobalFlags& flags, const std::string& run_id) {
+  return flags.data_dir + "/runs/" + run_id;
+}
+
+int ListRunsCommand(const GlobalFlags& flags) {
+  absl::StatusOr<std::vector<v1::Run>> runs = ListRuns(CoordinatorAddress(flags), flags.timeout);
+  if (!runs.ok()) return FailCommand(runs.status());
+  if (flags.output == OutputFormat::kJson) {
+    v1::ListRunsResponse response;
+    for (const v1::Run& run : *runs) *response.add_runs() = run;
+    std::cout << ProtoToJson(response) << std::endl;
+    return kExitOk;
+  }
+  std::vector<std::vector<std::string>> rows = {
+      {"RUN", "STATE", "ENV", "SEED", "STEP", "STEPS/S", "AVG_COMBINED"}};
+  for (const v1::Run& run : *runs) {
+    const v1::RunProgress& progress = run.progress();
+    rows.push_back(
+        {run.run_id(), RunStateName(run.state()), run.env(), std::to_string(run.seed()),
+         absl::StrFormat("%d/%d", progress.timesteps(), progress.total_timesteps()),
+         absl::StrFormat("%.0f", progress.steps_per_second()),
+         progress.has_avg_combined() ? absl::StrFormat("%.1f", progress.avg_combined()) : "-"});
+  }
+  std::cout << RenderTable(rows) << std::flush;
+  return kExitOk;
+}
+
+int CancelRunCommand(const GlobalFlags& flags, const std::string& run_id) {
+  absl::StatusOr<v1::Run> run = CancelRun(CoordinatorAddress(flags), run_id, flags.timeout);
+  if (!run.ok()) return FailCommand(run.status());
+  std::cout << run->run_id() << " " << RunStateName(run->state()) << std::endl;
+  return kExitOk;
+}
+
+int GetRunCommand(const GlobalFlags& flags, const std::string& run_id, std::string out) {
+  if (out.empty()) out = DefaultOut(flags, run_id);
+  if (absl::Status status = DownloadRun(CoordinatorAddress(flags), run_id, out, flags.timeout);
+      !status.ok()) {
+    return FailCommand(status);
+  }
+  std::cout << out << std::endl;
+  return kExitOk;
+}
+
+}  // namespace
+
+std::vector<CliCommand> AddRunsCommands(CLI::App& dcs, const GlobalFlags& flags) {
+  CLI::App* runs = dcs.add_subcommand(
+      "runs", "The cluster's runs: list them (no subcommand), watch, cancel or get one");
+  auto run_id = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+
+  CLI::App* watch = runs->add_subcommand(
+      "watch", "Follow a run to its end (Ctrl-C detaches), then download it and summarise it");
+  watch->add_option("run", *run_id, "the run's id, e.g. run-1")->required();
+  watch->add_option("--out", *out, "where its files go (default: <data-dir>/runs/<run id>)");
+
+  CLI::App* cancel = runs->add_subcommand("cancel", "Stop a queued or running run");
+  cancel->add_option("run", *run_id, "the run's id")->required();
+
+  CLI::App* get = runs->add_subcommand(
+      "get", "Download a run's config, checkpoints and evaluation log, as `dcs train` lays "
+             "them out");
+  get->add_option("run", *run_id, "the run's id")->required();
+  get->add_option("--out", *out, "where its files go (default: <data-dir>/runs/<run id>)");
+
+  return {
+      {watch,
+       [&flags, run_id, out] {
+         return FollowRun(CoordinatorAddress(flags), *run_id,
+                          out->empty() ? DefaultOut(flags, *run_id) : *out, flags);
+       }},
+      {cancel, [&flags, run_id] { return CancelRunCommand(flags, *run_id); }},
+      {get, [&flags, run_id, out] { return GetRunCommand(flags, *run_id, *out); }},
+      {runs, [&flags] { return ListRunsCommand(flags); }},
+  };
+}
+
+}  // namespace dcs::services::cli

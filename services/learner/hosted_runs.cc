@@ -1,0 +1,336 @@
+// Copyright 2026 The DCS Authors.
+#include "services/learner/hosted_runs.h"
+
+#include <grpcpp/grpcpp.h>
+
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "absl/random/random.h"
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+#include "common/status_macros.h"
+#include "env/env_registry.h"
+#include "run/run_checkpoint.h"
+#include "run/run_spec_yaml.h"
+#include "services/backoff.h"
+#include "services/channel.h"
+#include "services/log.h"
+#include "services/run_proto.h"
+#include "services/time_proto.h"
+#include "services/unary_call.h"
+
+namespace dcs::services {
+
+struct HostedRuns::Run {
+  coordinator::LeaseKey lease;
+  std::string config;
+  std::optional<v1::Checkpoint> checkpoint;  // to resume from; dropped once loaded
+  absl::Time renewed_at;                     // the manager thread's
+
+  absl::Mutex mu;
+  std::shared_ptr<learner::RunHost> host ABSL_GUARDED_BY(mu);  // null while loading
+
+  std::atomic<bool> lost{false};  // the lease moved or the run ended: stop
+  std::atomic<bool> done{false};  // the run's thread is about to return
+  std::thread thread;
+
+  // Stops the run: its host's Step returns CANCELLED.
+  void Lose() {
+    lost = true;
+    absl::MutexLock lock(&mu);
+    if (host != nullptr) host->Stop();
+  }
+};
+
+namespace {
+
+constexpr BackoffPolicy kRetryBackoff{.initial = absl::Milliseconds(100),
+                                      .max = absl::Seconds(1)};
+
+// Worth trying again: the coordinator is down or slow, not refusing.
+bool IsTransient(const absl::Status& status) {
+  return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status);
+}
+
+// The lease is gone: the run moved to another learner, or ended.
+bool IsLeaseLost(const absl::Status& status) {
+  return absl::IsFailedPrecondition(status) || absl::IsNotFound(status);
+}
+
+}  // namespace
+
+HostedRuns::HostedRuns(HostedRunsOptions options, prometheus::Registry& metrics)
+    : options_(std::move(options)),
+      coordinator_(v1::CoordinatorService::NewStub(OpenChannel(options_.coordinator_address))),
+      metric_families_(RunMetrics::Register(metrics)) {}
+
+void HostedRuns::Start(std::string address) {
+  address_ = std::move(address);
+  manager_ = std::thread([this] { Manage(); });
+}
+
+HostedRuns::~HostedRuns() { Stop(); }
+
+void HostedRuns::Stop() {
+  if (stopping_.HasBeenNotified()) return;  // stopped already
+  stopping_.Notify();
+  if (manager_.joinable()) manager_.join();
+  std::map<std::pair<std::string, int64_t>, std::shared_ptr<Run>> runs;
+  {
+    absl::MutexLock lock(&mu_);
+    runs.swap(runs_);
+  }
+  for (auto& [key, run] : runs) {
+    run->Lose();
+    if (run->thread.joinable()) run->thread.join();
+    // Hand the run back at once rather than let its lease lapse.
+    v1::ReleaseLeaseRequest request;
+    *request.mutable_lease() = LeaseToProto(run->lease);
+    v1::ReleaseLeaseResponse response;
+    CallUnary(*coordinator_, &v1::CoordinatorService::Stub::ReleaseLease, request, response,
+              options_.rpc_timeout, "coordinator")
+        .IgnoreError();
+  }
+}
+
+absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Find(const std::string& run_id,
+                                                                   int64_t learner_epoch) {
+  std::shared_ptr<Run> run;
+  {
+    absl::MutexLock lock(&mu_);
+    auto found = runs_.find({run_id, learner_epoch});
+    if (found == runs_.end()) {
+      auto other = runs_.lower_bound({run_id, 0});
+      if (other != runs_.end() && other->first.first == run_id) {
+        return absl::FailedPreconditionError(absl::StrCat(
+            run_id, " is hosted here under another learner lease epoch than ", learner_epoch));
+      }
+      return absl::NotFoundError(absl::StrCat("this learner does not host ", run_id));
+    }
+    run = found->second;
+  }
+  if (run->lost) {
+    return absl::FailedPreconditionError(
+        absl::StrCat("this learner lost ", run_id, "'s lease (epoch ", learner_epoch, ")"));
+  }
+  absl::MutexLock lock(&run->mu);
+  if (run->host == nullptr) {
+    return absl::UnavailableError(absl::StrCat(run_id, " is still loading"));
+  }
+  return run->host;
+}
+
+void HostedRuns::Manage() {
+  while (!stopping_.WaitForNotificationWithTimeout(options_.poll_interval)) {
+    std::vector<std::shared_ptr<Run>> finished;
+    {
+      absl::MutexLock lock(&mu_);
+      for (auto it = runs_.begin(); it != runs_.end();) {
+        if (it->second->done) {
+          finished.push_back(it->second);
+          it = runs_.erase(it);
+        } else {
+          ++it;
+        }
+      }
+    }
+    for (const std::shared_ptr<Run>& run : finished) run->thread.join();
+    RenewLeases();
+    AcquireRun();
+  }
+}
+
+void HostedRuns::RenewLeases() {
+  std::vector<std::shared_ptr<Run>> runs;
+  absl::Duration period;
+  {
+    absl::MutexLock lock(&mu_);
+    for (const auto& [key, run] : runs_) runs.push_back(run);
+    period = lease_duration_ / 3;
+  }
+  for (const std::shared_ptr<Run>& run : runs) {
+    if (run->lost || absl::Now() - run->renewed_at < period) continue;
+    v1::RenewLeaseRequest request;
+    *request.mutable_lease() = LeaseToProto(run->lease);
+    v1::RenewLeaseResponse response;
+    const absl::Status status =
+        CallUnary(*coordinator_, &v1::CoordinatorService::Stub::RenewLease, request, response,
+                  options_.rpc_timeout, "coordinator");
+    if (status.ok()) {
+      run->renewed_at = absl::Now();
+      absl::MutexLock lock(&mu_);
+      lease_duration_ = DurationFromProto(response.lease_duration());
+    } else if (IsLeaseLost(status)) {
+      Log(LogLevel::kWarning, "lost a run's lease",
+          {{"run_id", run->lease.run_id}, {"error", status.ToString()}});
+      run->Lose();
+    } else {
+      Log(LogLevel::kWarning, "cannot renew a lease yet",
+          {{"run_id", run->lease.run_id}, {"error", status.ToString()}});
+    }
+  }
+}
+
+void HostedRuns::AcquireRun() {
+  {
+    absl::MutexLock lock(&mu_);
+    if (static_cast<int>(runs_.size()) >= options_.max_runs) return;
+  }
+  v1::AcquireRunRequest request;
+  request.set_holder(address_);
+  request.set_address(address_);
+  request.set_numerics(options_.numerics);
+  v1::AcquireRunResponse response;
+  const absl::Status status =
+      CallUnary(*coordinator_, &v1::CoordinatorService::Stub::AcquireRun, request, response,
+                options_.rpc_timeout, "coordinator");
+  if (!status.ok()) {
+    if (!IsTransient(status)) {
+      Log(LogLevel::kWarning, "cannot take a run", {{"error", status.ToString()}});
+    }
+    return;
+  }
+  if (!response.has_lease()) return;
+  absl::StatusOr<coordinator::LeaseKey> lease = LeaseFromProto(response.lease());
+  if (!lease.ok()) return;
+  auto run = std::make_shared<Run>();
+  run->lease = *lease;
+  run->config = response.config();
+  if (response.has_checkpoint()) run->checkpoint = response.checkpoint();
+  run->renewed_at = absl::Now();
+  {
+    absl::MutexLock lock(&mu_);
+    lease_duration_ = DurationFromProto(response.lease_duration());
+  }
+  Log(LogLevel::kInfo, "hosting a run",
+      {{"run_id", run->lease.run_id}, {"epoch", std::to_string(run->lease.epoch)},
+       {"checkpoint", run->checkpoint.has_value() ? run->checkpoint->name() : "none"}});
+  absl::MutexLock lock(&mu_);
+  run->thread = std::thread([this, run] {
+    Train(*run);
+    run->done = true;
+  });
+  runs_[{run->lease.run_id, run->lease.epoch}] = std::move(run);
+}
+
+template <typename Request, typename Response>
+absl::Status HostedRuns::Retry(
+    Run& run,
+    grpc::Status (v1::CoordinatorService::Stub::*method)(grpc::ClientContext*, const Request&,
+                                                          Response*),
+    const Request& request) {
+  absl::BitGen random;
+  for (int attempt = 1;; ++attempt) {
+    Response response;
+    const absl::Status status =
+        CallUnary(*coordinator_, method, request, response, options_.rpc_timeout, "coordinator");
+    if (status.ok()) return status;
+    if (IsLeaseLost(status)) run.lost = true;
+    if (!IsTransient(status) || run.lost || stopping_.HasBeenNotified()) return status;
+    Log(LogLevel::kWarning, "coordinator call failed; retrying",
+        {{"run_id", run.lease.run_id}, {"error", status.ToString()}});
+    absl::SleepFor(BackoffDelay(kRetryBackoff, attempt, random));
+  }
+}
+
+void HostedRuns::Finish(Run& run, coordinator::RunState state, const std::string& error) {
+  v1::FinishRunRequest request;
+  *request.mutable_lease() = LeaseToProto(run.lease);
+  request.set_state(RunStateToProto(state));
+  request.set_error(error);
+  const absl::Status status = Retry(run, &v1::CoordinatorService::Stub::FinishRun, request);
+  if (!status.ok()) {
+    Log(LogLevel::kWarning, "cannot finish a run",
+        {{"run_id", run.lease.run_id}, {"error", status.ToString()}});
+  }
+}
+
+absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Load(Run& run) {
+  DCS_ASSIGN_OR_RETURN(run::RunSpec spec, run::ParseRunSpecYaml(run.config, run.lease.run_id));
+  std::optional<run::Checkpoint> checkpoint;
+  if (run.checkpoint.has_value()) {
+    DCS_ASSIGN_OR_RETURN(checkpoint, run::UnpackCheckpoint(CheckpointFromProto(*run.checkpoint)));
+    run.checkpoint.reset();
+  }
+  std::shared_ptr<learner::RunHost> host;
+  DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(host, learner::RunHost::Create<Env>(
+                                   spec, checkpoint.has_value() ? &*checkpoint : nullptr));
+    return absl::OkStatus();
+  }));
+  return host;
+}
+
+void HostedRuns::Train(Run& run) {
+  absl::StatusOr<std::shared_ptr<learner::RunHost>> loaded = Load(run);
+  if (!loaded.ok()) {
+    Log(LogLevel::kError, "cannot load a run",
+        {{"run_id", run.lease.run_id}, {"error", loaded.status().ToString()}});
+    if (!run.lost) Finish(run, coordinator::RunState::kFailed, loaded.status().ToString());
+    return;
+  }
+  {
+    absl::MutexLock lock(&run.mu);
+    run.host = *loaded;
+    if (run.lost) run.host->Stop();
+  }
+  learner::RunHost& host = **loaded;
+  RunMetrics metrics(metric_families_, run.lease.run_id);
+  while (true) {
+    const absl::Time start = absl::Now();
+    absl::StatusOr<learner::HostStep> step = host.Step();
+    if (!step.ok()) {
+      if (run.lost || absl::IsCancelled(step.status())) return;
+      Log(LogLevel::kError, "a run failed",
+          {{"run_id", run.lease.run_id}, {"error", step.status().ToString()}});
+      Finish(run, coordinator::RunState::kFailed, step.status().ToString());
+      return;
+    }
+    const learner::TrainingProgress& progress = step->progress;
+    metrics.Update(progress, step->steps, step->episodes,
+                   absl::ToDoubleSeconds(absl::Now() - start));
+
+    v1::ReportProgressRequest report;
+    *report.mutable_lease() = LeaseToProto(run.lease);
+    *report.mutable_progress() = ProgressToProto(
+        {.timesteps = progress.timesteps,
+         .policy_version = progress.updates,
+         .steps_per_second = progress.steps_per_second,
+         .recent_return = progress.recent_return,
+         .avg_combined = progress.evaluation == nullptr
+                             ? std::nullopt
+                             : std::optional<double>(progress.evaluation->avg_combined),
+         .evaluation_step = progress.evaluation == nullptr
+                                ? std::nullopt
+                                : std::optional<int64_t>(progress.evaluation->step)},
+        progress.total_timesteps);
+    v1::ReportProgressResponse reported;
+    const absl::Status status =
+        CallUnary(*coordinator_, &v1::CoordinatorService::Stub::ReportProgress, report, reported,
+                  options_.rpc_timeout, "coordinator");
+    if (IsLeaseLost(status)) run.Lose();
+    if (run.lost) return;
+
+    if (step->checkpoint.has_value()) {
+      v1::PutCheckpointRequest put;
+      *put.mutable_lease() = LeaseToProto(run.lease);
+      *put.mutable_checkpoint() = CheckpointToProto(run::PackCheckpoint(*step->checkpoint));
+      *put.mutable_evaluation_log() = step->evaluation_log;
+      const absl::Status stored = Retry(run, &v1::CoordinatorService::Stub::PutCheckpoint, put);
+      if (!stored.ok()) {
+        if (run.lost || stopping_.HasBeenNotified()) return;
+        Finish(run, coordinator::RunState::kFailed, stored.ToString());
+        return;
+      }
+    }
+    if (step->complete) {
+      Finish(run, coordinator::RunState::kCompleted, "");
+      Log(LogLevel::kInfo, "run complete", {{"run_id", run.lease.run_id}});
+      return;
+    }
+  }
+}
+
+}  // namespace dcs::services

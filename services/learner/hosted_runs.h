@@ -1,0 +1,104 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_LEARNER_HOSTED_RUNS_H_
+#define DCS_SERVICES_LEARNER_HOSTED_RUNS_H_
+
+// The runs a learner hosts (DESIGN.md §3, §5). A manager thread takes runs from the
+// coordinator while fewer than max_runs are hosted (AcquireRun), renews their leases, and
+// drops a run whose lease moved or whose run ended. Each run has its own thread, which loads
+// the run (from the coordinator's latest checkpoint, if any) into a learner::RunHost, then
+// steps it: after every update it reports progress, uploads the checkpoints that fall due
+// (retrying until the coordinator stored them or the lease is lost), and at the end finishes
+// the run. Updates of different runs thus run in parallel, each on its own thread with
+// libtorch pinned to one thread per process call (learner/torch_runtime.h).
+//
+// A learner's own disk holds nothing: a learner that dies loses only the updates since the
+// run's last checkpoint, which the next learner to take the run repeats, bit for bit.
+//
+// Thread-safe. The destructor stops everything.
+
+#include <prometheus/registry.h>
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <string>
+#include <thread>
+#include <utility>
+
+#include "absl/base/thread_annotations.h"
+#include "absl/status/statusor.h"
+#include "absl/synchronization/mutex.h"
+#include "absl/synchronization/notification.h"
+#include "absl/time/time.h"
+#include "coordinator/run_store.h"
+#include "dcs/v1/coordinator_service.grpc.pb.h"
+#include "learner/run_host.h"
+#include "services/learner/run_metrics.h"
+
+namespace dcs::services {
+
+struct HostedRunsOptions {
+  std::string coordinator_address;
+  std::string numerics;  // the numeric libraries' fingerprint (learner/torch_runtime.h)
+  int max_runs = 1;
+  absl::Duration poll_interval = absl::Milliseconds(200);
+  absl::Duration rpc_timeout = absl::Seconds(10);
+};
+
+class HostedRuns {
+ public:
+  // Borrows `metrics`, which must outlive this.
+  HostedRuns(HostedRunsOptions options, prometheus::Registry& metrics);
+  ~HostedRuns();
+  HostedRuns(const HostedRuns&) = delete;
+  HostedRuns& operator=(const HostedRuns&) = delete;
+
+  // Starts taking runs, for a LearnerService that actors reach at `address`.
+  void Start(std::string address);
+
+  // The host of run `run_id` for the actors of its learner lease `learner_epoch`. NOT_FOUND if
+  // this learner does not host the run; FAILED_PRECONDITION for another epoch of its lease;
+  // UNAVAILABLE while it loads.
+  absl::StatusOr<std::shared_ptr<learner::RunHost>> Find(const std::string& run_id,
+                                                         int64_t learner_epoch);
+
+  // Stops taking runs and stops every run (its lease lapses, to go to another learner).
+  void Stop();
+
+ private:
+  struct Run;
+
+  void Manage();
+  void AcquireRun();
+  void RenewLeases();
+  void Train(Run& run);
+  // Loads the run's host. On an error the run is finished as failed.
+  absl::StatusOr<std::shared_ptr<learner::RunHost>> Load(Run& run);
+  // Retries a call to the coordinator until it succeeds, the run's lease is lost (FAILED_
+  // PRECONDITION, NOT_FOUND), or the learner stops.
+  template <typename Request, typename Response>
+  absl::Status Retry(Run& run,
+                     grpc::Status (v1::CoordinatorService::Stub::*method)(grpc::ClientContext*,
+                                                                           const Request&,
+                                                                           Response*),
+                     const Request& request);
+  void Finish(Run& run, coordinator::RunState state, const std::string& error);
+
+  const HostedRunsOptions options_;
+  const std::unique_ptr<v1::CoordinatorService::Stub> coordinator_;
+  const std::shared_ptr<RunMetrics::Families> metric_families_;
+  std::string address_;  // set by Start, before the manager thread starts
+
+  absl::Notification stopping_;
+  absl::Mutex mu_;
+  // By run id and learner lease epoch: a run lost may be granted again before its old thread
+  // is reaped.
+  std::map<std::pair<std::string, int64_t>, std::shared_ptr<Run>> runs_ ABSL_GUARDED_BY(mu_);
+  absl::Duration lease_duration_ ABSL_GUARDED_BY(mu_);  // the coordinator's, as it last said
+
+  std::thread manager_;
+};
+
+}  // namespace dcs::services
+
+#endif  // DCS_SERVICES_LEARNER_HOSTED_RUNS_H_

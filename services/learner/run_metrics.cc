@@ -1,0 +1,121 @@
+// Copyright 2026 The DCS Authors.
+#include "services/learner/run_metrics.h"
+
+#include <cmath>
+#include <initializer_list>
+
+#include "actor/split.h"
+#include "common/enum_names.h"
+
+namespace dcs::services {
+
+struct RunMetrics::Families {
+  explicit Families(prometheus::Registry& registry)
+      : env_steps(Counter(registry, "dcs_env_steps_total",
+                          "Environment steps learnt from, per run.")),
+        episodes(Counter(registry, "dcs_episodes_total",
+                         "Training episodes finished, per run.")),
+        episode_return(Gauge(registry, "dcs_episode_return_mean",
+                             "Mean return of the last 100 training episodes, per run.")),
+        steps_per_second(Gauge(registry, "dcs_steps_per_second",
+                               "Environment steps per second since the run came to this "
+                               "learner, updates included.")),
+        policy_version(Gauge(registry, "dcs_policy_version",
+                             "The run's policy version (PPO updates so far).")),
+        policy_loss(Gauge(registry, "dcs_policy_loss", "Policy-gradient loss of the last update.")),
+        value_loss(Gauge(registry, "dcs_value_loss", "Value loss of the last update.")),
+        entropy_loss(Gauge(registry, "dcs_entropy_loss", "Entropy loss of the last update.")),
+        approx_kl(Gauge(registry, "dcs_approx_kl",
+                        "Approximate KL divergence of the last update.")),
+        clip_fraction(Gauge(registry, "dcs_clip_fraction",
+                            "Fraction of clipped ratios in the last update.")),
+        explained_variance(Gauge(registry, "dcs_explained_variance",
+                                 "Explained variance of the value function, last update.")),
+        evaluation_return(Gauge(registry, "dcs_evaluation_return",
+                                "Mean evaluation return of the latest evaluation, per run and "
+                                "split.")),
+        update_seconds(prometheus::BuildHistogram()
+                           .Name("dcs_learner_update_seconds")
+                           .Help("Wall seconds of one PPO update (with evaluations due).")
+                           .Register(registry)) {}
+
+  static prometheus::Family<prometheus::Counter>& Counter(prometheus::Registry& registry,
+                                                          const char* name, const char* help) {
+    return prometheus::BuildCounter().Name(name).Help(help).Register(registry);
+  }
+  static prometheus::Family<prometheus::Gauge>& Gauge(prometheus::Registry& registry,
+                                                      const char* name, const char* help) {
+    return prometheus::BuildGauge().Name(name).Help(help).Register(registry);
+  }
+
+  prometheus::Family<prometheus::Counter>& env_steps;
+  prometheus::Family<prometheus::Counter>& episodes;
+  prometheus::Family<prometheus::Gauge>& episode_return;
+  prometheus::Family<prometheus::Gauge>& steps_per_second;
+  prometheus::Family<prometheus::Gauge>& policy_version;
+  prometheus::Family<prometheus::Gauge>& policy_loss;
+  prometheus::Family<prometheus::Gauge>& value_loss;
+  prometheus::Family<prometheus::Gauge>& entropy_loss;
+  prometheus::Family<prometheus::Gauge>& approx_kl;
+  prometheus::Family<prometheus::Gauge>& clip_fraction;
+  prometheus::Family<prometheus::Gauge>& explained_variance;
+  prometheus::Family<prometheus::Gauge>& evaluation_return;
+  prometheus::Family<prometheus::Histogram>& update_seconds;
+  prometheus::Histogram& update_histogram =
+      update_seconds.Add({}, prometheus::Histogram::BucketBoundaries{
+                                 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30, 60});
+};
+
+std::shared_ptr<RunMetrics::Families> RunMetrics::Register(prometheus::Registry& registry) {
+  return std::make_shared<Families>(registry);
+}
+
+RunMetrics::RunMetrics(std::shared_ptr<Families> families, std::string run_id)
+    : families_(std::move(families)), run_id_(std::move(run_id)) {
+  // Known series start at zero (spec/operations.md §2.1).
+  families_->env_steps.Add({{"run_id", run_id_}});
+  families_->episodes.Add({{"run_id", run_id_}});
+}
+
+RunMetrics::~RunMetrics() {
+  const prometheus::Labels labels{{"run_id", run_id_}};
+  families_->env_steps.Remove(&families_->env_steps.Add(labels));
+  families_->episodes.Remove(&families_->episodes.Add(labels));
+  for (prometheus::Family<prometheus::Gauge>* family :
+       {&families_->episode_return, &families_->steps_per_second, &families_->policy_version,
+        &families_->policy_loss, &families_->value_loss, &families_->entropy_loss,
+        &families_->approx_kl, &families_->clip_fraction, &families_->explained_variance}) {
+    family->Remove(&family->Add(labels));
+  }
+  for (const auto& [split, name] : actor::kSplitNames) {
+    families_->evaluation_return.Remove(
+        &families_->evaluation_return.Add({{"run_id", run_id_}, {"split", std::string(name)}}));
+  }
+}
+
+void RunMetrics::Update(const learner::TrainingProgress& progress, int64_t steps,
+                        int64_t episodes, double seconds) {
+  const prometheus::Labels labels{{"run_id", run_id_}};
+  families_->env_steps.Add(labels).Increment(static_cast<double>(steps));
+  families_->episodes.Add(labels).Increment(static_cast<double>(episodes));
+  if (!std::isnan(progress.recent_return)) {
+    families_->episode_return.Add(labels).Set(progress.recent_return);
+  }
+  families_->steps_per_second.Add(labels).Set(progress.steps_per_second);
+  families_->policy_version.Add(labels).Set(static_cast<double>(progress.updates));
+  families_->policy_loss.Add(labels).Set(progress.update.policy_loss);
+  families_->value_loss.Add(labels).Set(progress.update.value_loss);
+  families_->entropy_loss.Add(labels).Set(progress.update.entropy_loss);
+  families_->approx_kl.Add(labels).Set(progress.update.approx_kl);
+  families_->clip_fraction.Add(labels).Set(progress.update.clip_fraction);
+  families_->explained_variance.Add(labels).Set(progress.update.explained_variance);
+  if (progress.evaluation != nullptr) {
+    for (const auto& [split, name] : actor::kSplitNames) {
+      families_->evaluation_return.Add({{"run_id", run_id_}, {"split", std::string(name)}})
+          .Set(progress.evaluation->split_mean[static_cast<int>(split)]);
+    }
+  }
+  families_->update_histogram.Observe(seconds);
+}
+
+}  // namespace dcs::services

@@ -1,0 +1,52 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_LEARNER_RUN_METRICS_H_
+#define DCS_SERVICES_LEARNER_RUN_METRICS_H_
+
+// A learner's training metrics, one series per hosted run (label run_id, bounded by
+// --max-runs; a run's series are removed when it leaves the learner). Names and label rules:
+// spec/operations.md §2. Thread-safe (prometheus-cpp metrics are).
+//
+//   dcs_env_steps_total, dcs_episodes_total          counters
+//   dcs_episode_return_mean                          the last 100 training episodes
+//   dcs_steps_per_second, dcs_policy_version
+//   dcs_policy_loss, dcs_value_loss, dcs_entropy_loss, dcs_approx_kl, dcs_clip_fraction,
+//   dcs_explained_variance                           of the latest update
+//   dcs_evaluation_return{split}                     the latest evaluation's split means
+//   dcs_learner_update_seconds                       histogram, no run label
+
+#include <prometheus/counter.h>
+#include <prometheus/gauge.h>
+#include <prometheus/histogram.h>
+#include <prometheus/registry.h>
+
+#include <memory>
+#include <string>
+
+#include "learner/training_run.h"
+
+namespace dcs::services {
+
+class RunMetrics {
+ public:
+  // The families, registered in `registry` (which must outlive them); once per registry.
+  struct Families;
+  static std::shared_ptr<Families> Register(prometheus::Registry& registry);
+
+  // Series for run `run_id`.
+  RunMetrics(std::shared_ptr<Families> families, std::string run_id);
+  ~RunMetrics();  // removes the run's series
+  RunMetrics(const RunMetrics&) = delete;
+  RunMetrics& operator=(const RunMetrics&) = delete;
+
+  // After an update that took `seconds`, having finished `episodes` training episodes.
+  void Update(const learner::TrainingProgress& progress, int64_t steps, int64_t episodes,
+              double seconds);
+
+ private:
+  const std::shared_ptr<Families> families_;
+  const std::string run_id_;
+};
+
+}  // namespace dcs::services
+
+#endif  // DCS_SERVICES_LEARNER_RUN_METRICS_H_

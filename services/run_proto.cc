@@ -1,0 +1,116 @@
+// Copyright 2026 The DCS Authors.
+#include "services/run_proto.h"
+
+#include <cmath>
+#include <limits>
+
+#include "absl/strings/str_cat.h"
+#include "services/time_proto.h"
+
+namespace dcs::services {
+namespace {
+
+struct StateMapping {
+  coordinator::RunState state;
+  v1::RunState proto;
+};
+
+constexpr StateMapping kStates[] = {
+    {coordinator::RunState::kQueued, v1::RUN_STATE_QUEUED},
+    {coordinator::RunState::kRunning, v1::RUN_STATE_RUNNING},
+    {coordinator::RunState::kCompleted, v1::RUN_STATE_COMPLETED},
+    {coordinator::RunState::kFailed, v1::RUN_STATE_FAILED},
+    {coordinator::RunState::kCancelled, v1::RUN_STATE_CANCELLED}};
+static_assert(std::size(kStates) == std::size(coordinator::kRunStateNames));
+
+}  // namespace
+
+v1::RunState RunStateToProto(coordinator::RunState state) {
+  for (const StateMapping& mapping : kStates) {
+    if (mapping.state == state) return mapping.proto;
+  }
+  return v1::RUN_STATE_UNSPECIFIED;
+}
+
+absl::StatusOr<coordinator::RunState> RunStateFromProto(v1::RunState state) {
+  for (const StateMapping& mapping : kStates) {
+    if (mapping.proto == state) return mapping.state;
+  }
+  return absl::InvalidArgumentError(absl::StrCat("run state ", v1::RunState_Name(state),
+                                                 " is not a state a run can be in"));
+}
+
+v1::RunProgress ProgressToProto(const coordinator::RunProgress& progress,
+                                int64_t total_timesteps) {
+  v1::RunProgress proto;
+  proto.set_timesteps(progress.timesteps);
+  proto.set_total_timesteps(total_timesteps);
+  proto.set_policy_version(progress.policy_version);
+  proto.set_steps_per_second(progress.steps_per_second);
+  if (!std::isnan(progress.recent_return)) proto.set_recent_return(progress.recent_return);
+  if (progress.avg_combined.has_value()) proto.set_avg_combined(*progress.avg_combined);
+  if (progress.evaluation_step.has_value()) proto.set_evaluation_step(*progress.evaluation_step);
+  return proto;
+}
+
+coordinator::RunProgress ProgressFromProto(const v1::RunProgress& proto) {
+  coordinator::RunProgress progress{
+      .timesteps = proto.timesteps(),
+      .policy_version = proto.policy_version(),
+      .steps_per_second = proto.steps_per_second(),
+      .recent_return = proto.has_recent_return() ? proto.recent_return()
+                                                 : std::numeric_limits<double>::quiet_NaN()};
+  if (proto.has_avg_combined()) progress.avg_combined = proto.avg_combined();
+  if (proto.has_evaluation_step()) progress.evaluation_step = proto.evaluation_step();
+  return progress;
+}
+
+v1::Run RunToProto(const coordinator::RunRecord& run) {
+  v1::Run proto;
+  proto.set_run_id(run.id);
+  proto.set_env(run.submission.env);
+  proto.set_seed(run.submission.seed);
+  proto.set_state(RunStateToProto(run.state));
+  proto.set_error(run.error);
+  *proto.mutable_progress() = ProgressToProto(run.progress, run.submission.total_timesteps);
+  proto.set_checkpoint(run.checkpoint);
+  proto.set_learner_numerics(run.learner_numerics);
+  proto.set_actor_numerics(run.actor_numerics);
+  *proto.mutable_create_time() = TimeToProto(run.created_at);
+  *proto.mutable_update_time() = TimeToProto(run.updated_at);
+  return proto;
+}
+
+v1::Lease LeaseToProto(const coordinator::LeaseKey& key) {
+  v1::Lease proto;
+  proto.set_run_id(key.run_id);
+  proto.set_slot(key.slot);
+  proto.set_epoch(key.epoch);
+  return proto;
+}
+
+absl::StatusOr<coordinator::LeaseKey> LeaseFromProto(const v1::Lease& proto) {
+  if (proto.run_id().empty()) return absl::InvalidArgumentError("the lease names no run");
+  return coordinator::LeaseKey{
+      .run_id = proto.run_id(), .slot = proto.slot(), .epoch = proto.epoch()};
+}
+
+v1::Checkpoint CheckpointToProto(const run::PackedCheckpoint& checkpoint) {
+  v1::Checkpoint proto;
+  proto.set_name(checkpoint.name);
+  proto.set_learner(checkpoint.learner);
+  proto.set_run_state(checkpoint.run_state);
+  proto.set_learner_sha256(checkpoint.learner_sha256);
+  proto.set_run_state_sha256(checkpoint.run_state_sha256);
+  return proto;
+}
+
+run::PackedCheckpoint CheckpointFromProto(const v1::Checkpoint& proto) {
+  return {.name = proto.name(),
+          .learner = proto.learner(),
+          .run_state = proto.run_state(),
+          .learner_sha256 = proto.learner_sha256(),
+          .run_state_sha256 = proto.run_state_sha256()};
+}
+
+}  // namespace dcs::services

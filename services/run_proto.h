@@ -1,0 +1,37 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_RUN_PROTO_H_
+#define DCS_SERVICES_RUN_PROTO_H_
+
+// Conversions between the coordinator's run types (coordinator/run_store.h,
+// coordinator/run_files.h) and dcs.v1 messages. Thread-safe (pure functions).
+
+#include "absl/status/statusor.h"
+#include "coordinator/run_files.h"
+#include "coordinator/run_state.h"
+#include "coordinator/run_store.h"
+#include "dcs/v1/coordinator_service.pb.h"
+#include "dcs/v1/run.pb.h"
+#include "run/run_checkpoint.h"
+
+namespace dcs::services {
+
+v1::RunState RunStateToProto(coordinator::RunState state);
+// INVALID_ARGUMENT for RUN_STATE_UNSPECIFIED or an unknown value.
+absl::StatusOr<coordinator::RunState> RunStateFromProto(v1::RunState state);
+
+v1::Run RunToProto(const coordinator::RunRecord& run);
+
+v1::Lease LeaseToProto(const coordinator::LeaseKey& key);
+// INVALID_ARGUMENT for a lease without a run id.
+absl::StatusOr<coordinator::LeaseKey> LeaseFromProto(const v1::Lease& proto);
+
+v1::Checkpoint CheckpointToProto(const run::PackedCheckpoint& checkpoint);
+run::PackedCheckpoint CheckpointFromProto(const v1::Checkpoint& proto);
+
+v1::RunProgress ProgressToProto(const coordinator::RunProgress& progress,
+                                int64_t total_timesteps);
+coordinator::RunProgress ProgressFromProto(const v1::RunProgress& proto);
+
+}  // namespace dcs::services
+
+#endif  // DCS_SERVICES_RUN_PROTO_H_

@@ -1,0 +1,37 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_UNARY_CALL_H_
+#define DCS_SERVICES_UNARY_CALL_H_
+
+// One unary call with a deadline, its status as an absl::Status (annotated with the method's
+// peer name): the client side of every worker-to-coordinator and actor-to-learner call.
+// Thread-safe (gRPC stubs are).
+
+#include <grpcpp/client_context.h>
+#include <grpcpp/support/status.h>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
+#include "absl/time/time.h"
+#include "common/status_util.h"
+#include "services/channel.h"
+#include "services/grpc_status.h"
+
+namespace dcs::services {
+
+template <typename Stub, typename Request, typename Response>
+absl::Status CallUnary(Stub& stub,
+                       grpc::Status (Stub::*method)(grpc::ClientContext*, const Request&,
+                                                    Response*),
+                       const Request& request, Response& response, absl::Duration timeout,
+                       absl::string_view peer) {
+  grpc::ClientContext context;
+  SetTimeout(context, timeout);
+  const grpc::Status status = (stub.*method)(&context, request, &response);
+  if (status.ok()) return absl::OkStatus();
+  return Annotate(FromGrpcStatus(status), peer);
+}
+
+}  // namespace dcs::services
+
+#endif  // DCS_SERVICES_UNARY_CALL_H_

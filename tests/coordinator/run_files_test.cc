@@ -1,0 +1,74 @@
+// Copyright 2026 The DCS Authors.
+#include "coordinator/run_files.h"
+
+#include <filesystem>
+#include <string>
+
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "run/run_checkpoint.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::coordinator {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::Field;
+using ::testing::HasSubstr;
+
+run::PackedCheckpoint Arriving(int64_t timesteps) {
+  return run::PackCheckpoint(
+      {.name = run::CheckpointName(timesteps),
+       .state = {.timesteps = timesteps, .rollouts = 2, .journals = {{.episode = 3}}},
+       .learner = "learner bytes"});
+}
+
+v1::EvaluationLog Log() {
+  v1::EvaluationLog log;
+  log.set_env("cartpole");
+  return log;
+}
+
+class RunFilesTest : public testing::TempDirTest {};
+
+TEST_F(RunFilesTest, StoresACheckpointAsDcsTrainLaysItOut) {
+  const std::string run_dir = RunDirectory(dir().string(), "run-1");
+  EXPECT_EQ(run_dir, (dir() / "runs" / "run-1").string());
+  ASSERT_TRUE(StoreCheckpoint(run_dir, Arriving(256), Log(), 3).ok());
+  absl::StatusOr<run::PackedCheckpoint> latest = LatestCheckpoint(run_dir);
+  ASSERT_TRUE(latest.ok()) << latest.status();
+  EXPECT_EQ(latest->name, "000000000256");
+  EXPECT_EQ(latest->learner, "learner bytes");
+  EXPECT_EQ(latest->run_state_sha256, Arriving(256).run_state_sha256);
+  absl::StatusOr<std::vector<RunFile>> files = ReadRunFiles(run_dir);
+  ASSERT_TRUE(files.ok());
+  EXPECT_THAT(*files, ElementsAre(Field(&RunFile::path, "checkpoints/000000000256/MANIFEST"),
+                                  Field(&RunFile::path, "checkpoints/000000000256/learner.bin"),
+                                  Field(&RunFile::path, "checkpoints/000000000256/run.yaml"),
+                                  Field(&RunFile::path, "checkpoints/latest"),
+                                  Field(&RunFile::path, "evaluations.csv"),
+                                  Field(&RunFile::path, "evaluations.json")));
+}
+
+TEST_F(RunFilesTest, RefusesACorruptCheckpointAndStoresNothing) {
+  const std::string run_dir = RunDirectory(dir().string(), "run-1");
+  run::PackedCheckpoint corrupt = Arriving(256);
+  corrupt.learner[0] = 'L';
+  const absl::Status status = StoreCheckpoint(run_dir, corrupt, Log(), 3).status();
+  EXPECT_EQ(status.code(), absl::StatusCode::kDataLoss);
+  EXPECT_THAT(status.message(), HasSubstr("learner.bin of checkpoint 000000000256 arrived corrupt"));
+  EXPECT_EQ(LatestCheckpoint(run_dir).status().code(), absl::StatusCode::kNotFound);
+
+  run::PackedCheckpoint misnamed = Arriving(256);
+  misnamed.name = "000000000512";
+  EXPECT_THAT(StoreCheckpoint(run_dir, misnamed, Log(), 3).status().message(),
+              HasSubstr("holds step 256; it must be named 000000000256"));
+}
+
+TEST_F(RunFilesTest, AMissingRunHasNoFiles) {
+  EXPECT_EQ(ReadRunFiles(RunDirectory(dir().string(), "run-9")).status().code(),
+            absl::StatusCode::kNotFound);
+}
+
+}  // namespace
+}  // namespace dcs::coordinator

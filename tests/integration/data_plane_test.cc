@@ -1,0 +1,292 @@
+// Copyright 2026 The DCS Authors.
+//
+// The distributed actor-learner end to end, with real processes on loopback: a run submitted
+// to a cluster ends with the same weights and evaluation log, bit for bit, as `dcs train` in
+// one process: with one actor, with three, and after kill -9 of an actor, of the learner, or
+// of the coordinator (restarted on its data directory).
+
+#include <signal.h>
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+#include "common/atomic_file.h"
+#include "dcs/proto_json.h"
+#include "env/cartpole.h"
+#include "gmock/gmock.h"
+#include "google/protobuf/util/field_comparator.h"
+#include "google/protobuf/util/message_differencer.h"
+#include "gtest/gtest.h"
+#include "learner/training_session.h"
+#include "run/evaluation_log.h"
+#include "run/run_checkpoint.h"
+#include "run/run_spec_yaml.h"
+#include "services/cli/child_process.h"
+#include "services/cli/cluster_client.h"
+#include "services/cli/run_client.h"
+#include "services/port_file.h"
+#include "tests/integration/test_util.h"
+#include "tests/testing/net.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::integration {
+namespace {
+
+namespace fs = std::filesystem;
+using services::cli::ChildProcess;
+using ::testing::ContainsRegex;
+using ::testing::HasSubstr;
+
+// Three slots, two stages, pools, evaluations with checkpoints between them: every part of a
+// run that a handover or a restart could get wrong. 10 rollouts of 3 x 256 steps.
+constexpr char kConfig[] = R"(env: cartpole
+seed: 5
+total_timesteps: 7680
+n_envs: 3
+feature: length
+training_range: [0.35, 0.75]
+pool: {size: 3}
+stages:
+  - {steps: 3000, schedule: {family: sinusoidal, amplitude_frac: 0.5, period: 40}}
+  - {steps: 4680, schedule: {family: random_walk, std_frac: 0.05}}
+observe: live
+evaluation: {freq: 1536, episodes: 3, contexts: {id: [0.5], ood_high: [1.0]}}
+ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
+)";
+
+constexpr absl::Duration kLease = absl::Seconds(1);
+constexpr absl::Duration kTimeout = absl::Seconds(5);
+
+// What a finished run left: its evaluation log and its final weights.
+struct RunOutcome {
+  v1::EvaluationLog log;
+  std::vector<float> parameters;
+};
+
+// The outcome stored in `dir`, as `dcs train` lays a run out. Weights are compared as loaded
+// back, not as bytes: libtorch's serialisation is not byte-stable.
+std::optional<RunOutcome> ReadOutcome(const std::string& dir) {
+  absl::StatusOr<v1::EvaluationLog> log = run::ReadEvaluationLog(dir);
+  EXPECT_TRUE(log.ok()) << log.status();
+  absl::StatusOr<run::Checkpoint> checkpoint = run::ReadLatestCheckpoint(dir);
+  EXPECT_TRUE(checkpoint.ok()) << checkpoint.status();
+  absl::StatusOr<run::RunSpec> spec = run::ParseRunSpecYaml(kConfig, "config");
+  EXPECT_TRUE(spec.ok()) << spec.status();
+  if (!log.ok() || !checkpoint.ok() || !spec.ok()) return std::nullopt;
+  absl::StatusOr<std::unique_ptr<learner::TrainingSession>> session =
+      learner::TrainingSession::Create<env::CartPole>(*spec, &*checkpoint);
+  EXPECT_TRUE(session.ok()) << session.status();
+  if (!session.ok()) return std::nullopt;
+  EXPECT_TRUE((*session)->complete()) << dir << " holds an unfinished run";
+  return RunOutcome{.log = *std::move(log), .parameters = (*session)->Parameters()};
+}
+
+void ExpectSameOutcome(const RunOutcome& actual, const RunOutcome& expected) {
+  EXPECT_EQ(actual.parameters, expected.parameters) << "final weights differ";
+  google::protobuf::util::MessageDifferencer differencer;
+  google::protobuf::util::DefaultFieldComparator comparator;
+  comparator.set_treat_nan_as_equal(true);  // a split without contexts summarises to NaN
+  differencer.set_field_comparator(&comparator);
+  differencer.IgnoreField(v1::ContextEvaluation::descriptor()->FindFieldByName("seconds"));
+  std::string differences;
+  differencer.ReportDifferencesToString(&differences);
+  EXPECT_TRUE(differencer.Compare(actual.log, expected.log)) << differences;
+}
+
+// The run as `dcs train` trains it in one process: the reference, made once.
+const RunOutcome& InOneProcess() {
+  static const RunOutcome* outcome = [] {
+    const std::string dir = testing::MakeTempDir();
+    const std::string config = dir + "/run.yaml";
+    EXPECT_TRUE(WriteFileAtomically(config, kConfig).ok());
+    const RunResult trained = RunProgram(BinaryPath("dcs"),
+                                         {"train", "--config", config, "--out", dir + "/run"},
+                                         absl::Minutes(5));
+    EXPECT_EQ(trained.exit_code, 0) << trained.output;
+    std::optional<RunOutcome> read = ReadOutcome(dir + "/run");
+    return new RunOutcome(read.value_or(RunOutcome{}));
+  }();
+  return *outcome;
+}
+
+// A cluster of real processes, each started, killed and restarted by the test.
+class Cluster {
+ public:
+  Cluster() : dir_(testing::MakeTempDir()), coordinator_port_(testing::PickFreePort()) {}
+
+  std::string coordinator_address() const {
+    return absl::StrCat("127.0.0.1:", coordinator_port_);
+  }
+
+  // The coordinator on its port and data directory (again, after Kill).
+  void StartCoordinator() {
+    Start("coordinator", "dcs-coordinator",
+          {absl::StrCat("--listen=", coordinator_address()), "--data-dir=" + dir_ + "/data",
+           absl::StrCat("--lease-duration=", absl::FormatDuration(kLease))});
+  }
+  void StartLearner(const std::string& name) {
+    Start(name, "dcs-learner", {"--coordinator=" + coordinator_address()});
+  }
+  void StartActor(const std::string& name, int max_slots) {
+    Start(name, "dcs-actor",
+          {"--coordinator=" + coordinator_address(), absl::StrCat("--max-slots=", max_slots)});
+  }
+
+  void Kill(const std::string& name) {
+    ASSERT_TRUE(processes_.count(name)) << name;
+    ASSERT_EQ(::kill(processes_.at(name).pid(), SIGKILL), 0);
+    processes_.at(name).Wait(absl::Seconds(10));
+    processes_.erase(name);
+  }
+
+  // Everything process `name` logged (across restarts).
+  std::string Log(const std::string& name) const {
+    return ReadFile(absl::StrCat(dir_, "/", name, ".log")).value_or("");
+  }
+
+  // Submits the run; returns its id.
+  std::string Submit() {
+    absl::StatusOr<v1::Run> run = services::cli::SubmitRun(coordinator_address(), kConfig,
+                                                           "run.yaml", std::nullopt, kTimeout);
+    EXPECT_TRUE(run.ok()) << run.status();
+    return run.ok() ? run->run_id() : "";
+  }
+
+  // Waits until run `run_id` has learnt from at least `timesteps` steps.
+  void WaitForProgress(const std::string& run_id, int64_t timesteps) {
+    const absl::Time deadline = absl::Now() + absl::Minutes(2);
+    while (absl::Now() < deadline) {
+      absl::StatusOr<v1::Run> run = services::cli::GetRun(coordinator_address(), run_id, kTimeout);
+      if (run.ok() && run->progress().timesteps() >= timesteps) return;
+      absl::SleepFor(absl::Milliseconds(20));
+    }
+    FAIL() << run_id << " did not reach step " << timesteps << "; logs in " << dir_;
+  }
+
+  // Waits for the run to end, downloads it, and reads what it left.
+  std::optional<RunOutcome> Finish(const std::string& run_id) {
+    const absl::Time deadline = absl::Now() + absl::Minutes(4);
+    absl::StatusOr<v1::Run> run = services::cli::WatchRun(
+        coordinator_address(), run_id, kTimeout, [](const v1::Run&) {},
+        [deadline] { return absl::Now() > deadline; });
+    EXPECT_TRUE(run.ok()) << run.status() << "; logs in " << dir_;
+    if (!run.ok()) return std::nullopt;
+    EXPECT_EQ(run->state(), v1::RUN_STATE_COMPLETED) << run->error() << "; logs in " << dir_;
+    const std::string out = dir_ + "/out/" + run_id;
+    absl::Status downloaded =
+        services::cli::DownloadRun(coordinator_address(), run_id, out, kTimeout);
+    EXPECT_TRUE(downloaded.ok()) << downloaded;
+    return ReadOutcome(out);
+  }
+
+ private:
+  void Start(const std::string& name, const std::string& program, std::vector<std::string> args) {
+    const std::string port_file = absl::StrCat(dir_, "/", name, ".ports");
+    fs::remove(port_file);
+    args.push_back("--port-file=" + port_file);
+    args.push_back("--metrics-listen=127.0.0.1:0");
+    absl::StatusOr<ChildProcess> child = ChildProcess::Start(
+        {.path = BinaryPath(program),
+         .args = std::move(args),
+         .output_path = absl::StrCat(dir_, "/", name, ".log")});
+    ASSERT_TRUE(child.ok()) << child.status();
+    const absl::Time deadline = absl::Now() + absl::Seconds(30);
+    while (!services::ReadPortFile(port_file).has_value()) {
+      ASSERT_LT(absl::Now(), deadline) << name << " did not start; see " << dir_;
+      absl::SleepFor(absl::Milliseconds(20));
+    }
+    processes_.emplace(name, *std::move(child));
+  }
+
+  const std::string dir_;
+  const int coordinator_port_;
+  std::map<std::string, ChildProcess> processes_;  // killed with the cluster
+};
+
+class DataPlaneTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { InOneProcess(); }
+};
+
+TEST_F(DataPlaneTest, OneActorGivesTheRunOfOneProcess) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  cluster.StartLearner("learner");
+  cluster.StartActor("actor", 64);
+  std::optional<RunOutcome> outcome = cluster.Finish(cluster.Submit());
+  ASSERT_TRUE(outcome.has_value());
+  ExpectSameOutcome(*outcome, InOneProcess());
+}
+
+TEST_F(DataPlaneTest, ThreeActorsGiveTheRunOfOneProcess) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  cluster.StartLearner("learner");
+  for (const char* actor : {"actor-1", "actor-2", "actor-3"}) cluster.StartActor(actor, 1);
+  std::optional<RunOutcome> outcome = cluster.Finish(cluster.Submit());
+  ASSERT_TRUE(outcome.has_value());
+  ExpectSameOutcome(*outcome, InOneProcess());
+}
+
+TEST_F(DataPlaneTest, AKilledActorsSlotsAreRebuiltByAnother) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  cluster.StartLearner("learner");
+  cluster.StartActor("doomed", 3);
+  const std::string run_id = cluster.Submit();
+  cluster.WaitForProgress(run_id, 2304);
+  cluster.StartActor("survivor", 3);
+  cluster.Kill("doomed");
+  std::optional<RunOutcome> outcome = cluster.Finish(run_id);
+  ASSERT_TRUE(outcome.has_value());
+  ExpectSameOutcome(*outcome, InOneProcess());
+  // The survivor took over the slots mid-run (the doomed actor held all three).
+  EXPECT_THAT(cluster.Log("survivor"), HasSubstr("stepping a slot"));
+}
+
+TEST_F(DataPlaneTest, AKilledLearnersRunResumesOnAnotherFromItsCheckpoint) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  cluster.StartLearner("doomed");
+  cluster.StartActor("actor", 64);
+  const std::string run_id = cluster.Submit();
+  cluster.WaitForProgress(run_id, 3840);  // past the first checkpoint (after step 1536)
+  cluster.Kill("doomed");
+  cluster.StartLearner("survivor");
+  std::optional<RunOutcome> outcome = cluster.Finish(run_id);
+  ASSERT_TRUE(outcome.has_value());
+  ExpectSameOutcome(*outcome, InOneProcess());
+  EXPECT_THAT(cluster.Log("survivor"),
+              ContainsRegex("hosting a run run_id=run-1 epoch=2 checkpoint=0000000"));
+}
+
+TEST_F(DataPlaneTest, AKilledCoordinatorRestartsOnItsDataAndLosesNothing) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  cluster.StartLearner("learner");
+  cluster.StartActor("actor", 64);
+  const std::string run_id = cluster.Submit();
+  cluster.WaitForProgress(run_id, 2304);
+  cluster.Kill("coordinator");
+  absl::SleepFor(absl::Seconds(2));  // longer than a lease
+  cluster.StartCoordinator();
+  std::optional<RunOutcome> outcome = cluster.Finish(run_id);
+  ASSERT_TRUE(outcome.has_value());
+  ExpectSameOutcome(*outcome, InOneProcess());
+  // The run ended under the restarted coordinator, with the lease it had before.
+  const std::string log = cluster.Log("coordinator");
+  const size_t restart = log.rfind("coordinator: started");
+  ASSERT_NE(restart, std::string::npos);
+  EXPECT_NE(log.find("run finished run_id=run-1 state=completed", restart), std::string::npos)
+      << log;
+  EXPECT_EQ(log.find("run leased", restart), std::string::npos) << log;
+}
+
+}  // namespace
+}  // namespace dcs::integration
