@@ -5,18 +5,29 @@
 // one process: with one actor, with three, and after kill -9 of an actor, of the learner, or
 // of the coordinator (restarted on its data directory).
 
+#include <grpcpp/grpcpp.h>
 #include <signal.h>
 
+#include <cstring>
 #include <filesystem>
+#include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "absl/strings/match.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
+#include "actor/mlp_policy.h"
+#include "actor/slot_stepper.h"
 #include "common/atomic_file.h"
+#include "common/status_macros.h"
+#include "dcs/v1/coordinator_service.grpc.pb.h"
+#include "dcs/v1/learner_service.grpc.pb.h"
 #include "dcs/proto_json.h"
 #include "env/cartpole.h"
 #include "gmock/gmock.h"
@@ -25,12 +36,16 @@
 #include "gtest/gtest.h"
 #include "learner/training_session.h"
 #include "run/evaluation_log.h"
+#include "run/run_plan.h"
 #include "run/run_checkpoint.h"
 #include "run/run_spec_yaml.h"
 #include "services/cli/child_process.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/run_client.h"
+#include "services/channel.h"
 #include "services/port_file.h"
+#include "services/trajectory_proto.h"
+#include "services/unary_call.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
@@ -138,6 +153,14 @@ class Cluster {
           {"--coordinator=" + coordinator_address(), absl::StrCat("--max-slots=", max_slots)});
   }
 
+  // Where process `name` serves gRPC and /metrics.
+  std::string address(const std::string& name) const {
+    return absl::StrCat("127.0.0.1:", ports_.at(name).grpc);
+  }
+  std::string metrics_url(const std::string& name) const {
+    return absl::StrCat("http://127.0.0.1:", ports_.at(name).metrics, "/metrics");
+  }
+
   void Kill(const std::string& name) {
     ASSERT_TRUE(processes_.count(name)) << name;
     ASSERT_EQ(::kill(processes_.at(name).pid(), SIGKILL), 0);
@@ -197,16 +220,19 @@ class Cluster {
          .output_path = absl::StrCat(dir_, "/", name, ".log")});
     ASSERT_TRUE(child.ok()) << child.status();
     const absl::Time deadline = absl::Now() + absl::Seconds(30);
-    while (!services::ReadPortFile(port_file).has_value()) {
+    std::optional<services::BoundPorts> ports;
+    while (!(ports = services::ReadPortFile(port_file)).has_value()) {
       ASSERT_LT(absl::Now(), deadline) << name << " did not start; see " << dir_;
       absl::SleepFor(absl::Milliseconds(20));
     }
+    ports_[name] = *ports;
     processes_.emplace(name, *std::move(child));
   }
 
   const std::string dir_;
   const int coordinator_port_;
   std::map<std::string, ChildProcess> processes_;  // killed with the cluster
+  std::map<std::string, services::BoundPorts> ports_;
 };
 
 class DataPlaneTest : public ::testing::Test {
@@ -286,6 +312,204 @@ TEST_F(DataPlaneTest, AKilledCoordinatorRestartsOnItsDataAndLosesNothing) {
   EXPECT_NE(log.find("run finished run_id=run-1 state=completed", restart), std::string::npos)
       << log;
   EXPECT_EQ(log.find("run leased", restart), std::string::npos) << log;
+}
+
+// An actor's side of the wire, played by the test: a slot lease and calls to the learner.
+class FakeActor {
+ public:
+  FakeActor(const std::string& coordinator, const std::string& learner)
+      : coordinator_(v1::CoordinatorService::NewStub(services::OpenChannel(coordinator))),
+        learner_(v1::LearnerService::NewStub(services::OpenChannel(learner))) {}
+
+  // Takes slot 0's lease (waiting for the learner to take the run first).
+  v1::AcquireSlotResponse AcquireSlot(const std::string& holder) {
+    v1::AcquireSlotRequest request;
+    request.set_holder(holder);
+    request.set_numerics(kActorNumerics);
+    const absl::Time deadline = absl::Now() + absl::Seconds(30);
+    while (absl::Now() < deadline) {
+      v1::AcquireSlotResponse response;
+      const absl::Status status =
+          services::CallUnary(*coordinator_, &v1::CoordinatorService::Stub::AcquireSlot, request,
+                              response, kTimeout, "coordinator");
+      EXPECT_TRUE(status.ok()) << status;
+      if (response.has_lease()) return response;
+      absl::SleepFor(absl::Milliseconds(50));
+    }
+    ADD_FAILURE() << "no slot to take";
+    return {};
+  }
+
+  absl::StatusOr<v1::GetSlotWorkResponse> GetWork(const v1::AcquireSlotResponse& slot) {
+    v1::GetSlotWorkRequest request;
+    *request.mutable_lease() = slot.lease();
+    request.set_learner_epoch(slot.learner_epoch());
+    request.set_positioned_at(-1);
+    request.set_policy_version(-1);
+    v1::GetSlotWorkResponse response;
+    const absl::Time deadline = absl::Now() + absl::Seconds(30);
+    absl::Status status;
+    do {  // UNAVAILABLE while the learner loads the run
+      status = services::CallUnary(*learner_, &v1::LearnerService::Stub::GetSlotWork, request,
+                                   response, kTimeout, "learner");
+    } while (absl::IsUnavailable(status) && absl::Now() < deadline);
+    if (!status.ok()) return status;
+    return response;
+  }
+
+  absl::StatusOr<v1::PushRolloutResponse> Push(const v1::PushRolloutRequest& request) {
+    v1::PushRolloutResponse response;
+    DCS_RETURN_IF_ERROR(services::CallUnary(*learner_, &v1::LearnerService::Stub::PushRollout,
+                                            request, response, kTimeout, "learner"));
+    return response;
+  }
+
+  // What the actor DCS ships computes with (services/actor/actor_main.cc): the run pins it.
+  static constexpr char kActorNumerics[] = "the test's";
+
+ private:
+  std::unique_ptr<v1::CoordinatorService::Stub> coordinator_;
+  std::unique_ptr<v1::LearnerService::Stub> learner_;
+};
+
+// Slot 0's part of rollout 0, as an actor collects it with the policy of `work`.
+v1::SlotRollout CollectSlot0(const v1::GetSlotWorkResponse& work) {
+  absl::StatusOr<run::RunSpec> spec = run::ParseRunSpecYaml(kConfig, "config");
+  absl::StatusOr<run::RunPlan> plan = run::PlanRun(*spec, env::CartPole::Features());
+  EXPECT_TRUE(plan.ok()) << plan.status();
+  absl::StatusOr<std::unique_ptr<actor::SlotStepper>> stepper =
+      actor::MakeSlotStepper<env::CartPole>(plan->slot, spec->n_envs);
+  absl::StatusOr<actor::SlotJournal> journal = services::JournalFromProto(work.journal());
+  absl::StatusOr<actor::MlpWeights> weights = services::WeightsFromProto(work.weights());
+  EXPECT_TRUE(stepper.ok() && journal.ok() && weights.ok());
+  (*stepper)->Rebuild(*journal, work.rollout(), work.start_timesteps());
+  absl::StatusOr<actor::MlpPolicy> policy = actor::MlpPolicy::Create(*weights);
+  EXPECT_TRUE(policy.ok()) << policy.status();
+  return services::SlotRolloutToProto((*stepper)->Collect(*policy, work.n_steps()));
+}
+
+// The value of the series `name{labels}` in a Prometheus exposition, or -1.
+double MetricValue(const std::string& exposition, const std::string& series) {
+  for (const std::string& line : Lines(exposition)) {
+    if (absl::StartsWith(line, series + " ")) {
+      double value = -1;
+      return absl::SimpleAtod(line.substr(series.size() + 1), &value) ? value : -1;
+    }
+  }
+  return -1;
+}
+
+TEST(DataPlaneBadInputTest, RefusesEachBadRolloutNamingItAndTakesTheGoodOne) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  cluster.StartLearner("learner");
+  const std::string run_id = cluster.Submit();
+  FakeActor actor(cluster.coordinator_address(), cluster.address("learner"));
+  const v1::AcquireSlotResponse slot = actor.AcquireSlot("fake-actor");
+  ASSERT_EQ(slot.lease().run_id(), run_id);
+  absl::StatusOr<v1::GetSlotWorkResponse> work = actor.GetWork(slot);
+  ASSERT_TRUE(work.ok()) << work.status();
+  ASSERT_TRUE(work->ready());
+  v1::PushRolloutRequest good;
+  *good.mutable_lease() = slot.lease();
+  good.set_learner_epoch(slot.learner_epoch());
+  good.set_rollout(0);
+  good.set_policy_version(0);
+  *good.mutable_data() = CollectSlot0(*work);
+
+  struct Case {
+    const char* what;
+    std::function<void(v1::PushRolloutRequest&)> spoil;
+    absl::StatusCode code;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"unknown run", [](auto& r) { r.mutable_lease()->set_run_id("run-99"); },
+       absl::StatusCode::kNotFound, "this learner does not host run-99"},
+      {"stale learner epoch", [](auto& r) { r.set_learner_epoch(r.learner_epoch() + 7); },
+       absl::StatusCode::kFailedPrecondition, "another learner lease epoch"},
+      {"stale policy version", [](auto& r) { r.set_policy_version(3); },
+       absl::StatusCode::kFailedPrecondition, "collected with policy version 0, not 3"},
+      {"a rollout not being collected", [](auto& r) { r.set_rollout(4); r.set_policy_version(4); },
+       absl::StatusCode::kFailedPrecondition, "rollout 4 is not being collected"},
+      {"wrong observation size",
+       [](auto& r) {
+         v1::Tensor& inputs = *r.mutable_data()->mutable_inputs();
+         inputs.set_shape(1, inputs.shape(1) - 1);
+         inputs.mutable_data()->resize(inputs.shape(0) * inputs.shape(1) * sizeof(float));
+       },
+       absl::StatusCode::kInvalidArgument, "inputs has"},
+      {"tensor shape not its length",
+       [](auto& r) { r.mutable_data()->mutable_rewards()->mutable_data()->resize(12); },
+       absl::StatusCode::kInvalidArgument, "rewards: shape [256] of D_TYPE_FLOAT32 needs 1024"},
+      {"NaN",
+       [](auto& r) {
+         const float nan = std::numeric_limits<float>::quiet_NaN();
+         std::memcpy(r.mutable_data()->mutable_rewards()->mutable_data()->data() + 8, &nan, 4);
+       },
+       absl::StatusCode::kInvalidArgument, "rewards at step 2 is nan"},
+      {"infinity",
+       [](auto& r) {
+         const float inf = std::numeric_limits<float>::infinity();
+         std::memcpy(r.mutable_data()->mutable_inputs()->mutable_data()->data(), &inf, 4);
+       },
+       absl::StatusCode::kInvalidArgument, "inputs at step 0 is inf"},
+      {"oversized message",
+       [](auto& r) { r.mutable_data()->mutable_images()->mutable_data()->resize(5 << 20); },
+       absl::StatusCode::kResourceExhausted, ""},
+  };
+  for (const Case& bad : cases) {
+    v1::PushRolloutRequest request = good;
+    bad.spoil(request);
+    const absl::Status status = actor.Push(request).status();
+    EXPECT_EQ(status.code(), bad.code) << bad.what << ": " << status;
+    EXPECT_THAT(status.message(), HasSubstr(bad.message)) << bad.what;
+  }
+
+  // The run and the process are unharmed: the good rollout is taken, once.
+  absl::StatusOr<v1::PushRolloutResponse> taken = actor.Push(good);
+  ASSERT_TRUE(taken.ok()) << taken.status();
+  EXPECT_FALSE(taken->duplicate());
+  taken = actor.Push(good);
+  ASSERT_TRUE(taken.ok()) << taken.status();
+  EXPECT_TRUE(taken->duplicate());
+
+  // The holder whose lease moved is refused: the slot lapses and goes to another holder.
+  absl::SleepFor(kLease + absl::Milliseconds(500));
+  FakeActor other(cluster.coordinator_address(), cluster.address("learner"));
+  const v1::AcquireSlotResponse again = other.AcquireSlot("another-fake-actor");
+  EXPECT_EQ(again.lease().slot(), 0);
+  EXPECT_GT(again.lease().epoch(), slot.lease().epoch());
+  ASSERT_TRUE(other.GetWork(again).ok());
+  const absl::Status moved = actor.Push(good).status();
+  EXPECT_EQ(moved.code(), absl::StatusCode::kFailedPrecondition) << moved;
+  EXPECT_THAT(moved.message(), HasSubstr("slot 0's lease moved to epoch"));
+
+  // Each refusal the learner itself made is counted under its reason.
+  absl::StatusOr<std::string> metrics = testing::HttpGet(cluster.metrics_url("learner"));
+  ASSERT_TRUE(metrics.ok()) << metrics.status();
+  EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"INVALID_ARGUMENT\"}"), 4);
+  EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"FAILED_PRECONDITION\"}"),
+            4);
+  EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"NOT_FOUND\"}"), 1);
+  EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_received_total"), 1);
+}
+
+TEST(DataPlaneBadInputTest, AMalformedConfigSubmittedRemotelyNamesItsFieldAndLine) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  std::string config = kConfig;
+  config.replace(config.find("n_envs: 3"), 9, "n_envs: 0");
+  const absl::Status status = services::cli::SubmitRun(cluster.coordinator_address(), config,
+                                                       "bad.yaml", std::nullopt, kTimeout)
+                                  .status();
+  EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << status;
+  EXPECT_THAT(status.message(), HasSubstr("bad.yaml: n_envs: line 4"));
+  // Nothing was queued.
+  absl::StatusOr<std::vector<v1::Run>> runs =
+      services::cli::ListRuns(cluster.coordinator_address(), kTimeout);
+  ASSERT_TRUE(runs.ok()) << runs.status();
+  EXPECT_TRUE(runs->empty());
 }
 
 }  // namespace
