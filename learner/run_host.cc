@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "learner/run_host.h"
 
+#include <chrono>
 #include <cmath>
 #include <span>
 #include <string>
@@ -152,10 +153,26 @@ absl::StatusOr<bool> RunHost::PushRollout(int64_t epoch, int64_t rollout, int64_
   return false;
 }
 
-absl::Status RunHost::Evaluate(const EvaluationDue& due) {
-  DCS_ASSIGN_OR_RETURN(const actor::EvaluationResult result,
-                       evaluate_(*policy_, session_->plan()));
-  session_->RecordEvaluation(due, result);
+void RunHost::StartEvaluation(const EvaluationDue& due) {
+  auto policy = std::make_shared<actor::MlpPolicy>(*policy_);
+  evaluations_.push_back(
+      {.due = due,
+       .result = std::async(std::launch::async, [this, policy] {
+         return evaluate_(*policy, session_->plan());  // the plan is constant
+       })});
+}
+
+absl::Status RunHost::RecordEvaluations(bool wait) {
+  while (!evaluations_.empty()) {
+    PendingEvaluation& next = evaluations_.front();
+    if (!wait &&
+        next.result.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+      break;
+    }
+    DCS_ASSIGN_OR_RETURN(const actor::EvaluationResult result, next.result.get());
+    session_->RecordEvaluation(next.due, result);
+    evaluations_.pop_front();
+  }
   return absl::OkStatus();
 }
 
@@ -175,10 +192,12 @@ absl::StatusOr<HostStep> RunHost::Step() {
   DCS_ASSIGN_OR_RETURN(const std::optional<EvaluationDue> due,
                        session_->AddRollout(std::move(merged.rollout), merged.finished,
                                             std::move(merged.journals)));
-  if (due.has_value()) DCS_RETURN_IF_ERROR(Evaluate(*due));
+  if (due.has_value()) StartEvaluation(*due);
   DCS_ASSIGN_OR_RETURN(const SessionUpdate update, session_->Update());
   DCS_RETURN_IF_ERROR(Publish());
-  if (update.final_evaluation.has_value()) DCS_RETURN_IF_ERROR(Evaluate(*update.final_evaluation));
+  if (update.final_evaluation.has_value()) StartEvaluation(*update.final_evaluation);
+  if (session_->checkpoint_due()) checkpoint_wanted_ = true;
+  DCS_RETURN_IF_ERROR(RecordEvaluations(/*wait=*/session_->complete()));
 
   const run::RunState& state = session_->state();
   const double seconds = absl::ToDoubleSeconds(absl::Now() - start_);
@@ -194,9 +213,10 @@ absl::StatusOr<HostStep> RunHost::Step() {
       .steps = static_cast<int64_t>(n_envs_) * n_steps_,
       .episodes = episodes,
       .complete = session_->complete()};
-  if (session_->checkpoint_due()) {
+  if (checkpoint_wanted_ && evaluations_.empty()) {
     DCS_ASSIGN_OR_RETURN(step.checkpoint, session_->Checkpoint());
     step.evaluation_log = session_->EvaluationLog();
+    checkpoint_wanted_ = false;
   }
   return step;
 }

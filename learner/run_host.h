@@ -17,13 +17,20 @@
 // `dcs train` in one process, whichever actors step its slots and however often they change
 // (a slot is rebuilt from its journal: env/vector_env.h ReplaySlot).
 //
+// Evaluations run on threads of their own, each with a copy of the policy that fell due, while
+// training goes on; they are recorded in the order they fell due. A checkpoint that falls due
+// is taken once no evaluation is outstanding (so it holds every evaluation up to its step), and
+// the run is complete once its last evaluation is in.
+//
 // Slot leases: each slot's holder names the epoch its lease was granted at; the host serves
 // the newest epoch it has seen per slot and refuses older ones (FAILED_PRECONDITION).
 //
 // Thread-safety: SlotWork and PushRollout from any thread; Step from one thread at a time.
 
 #include <cstdint>
+#include <deque>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -121,7 +128,10 @@ class RunHost {
   // Publishes the session's current policy and journals, and frees the slots' parts of the
   // rollout learnt from. Called from Step's thread.
   absl::Status Publish();
-  absl::Status Evaluate(const EvaluationDue& due);
+  // Starts evaluating the current policy for `due`.
+  void StartEvaluation(const EvaluationDue& due);
+  // Records the evaluations that have finished, in order; with `wait`, all of them.
+  absl::Status RecordEvaluations(bool wait);
   // OK if `epoch` is not older than the newest seen for `slot`, which it then becomes.
   absl::Status CheckEpoch(int slot, int64_t epoch) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_);
 
@@ -135,7 +145,14 @@ class RunHost {
   const absl::Time start_;
   const int64_t first_timesteps_;
 
-  std::optional<actor::MlpPolicy> policy_;  // Step's thread only: acts in evaluations
+  // Step's thread only.
+  std::optional<actor::MlpPolicy> policy_;  // the current version, copied into evaluations
+  struct PendingEvaluation {
+    EvaluationDue due;
+    std::future<absl::StatusOr<actor::EvaluationResult>> result;
+  };
+  std::deque<PendingEvaluation> evaluations_;  // in the order they fell due
+  bool checkpoint_wanted_ = false;
 
   absl::Mutex mu_;
   bool stopped_ ABSL_GUARDED_BY(mu_) = false;

@@ -57,6 +57,7 @@ namespace fs = std::filesystem;
 using services::cli::ChildProcess;
 using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // Three slots, two stages, pools, evaluations with checkpoints between them: every part of a
 // run that a handover or a restart could get wrong. 10 rollouts of 3 x 256 steps.
@@ -248,6 +249,25 @@ TEST_F(DataPlaneTest, OneActorGivesTheRunOfOneProcess) {
   std::optional<RunOutcome> outcome = cluster.Finish(cluster.Submit());
   ASSERT_TRUE(outcome.has_value());
   ExpectSameOutcome(*outcome, InOneProcess());
+
+  // The metrics of the run, on every process, pass promtool's lint; the run's own series left
+  // the learner with the run.
+  const std::map<std::string, std::vector<std::string>> expected = {
+      {"coordinator",
+       {"dcs_runs{state=\"completed\"} 1", "dcs_leases_granted_total{kind=\"slot\"} 3"}},
+      {"learner", {"dcs_learner_update_seconds_count 10", "dcs_rollouts_received_total 30"}},
+      {"actor", {"dcs_actor_rollouts_total 30", "dcs_policy_update_latency_seconds_count 30"}}};
+  for (const auto& [name, series] : expected) {
+    absl::StatusOr<std::string> exposition = testing::HttpGet(cluster.metrics_url(name));
+    ASSERT_TRUE(exposition.ok()) << exposition.status();
+    for (const std::string& one : series) EXPECT_THAT(*exposition, HasSubstr(one)) << name;
+    EXPECT_THAT(*exposition, Not(HasSubstr("run_id=\"run-1\""))) << name;
+    const std::string file = absl::StrCat(testing::MakeTempDir(), "/metrics.txt");
+    ASSERT_TRUE(WriteFileAtomically(file, *exposition).ok());
+    const RunResult lint =
+        RunProgram("/bin/sh", {"-c", absl::StrCat("promtool check metrics < ", file)});
+    EXPECT_EQ(lint.exit_code, 0) << name << ": " << lint.output;
+  }
 }
 
 TEST_F(DataPlaneTest, ThreeActorsGiveTheRunOfOneProcess) {
@@ -485,9 +505,12 @@ TEST(DataPlaneBadInputTest, RefusesEachBadRolloutNamingItAndTakesTheGoodOne) {
   EXPECT_EQ(moved.code(), absl::StatusCode::kFailedPrecondition) << moved;
   EXPECT_THAT(moved.message(), HasSubstr("slot 0's lease moved to epoch"));
 
-  // Each refusal the learner itself made is counted under its reason.
+  // Each refusal the learner itself made is counted under its reason; the hosted run has its
+  // series, from zero.
   absl::StatusOr<std::string> metrics = testing::HttpGet(cluster.metrics_url("learner"));
   ASSERT_TRUE(metrics.ok()) << metrics.status();
+  EXPECT_EQ(MetricValue(*metrics, "dcs_env_steps_total{run_id=\"run-1\"}"), 0);
+  EXPECT_EQ(MetricValue(*metrics, "dcs_episodes_total{run_id=\"run-1\"}"), 0);
   EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"INVALID_ARGUMENT\"}"), 4);
   EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"FAILED_PRECONDITION\"}"),
             4);
