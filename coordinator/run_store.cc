@@ -164,6 +164,23 @@ absl::StatusOr<int> ExpireLapsed(SQLite::Database& db, absl::Time now) {
   return static_cast<int>(requeued.size()) + slots.exec();
 }
 
+// When no work fits a worker: FAILED_PRECONDITION if some run (of `which` state) waits for
+// workers of other numerics (`column`), naming both fingerprints; nullopt otherwise.
+template <typename Lease>
+absl::StatusOr<std::optional<Lease>> RefuseOtherNumerics(SQLite::Database& db,
+                                                         absl::string_view column,
+                                                         absl::string_view which,
+                                                         absl::string_view numerics) {
+  SQLite::Statement query(db, absl::StrCat("SELECT number, ", column, " FROM runs WHERE ", which,
+                                           " AND ", column, " != '' AND ", column,
+                                           " != ? ORDER BY number LIMIT 1"));
+  query.bind(1, std::string(numerics));
+  if (!query.executeStep()) return std::nullopt;
+  return absl::FailedPreconditionError(absl::StrCat(
+      RunId(query.getColumn(0).getInt64()), " computes with \"", query.getColumn(1).getString(),
+      "\"; this worker with \"", numerics, "\": a run never mixes numeric libraries"));
+}
+
 }  // namespace
 
 RunStore::RunStore(std::unique_ptr<SQLite::Database> db, RunStoreOptions options)
@@ -283,7 +300,10 @@ absl::StatusOr<std::optional<LearnerLease>> RunStore::AcquireRun(absl::string_vi
                                   "(learner_numerics = '' OR learner_numerics = ?) "
                                   "ORDER BY number LIMIT 1");
     query.bind(1, std::string(numerics));
-    if (!query.executeStep()) return std::nullopt;
+    if (!query.executeStep()) {
+      query.reset();
+      return RefuseOtherNumerics<LearnerLease>(*db_, "learner_numerics", "state = 'queued'", numerics);
+    }
     const int64_t number = query.getColumn(0).getInt64();
     query.reset();
     DCS_ASSIGN_OR_RETURN(const RunRecord queued, FindRun(*db_, RunId(number)));
@@ -332,7 +352,8 @@ absl::StatusOr<std::optional<SlotLease>> RunStore::AcquireSlot(
                        .seed = run.submission.seed,
                        .config = std::move(run.submission.config)};
     }
-    return std::nullopt;
+    query.reset();
+    return RefuseOtherNumerics<SlotLease>(*db_, "actor_numerics", "state = 'running'", numerics);
   });
 }
 

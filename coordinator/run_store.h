@@ -143,14 +143,17 @@ class RunStore {
   absl::StatusOr<RunRecord> CancelRun(absl::string_view run_id, absl::Time now);
 
   // The oldest queued run a learner with `numerics` may take, leased to `holder` (listening at
-  // `address`) until now + lease_duration; the run becomes running. nullopt if there is none.
+  // `address`) until now + lease_duration; the run becomes running. nullopt if there is none;
+  // FAILED_PRECONDITION, naming both fingerprints, if the only queued runs compute with other
+  // numerics.
   absl::StatusOr<std::optional<LearnerLease>> AcquireRun(absl::string_view holder,
                                                          absl::string_view address,
                                                          absl::string_view numerics,
                                                          absl::Time now);
 
   // A free env slot of a running run (whose learner holds its lease) that an actor with
-  // `numerics` may step, skipping the runs in `except`. nullopt if there is none.
+  // `numerics` may step, skipping the runs in `except`. nullopt if there is none;
+  // FAILED_PRECONDITION as AcquireRun when the runs waiting for actors compute with others.
   absl::StatusOr<std::optional<SlotLease>> AcquireSlot(absl::string_view holder,
                                                        absl::string_view numerics,
                                                        const std::vector<std::string>& except,

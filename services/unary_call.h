@@ -2,9 +2,9 @@
 #ifndef DCS_SERVICES_UNARY_CALL_H_
 #define DCS_SERVICES_UNARY_CALL_H_
 
-// One unary call with a deadline, its status as an absl::Status (annotated with the method's
-// peer name): the client side of every worker-to-coordinator and actor-to-learner call.
-// Thread-safe (gRPC stubs are).
+// One unary call with a deadline, its status as an absl::Status (annotated with the peer's
+// name): the client side of every worker-to-coordinator, actor-to-learner and client call; and
+// which failures are worth the same call again. Thread-safe (gRPC stubs are).
 
 #include <grpcpp/client_context.h>
 #include <grpcpp/support/status.h>
@@ -18,6 +18,11 @@
 #include "services/grpc_status.h"
 
 namespace dcs::services {
+
+// The peer is down, restarting or slow, rather than refusing: the same call may succeed later.
+inline bool IsTransient(const absl::Status& status) {
+  return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status);
+}
 
 template <typename Stub, typename Request, typename Response>
 absl::Status CallUnary(Stub& stub,

@@ -21,6 +21,7 @@
 #include "run/run_spec_yaml.h"
 #include "services/backoff.h"
 #include "services/channel.h"
+#include "services/finished_threads.h"
 #include "services/log.h"
 #include "services/run_proto.h"
 #include "services/time_proto.h"
@@ -43,10 +44,6 @@ namespace {
 
 constexpr BackoffPolicy kRetryBackoff{.initial = absl::Milliseconds(50),
                                       .max = absl::Seconds(1)};
-
-bool IsTransient(const absl::Status& status) {
-  return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status);
-}
 
 std::string SlotName(const coordinator::LeaseKey& lease) {
   return absl::StrCat(lease.run_id, "/", lease.slot);
@@ -122,19 +119,7 @@ void SlotWorkers::Stop() {
 
 void SlotWorkers::Manage() {
   while (!stopping_.WaitForNotificationWithTimeout(options_.poll_interval)) {
-    std::vector<std::shared_ptr<Slot>> finished;
-    {
-      absl::MutexLock lock(&mu_);
-      for (auto it = slots_.begin(); it != slots_.end();) {
-        if (it->second->done) {
-          finished.push_back(it->second);
-          it = slots_.erase(it);
-        } else {
-          ++it;
-        }
-      }
-    }
-    for (const std::shared_ptr<Slot>& slot : finished) slot->thread.join();
+    JoinFinished(mu_, slots_);
     AcquireSlot();
   }
 }

@@ -55,7 +55,7 @@ absl::StatusOr<v1::Run> SubmitRun(const std::string& address, const std::string&
   for (int attempt = 0; attempt < 3; ++attempt) {
     status = CallUnary(*stub, &v1::CoordinatorService::Stub::SubmitRun, request, response,
                        timeout, Peer(address));
-    if (!absl::IsUnavailable(status) && !absl::IsDeadlineExceeded(status)) break;
+    if (!IsTransient(status)) break;
   }
   DCS_RETURN_IF_ERROR(status);
   return response.run();
@@ -115,7 +115,7 @@ absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& 
           run.state() == v1::RUN_STATE_CANCELLED) {
         return run;
       }
-    } else if (!absl::IsUnavailable(status) && !absl::IsDeadlineExceeded(status)) {
+    } else if (!IsTransient(status)) {
       return status;
     }
     absl::SleepFor(poll);

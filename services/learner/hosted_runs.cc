@@ -16,6 +16,7 @@
 #include "run/run_spec_yaml.h"
 #include "services/backoff.h"
 #include "services/channel.h"
+#include "services/finished_threads.h"
 #include "services/log.h"
 #include "services/run_proto.h"
 #include "services/time_proto.h"
@@ -48,11 +49,6 @@ namespace {
 
 constexpr BackoffPolicy kRetryBackoff{.initial = absl::Milliseconds(100),
                                       .max = absl::Seconds(1)};
-
-// Worth trying again: the coordinator is down or slow, not refusing.
-bool IsTransient(const absl::Status& status) {
-  return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status);
-}
 
 // The lease is gone: the run moved to another learner, or ended.
 bool IsLeaseLost(const absl::Status& status) {
@@ -124,19 +120,7 @@ absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Find(const std::st
 
 void HostedRuns::Manage() {
   while (!stopping_.WaitForNotificationWithTimeout(options_.poll_interval)) {
-    std::vector<std::shared_ptr<Run>> finished;
-    {
-      absl::MutexLock lock(&mu_);
-      for (auto it = runs_.begin(); it != runs_.end();) {
-        if (it->second->done) {
-          finished.push_back(it->second);
-          it = runs_.erase(it);
-        } else {
-          ++it;
-        }
-      }
-    }
-    for (const std::shared_ptr<Run>& run : finished) run->thread.join();
+    JoinFinished(mu_, runs_);
     RenewLeases();
     AcquireRun();
   }

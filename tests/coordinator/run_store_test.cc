@@ -124,8 +124,10 @@ TEST_F(RunStoreTest, WorkersWithOtherNumericLibrariesGetNoLeaseOfTheRun) {
   absl::StatusOr<std::optional<SlotLease>> first = store->AcquireSlot("A", "E", {}, kStart);
   ASSERT_TRUE(first.ok() && first->has_value());
   absl::StatusOr<std::optional<SlotLease>> other = store->AcquireSlot("B", "F", {}, kStart);
-  ASSERT_TRUE(other.ok());
-  EXPECT_FALSE(other->has_value());
+  EXPECT_EQ(other.status().code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_EQ(other.status().message(),
+            "run-1 computes with \"E\"; this worker with \"F\": a run never mixes numeric "
+            "libraries");
   absl::StatusOr<std::optional<SlotLease>> same = store->AcquireSlot("C", "E", {}, kStart);
   ASSERT_TRUE(same.ok());
   EXPECT_TRUE(same->has_value());
@@ -133,8 +135,8 @@ TEST_F(RunStoreTest, WorkersWithOtherNumericLibrariesGetNoLeaseOfTheRun) {
   // Nor can a learner with other numerics take the run back.
   ASSERT_TRUE(store->ReleaseLease(learner.key, kStart).ok());
   absl::StatusOr<std::optional<LearnerLease>> refused = store->AcquireRun("L2", "b", "M", kStart);
-  ASSERT_TRUE(refused.ok());
-  EXPECT_FALSE(refused->has_value());
+  EXPECT_EQ(refused.status().code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT(refused.status().message(), HasSubstr("run-1 computes with \"N\""));
   absl::StatusOr<std::optional<LearnerLease>> taken = store->AcquireRun("L2", "b", "N", kStart);
   ASSERT_TRUE(taken.ok());
   EXPECT_TRUE(taken->has_value());
