@@ -5,6 +5,7 @@
 #include <prometheus/counter.h>
 #include <prometheus/histogram.h>
 
+#include <algorithm>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -219,7 +220,8 @@ void SlotWorkers::Work(Slot& slot) {
     ask.set_learner_epoch(slot.learner_epoch);
     ask.set_positioned_at((*stepper)->positioned_at());
     ask.set_policy_version(policy_version);
-    *ask.mutable_wait() = DurationToProto(options_.work_wait);
+    // Back in time to renew the lease: a wait as long as the lease would let it lapse.
+    *ask.mutable_wait() = DurationToProto(std::min(options_.work_wait, lease_duration / 3));
     v1::GetSlotWorkResponse work;
     const absl::Status asked =
         CallUnary(*learner, &v1::LearnerService::Stub::GetSlotWork, ask, work,
