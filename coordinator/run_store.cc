@@ -161,7 +161,22 @@ absl::StatusOr<int> ExpireLapsed(SQLite::Database& db, absl::Time now) {
   SQLite::Statement slots(db, "UPDATE leases SET holder = '', address = '', deadline = 0 "
                               "WHERE slot >= 0 AND holder != '' AND deadline < ?");
   slots.bind(1, Micros(now));
-  return static_cast<int>(requeued.size()) + slots.exec();
+  SQLite::Statement jobs(db, "UPDATE evaluation_jobs SET holder = '', deadline = 0 "
+                             "WHERE done = 0 AND holder != '' AND deadline < ?");
+  jobs.bind(1, Micros(now));
+  return static_cast<int>(requeued.size()) + slots.exec() + jobs.exec();
+}
+
+// Drops the policies of run `number`'s evaluations: it ended, nothing evaluates them any more.
+void DropEvaluationWeights(SQLite::Database& db, int64_t number) {
+  SQLite::Statement update(db, "UPDATE evaluations SET weights = x'' WHERE run = ?");
+  update.bind(1, number);
+  update.exec();
+}
+
+std::string JobName(const EvaluationJobKey& key) {
+  return absl::StrCat("the evaluation job of context ", key.context, " of policy version ",
+                      key.policy_version, " of ", key.run_id);
 }
 
 // When no work fits a worker: FAILED_PRECONDITION if some run (of `which` state) waits for
@@ -221,6 +236,10 @@ absl::StatusOr<std::unique_ptr<RunStore>> RunStore::Open(const std::string& path
     SQLite::Statement grace(*db, "UPDATE leases SET deadline = max(deadline, ?) WHERE holder != ''");
     grace.bind(1, Micros(now + options.lease_duration));
     grace.exec();
+    SQLite::Statement job_grace(
+        *db, "UPDATE evaluation_jobs SET deadline = max(deadline, ?) WHERE holder != ''");
+    job_grace.bind(1, Micros(now + options.lease_duration));
+    job_grace.exec();
     return std::unique_ptr<RunStore>(new RunStore(std::move(db), options));
   } catch (const SQLite::Exception& e) {
     return absl::InternalError(absl::StrCat("cannot open the coordinator database ", path, ": ",
@@ -286,6 +305,7 @@ absl::StatusOr<RunRecord> RunStore::CancelRun(absl::string_view run_id, absl::Ti
     DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(*db_, run_id));
     DCS_RETURN_IF_ERROR(SetRunState(*db_, run, RunState::kCancelled, "cancelled by a client", now));
     FreeLeases(*db_, *RunNumber(run_id), /*learner=*/true);
+    DropEvaluationWeights(*db_, *RunNumber(run_id));
     return FindRun(*db_, run_id);
   });
 }
@@ -387,6 +407,214 @@ absl::Status RunStore::ReleaseLease(const LeaseKey& key, absl::Time now) {
   });
 }
 
+absl::Status RunStore::SubmitEvaluation(const LeaseKey& key,
+                                        const EvaluationRequest& evaluation, absl::Time now) {
+  if (evaluation.contexts < 1 || evaluation.episodes < 1) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "an evaluation needs contexts and episodes; got ", evaluation.contexts, " contexts of ",
+        evaluation.episodes, " episodes"));
+  }
+  if (evaluation.weights.empty()) {
+    return absl::InvalidArgumentError("an evaluation needs the policy's weights");
+  }
+  return Transaction([&]() -> absl::Status {
+    DCS_RETURN_IF_ERROR(CheckHeld(*db_, key));
+    const int64_t number = *RunNumber(key.run_id);
+    SQLite::Statement existing(*db_, "SELECT contexts, episodes FROM evaluations "
+                                     "WHERE run = ? AND policy_version = ?");
+    existing.bind(1, number);
+    existing.bind(2, evaluation.policy_version);
+    if (existing.executeStep()) {
+      if (existing.getColumn(0).getInt() != evaluation.contexts ||
+          existing.getColumn(1).getInt() != evaluation.episodes) {
+        return absl::InvalidArgumentError(absl::StrCat(
+            "policy version ", evaluation.policy_version, " of ", key.run_id,
+            " was submitted for evaluation with ", existing.getColumn(0).getInt(),
+            " contexts of ", existing.getColumn(1).getInt(), " episodes, now with ",
+            evaluation.contexts, " of ", evaluation.episodes));
+      }
+      return absl::OkStatus();  // a retry, or a learner repeating it after a resume
+    }
+    existing.reset();
+    SQLite::Statement insert(*db_, "INSERT INTO evaluations (run, policy_version, step, "
+                                   "contexts, episodes, weights, created_at) "
+                                   "VALUES (?, ?, ?, ?, ?, ?, ?)");
+    insert.bind(1, number);
+    insert.bind(2, evaluation.policy_version);
+    insert.bind(3, evaluation.step);
+    insert.bind(4, evaluation.contexts);
+    insert.bind(5, evaluation.episodes);
+    insert.bind(6, evaluation.weights.data(), static_cast<int>(evaluation.weights.size()));
+    insert.bind(7, Micros(now));
+    insert.exec();
+    SQLite::Statement job(*db_, "INSERT INTO evaluation_jobs (run, policy_version, context) "
+                                "VALUES (?, ?, ?)");
+    for (int context = 0; context < evaluation.contexts; ++context) {
+      job.bind(1, number);
+      job.bind(2, evaluation.policy_version);
+      job.bind(3, context);
+      job.exec();
+      job.reset();
+    }
+    return absl::OkStatus();
+  });
+}
+
+absl::StatusOr<std::optional<EvaluationJob>> RunStore::AcquireEvaluationJob(
+    absl::string_view holder, absl::string_view numerics, absl::Time now) {
+  return Transaction([&]() -> absl::StatusOr<std::optional<EvaluationJob>> {
+    DCS_RETURN_IF_ERROR(ExpireLapsed(*db_, now).status());
+    // First in, first out across runs: an evaluation waits behind those handed over before it.
+    SQLite::Statement query(
+        *db_,
+        "SELECT j.run, j.policy_version, j.context, e.episodes, e.weights, r.seed, r.config "
+        "FROM evaluation_jobs j "
+        "JOIN evaluations e ON e.run = j.run AND e.policy_version = j.policy_version "
+        "JOIN runs r ON r.number = j.run "
+        "WHERE j.done = 0 AND j.holder = '' AND r.state = 'running' "
+        "AND (r.actor_numerics = '' OR r.actor_numerics = ?) "
+        "ORDER BY e.created_at, j.run, j.policy_version, j.context LIMIT 1");
+    query.bind(1, std::string(numerics));
+    if (!query.executeStep()) return std::nullopt;
+    const int64_t number = query.getColumn(0).getInt64();
+    EvaluationJob job{.key = {.run_id = RunId(number),
+                              .policy_version = query.getColumn(1).getInt64(),
+                              .context = query.getColumn(2).getInt()},
+                      .seed = static_cast<uint64_t>(query.getColumn(5).getInt64()),
+                      .config = query.getColumn(6).getString(),
+                      .episodes = query.getColumn(3).getInt(),
+                      .weights = query.getColumn(4).getString()};
+    query.reset();
+    SQLite::Statement grant(*db_, "UPDATE evaluation_jobs SET epoch = epoch + 1, holder = ?, "
+                                  "deadline = ? WHERE run = ? AND policy_version = ? AND "
+                                  "context = ? RETURNING epoch");
+    grant.bind(1, std::string(holder));
+    grant.bind(2, Micros(now + options_.lease_duration));
+    grant.bind(3, number);
+    grant.bind(4, job.key.policy_version);
+    grant.bind(5, job.key.context);
+    grant.executeStep();
+    job.key.epoch = grant.getColumn(0).getInt64();
+    grant.reset();
+    SQLite::Statement pin(*db_, "UPDATE runs SET actor_numerics = ? WHERE number = ?");
+    pin.bind(1, std::string(numerics));
+    pin.bind(2, number);
+    pin.exec();
+    return job;
+  });
+}
+
+absl::StatusOr<bool> RunStore::ReportEvaluationJob(const EvaluationJobKey& key,
+                                                   const ContextReturns& result) {
+  for (size_t episode = 0; episode < result.returns.size(); ++episode) {
+    if (!std::isfinite(result.returns[episode])) {
+      return absl::InvalidArgumentError(absl::StrCat("the return of episode ", episode, " of ",
+                                                     JobName(key), " is ",
+                                                     result.returns[episode],
+                                                     "; returns must be finite"));
+    }
+  }
+  return Transaction([&]() -> absl::StatusOr<bool> {
+    DCS_ASSIGN_OR_RETURN(const int64_t number, RunNumber(key.run_id));
+    SQLite::Statement query(*db_, "SELECT j.epoch, j.done, e.episodes, e.contexts "
+                                  "FROM evaluation_jobs j JOIN evaluations e "
+                                  "ON e.run = j.run AND e.policy_version = j.policy_version "
+                                  "WHERE j.run = ? AND j.policy_version = ? AND j.context = ?");
+    query.bind(1, number);
+    query.bind(2, key.policy_version);
+    query.bind(3, key.context);
+    if (!query.executeStep()) return absl::NotFoundError(absl::StrCat("no ", JobName(key)));
+    const int64_t epoch = query.getColumn(0).getInt64();
+    const bool done = query.getColumn(1).getInt() != 0;
+    const int episodes = query.getColumn(2).getInt();
+    const int contexts = query.getColumn(3).getInt();
+    query.reset();
+    if (epoch != key.epoch) {
+      return absl::FailedPreconditionError(absl::StrCat(JobName(key), " moved: epoch ", epoch,
+                                                        " was granted after epoch ", key.epoch));
+    }
+    if (done) return true;
+    if (static_cast<int>(result.returns.size()) != episodes) {
+      return absl::InvalidArgumentError(absl::StrCat(JobName(key), " has ", episodes,
+                                                     " episodes; ", result.returns.size(),
+                                                     " returns were delivered"));
+    }
+    SQLite::Statement insert(*db_, "INSERT INTO evaluation_returns (run, policy_version, "
+                                   "context, episode, value) VALUES (?, ?, ?, ?, ?)");
+    for (int episode = 0; episode < episodes; ++episode) {
+      insert.bind(1, number);
+      insert.bind(2, key.policy_version);
+      insert.bind(3, key.context);
+      insert.bind(4, episode);
+      insert.bind(5, result.returns[episode]);
+      insert.exec();
+      insert.reset();
+    }
+    SQLite::Statement finish(*db_, "UPDATE evaluation_jobs SET done = 1, holder = '', "
+                                   "deadline = 0, seconds = ? WHERE run = ? AND "
+                                   "policy_version = ? AND context = ?");
+    finish.bind(1, result.seconds);
+    finish.bind(2, number);
+    finish.bind(3, key.policy_version);
+    finish.bind(4, key.context);
+    finish.exec();
+    // Once every context is in, nothing evaluates the policy again: drop it.
+    SQLite::Statement remaining(*db_, "SELECT count(*) FROM evaluation_jobs WHERE run = ? AND "
+                                      "policy_version = ? AND done = 1");
+    remaining.bind(1, number);
+    remaining.bind(2, key.policy_version);
+    remaining.executeStep();
+    if (remaining.getColumn(0).getInt() == contexts) {
+      remaining.reset();
+      SQLite::Statement drop(*db_, "UPDATE evaluations SET weights = x'' WHERE run = ? AND "
+                                   "policy_version = ?");
+      drop.bind(1, number);
+      drop.bind(2, key.policy_version);
+      drop.exec();
+    }
+    return false;
+  });
+}
+
+absl::StatusOr<EvaluationProgress> RunStore::GetEvaluation(absl::string_view run_id,
+                                                           int64_t policy_version) {
+  return Transaction([&]() -> absl::StatusOr<EvaluationProgress> {
+    DCS_ASSIGN_OR_RETURN(const int64_t number, RunNumber(run_id));
+    SQLite::Statement query(*db_, "SELECT e.contexts, (SELECT count(*) FROM evaluation_jobs j "
+                                  "WHERE j.run = e.run AND j.policy_version = e.policy_version "
+                                  "AND j.done = 1) FROM evaluations e "
+                                  "WHERE e.run = ? AND e.policy_version = ?");
+    query.bind(1, number);
+    query.bind(2, policy_version);
+    if (!query.executeStep()) {
+      return absl::NotFoundError(absl::StrCat("policy version ", policy_version, " of ", run_id,
+                                              " was not submitted for evaluation"));
+    }
+    EvaluationProgress progress{.contexts = query.getColumn(0).getInt(),
+                                .done = query.getColumn(1).getInt()};
+    query.reset();
+    if (progress.done < progress.contexts) return progress;
+    progress.results.resize(progress.contexts);
+    SQLite::Statement seconds(*db_, "SELECT context, seconds FROM evaluation_jobs "
+                                    "WHERE run = ? AND policy_version = ?");
+    seconds.bind(1, number);
+    seconds.bind(2, policy_version);
+    while (seconds.executeStep()) {
+      progress.results[seconds.getColumn(0).getInt()].seconds = seconds.getColumn(1).getDouble();
+    }
+    SQLite::Statement returns(*db_, "SELECT context, value FROM evaluation_returns "
+                                    "WHERE run = ? AND policy_version = ? "
+                                    "ORDER BY context, episode");
+    returns.bind(1, number);
+    returns.bind(2, policy_version);
+    while (returns.executeStep()) {
+      progress.results[returns.getColumn(0).getInt()].returns.push_back(
+          returns.getColumn(1).getDouble());
+    }
+    return progress;
+  });
+}
+
 absl::StatusOr<int> RunStore::ExpireLeases(absl::Time now) {
   return Transaction([&]() -> absl::StatusOr<int> { return ExpireLapsed(*db_, now); });
 }
@@ -474,6 +702,7 @@ absl::Status RunStore::FinishRun(const LeaseKey& key, RunState state, absl::stri
     DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(*db_, key.run_id));
     DCS_RETURN_IF_ERROR(SetRunState(*db_, run, state, error, now));
     FreeLeases(*db_, *RunNumber(key.run_id), /*learner=*/true);
+    DropEvaluationWeights(*db_, *RunNumber(key.run_id));
     return absl::OkStatus();
   });
 }
@@ -492,6 +721,10 @@ absl::StatusOr<StoreCounts> RunStore::Counts() {
     counts.free_slot_leases =
         db_->execAndGet("SELECT count(*) FROM leases s JOIN runs r ON r.number = s.run "
                         "WHERE s.slot >= 0 AND s.holder = '' AND r.state = 'running'")
+            .getInt64();
+    counts.free_evaluation_jobs =
+        db_->execAndGet("SELECT count(*) FROM evaluation_jobs j JOIN runs r ON r.number = j.run "
+                        "WHERE j.done = 0 AND j.holder = '' AND r.state = 'running'")
             .getInt64();
     return counts;
   });

@@ -2,7 +2,8 @@
 #ifndef DCS_COORDINATOR_RUN_STORE_H_
 #define DCS_COORDINATOR_RUN_STORE_H_
 
-// The coordinator's durable state: runs, their leases and their checkpoint index, in one SQLite
+// The coordinator's durable state: runs, their leases, their evaluations (jobs for actors and
+// their results) and their checkpoint index, in one SQLite
 // file (WAL, synchronous=FULL, schema versioned by PRAGMA user_version with forward-only
 // migrations: coordinator/store_schema.h). Every call is one transaction and returns after it
 // committed, so whatever a caller acknowledges on the strength of a call survives a crash.
@@ -13,7 +14,9 @@
 // first). Each grant raises the lease's epoch, and every call a holder makes names the epoch it
 // was granted, so a worker that comes back after its lease moved is refused
 // (FAILED_PRECONDITION), never counted twice. When a run's learner lease is granted anew, its
-// slot leases are freed: they pointed at the old learner.
+// slot leases are freed: they pointed at the old learner. Evaluation jobs are leased the same
+// way, one per evaluation context; their results are kept, the policy they evaluated is
+// dropped once every context is in.
 //
 // Numeric libraries (DESIGN.md §4): a run remembers the numeric fingerprint of the first
 // learner that took it and of the first actor that stepped one of its slots; only workers
@@ -99,6 +102,48 @@ struct SlotLease {
   std::string config;
 };
 
+// An evaluation a run's learner hands over (DESIGN.md §3): the policy of `policy_version`,
+// evaluated at training step `step` on each of the run's `contexts` evaluation contexts, with
+// `episodes` episodes each. One job per context goes to actors.
+struct EvaluationRequest {
+  int64_t policy_version = 0;
+  int64_t step = 0;
+  int contexts = 0;
+  int episodes = 0;
+  std::string weights;  // the policy, serialised by the caller; opaque here
+};
+
+// Names one evaluation job as its holder was granted it.
+struct EvaluationJobKey {
+  std::string run_id;
+  int64_t policy_version = 0;
+  int context = 0;
+  int64_t epoch = 0;
+};
+
+// An evaluation job leased to an actor, with what it needs to run it.
+struct EvaluationJob {
+  EvaluationJobKey key;
+  uint64_t seed = 0;
+  std::string config;
+  int episodes = 0;
+  std::string weights;
+};
+
+// One context's episodes as an actor evaluated them.
+struct ContextReturns {
+  std::vector<double> returns;  // one per episode, in episode order
+  double seconds = 0;
+};
+
+// How an evaluation stands: `results` holds every context's, in context order, once `done`
+// reaches `contexts`, and nothing before.
+struct EvaluationProgress {
+  int contexts = 0;
+  int done = 0;
+  std::vector<ContextReturns> results;
+};
+
 struct CheckpointRecord {
   std::string name;
   int64_t timesteps = 0;
@@ -110,6 +155,7 @@ struct StoreCounts {
   std::vector<std::pair<RunState, int64_t>> runs_by_state;  // every state, zeros included
   int64_t free_learner_leases = 0;  // runs waiting for a learner
   int64_t free_slot_leases = 0;     // slots of running runs waiting for an actor
+  int64_t free_evaluation_jobs = 0;  // evaluation jobs of running runs waiting for an actor
 };
 
 struct RunStoreOptions {
@@ -167,8 +213,35 @@ class RunStore {
   // The holder gives a lease back (it stops stepping the slot, say). Errors as RenewLease.
   absl::Status ReleaseLease(const LeaseKey& key, absl::Time now);
 
+  // The learner holding `key` hands over an evaluation. Idempotent: the same policy version
+  // again is accepted as it stands. INVALID_ARGUMENT for no contexts, episodes or weights, or
+  // for a version submitted before with other contexts or episodes; otherwise errors as
+  // RenewLease.
+  absl::Status SubmitEvaluation(const LeaseKey& key, const EvaluationRequest& evaluation,
+                                absl::Time now);
+
+  // The oldest free evaluation job of a running run that an actor with `numerics` may run,
+  // leased to `holder` until now + lease_duration. nullopt if there is none.
+  absl::StatusOr<std::optional<EvaluationJob>> AcquireEvaluationJob(absl::string_view holder,
+                                                                    absl::string_view numerics,
+                                                                    absl::Time now);
+
+  // The holder of `key` delivers the job's result; returns true if it was delivered before (a
+  // retry). A lapsed job not yet granted again is still accepted: its result is the same
+  // whoever computes it. NOT_FOUND for an unknown job; FAILED_PRECONDITION if it moved to a
+  // newer epoch; INVALID_ARGUMENT for a number of returns other than the evaluation's episodes
+  // or a non-finite one.
+  absl::StatusOr<bool> ReportEvaluationJob(const EvaluationJobKey& key,
+                                           const ContextReturns& result);
+
+  // Where the evaluation of `policy_version` of `run_id` stands. NOT_FOUND if it was never
+  // submitted.
+  absl::StatusOr<EvaluationProgress> GetEvaluation(absl::string_view run_id,
+                                                   int64_t policy_version);
+
   // Frees every lease whose deadline passed; a run whose learner lease lapsed goes back to
-  // queued (and its slot leases are freed). Returns how many leases lapsed.
+  // queued (and its slot leases are freed); a lapsed evaluation job goes back to the queue.
+  // Returns how many leases lapsed.
   absl::StatusOr<int> ExpireLeases(absl::Time now);
 
   // The learner holding `key` (a learner lease) reports progress. Errors as RenewLease.

@@ -55,6 +55,42 @@ CREATE TABLE checkpoints (
   PRIMARY KEY (run, name)
 );
 )sql",
+    // 1 -> 2: evaluations of runs' policies, as jobs for actors (one per context), and their
+    // episodes' returns.
+    R"sql(
+CREATE TABLE evaluations (
+  run INTEGER NOT NULL REFERENCES runs(number),
+  policy_version INTEGER NOT NULL,
+  step INTEGER NOT NULL,
+  contexts INTEGER NOT NULL CHECK (contexts >= 1),
+  episodes INTEGER NOT NULL CHECK (episodes >= 1),
+  weights BLOB NOT NULL,
+  created_at INTEGER NOT NULL,
+  PRIMARY KEY (run, policy_version)
+);
+CREATE TABLE evaluation_jobs (
+  run INTEGER NOT NULL,
+  policy_version INTEGER NOT NULL,
+  context INTEGER NOT NULL,
+  epoch INTEGER NOT NULL DEFAULT 0,
+  holder TEXT NOT NULL DEFAULT '',
+  deadline INTEGER NOT NULL DEFAULT 0,
+  done INTEGER NOT NULL DEFAULT 0,
+  seconds REAL,
+  PRIMARY KEY (run, policy_version, context),
+  FOREIGN KEY (run, policy_version) REFERENCES evaluations(run, policy_version)
+);
+CREATE TABLE evaluation_returns (
+  run INTEGER NOT NULL,
+  policy_version INTEGER NOT NULL,
+  context INTEGER NOT NULL,
+  episode INTEGER NOT NULL,
+  value REAL NOT NULL,
+  PRIMARY KEY (run, policy_version, context, episode),
+  FOREIGN KEY (run, policy_version, context)
+    REFERENCES evaluation_jobs(run, policy_version, context)
+);
+)sql",
 };
 
 int UserVersion(SQLite::Database& db) {

@@ -3,6 +3,7 @@
 
 #include <SQLiteCpp/Database.h>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -288,6 +289,159 @@ TEST_F(RunStoreTest, CountsRunsByStateAndWaitingWork) {
                           std::pair(RunState::kCancelled, 0)));
   EXPECT_EQ(counts->free_learner_leases, 1);
   EXPECT_EQ(counts->free_slot_leases, 2);
+}
+
+EvaluationRequest Evaluation(int64_t policy_version, int contexts = 2) {
+  return {.policy_version = policy_version,
+          .step = 256 * policy_version,
+          .contexts = contexts,
+          .episodes = 3,
+          .weights = std::string("w\0v", 3) + std::to_string(policy_version)};
+}
+
+std::optional<EvaluationJob> AcquireJob(RunStore& store, absl::Time now = kStart,
+                                        std::string numerics = "N") {
+  absl::StatusOr<std::optional<EvaluationJob>> job =
+      store.AcquireEvaluationJob("A", numerics, now);
+  EXPECT_TRUE(job.ok()) << job.status();
+  return job.ok() ? *job : std::nullopt;
+}
+
+TEST_F(RunStoreTest, AnEvaluationIsOneJobPerContextForActorsAndIsCompleteOnceAllAreIn) {
+  std::unique_ptr<RunStore> store = Open();
+  const LeaseKey learner = SubmitAndAcquire(*store).key;
+  ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1), kStart).ok());
+  EXPECT_EQ(store->Counts()->free_evaluation_jobs, 2);
+
+  std::optional<EvaluationJob> first = AcquireJob(*store);
+  std::optional<EvaluationJob> second = AcquireJob(*store);
+  ASSERT_TRUE(first.has_value() && second.has_value());
+  EXPECT_FALSE(AcquireJob(*store).has_value());
+  EXPECT_EQ(first->key.context, 0);
+  EXPECT_EQ(second->key.context, 1);
+  EXPECT_EQ(first->weights, std::string("w\0v1", 4));  // bytes, NULs included
+  EXPECT_EQ(first->episodes, 3);
+  EXPECT_EQ(first->seed, 7u);
+  EXPECT_EQ(first->config, "env: cartpole\n");
+
+  ASSERT_TRUE(store->ReportEvaluationJob(second->key, {{4.0, 5.0, 6.5}, 0.25}).ok());
+  absl::StatusOr<EvaluationProgress> partial = store->GetEvaluation("run-1", 1);
+  ASSERT_TRUE(partial.ok());
+  EXPECT_EQ(partial->done, 1);
+  EXPECT_TRUE(partial->results.empty());
+
+  ASSERT_TRUE(store->ReportEvaluationJob(first->key, {{1.0, 2.0, 1.0 / 3.0}, 0.5}).ok());
+  // A retry is acknowledged as one and changes nothing.
+  EXPECT_EQ(store->ReportEvaluationJob(first->key, {{9.0, 9.0, 9.0}, 0}).value_or(false), true);
+  absl::StatusOr<EvaluationProgress> done = store->GetEvaluation("run-1", 1);
+  ASSERT_TRUE(done.ok());
+  ASSERT_EQ(done->results.size(), 2u);
+  EXPECT_THAT(done->results[0].returns, ElementsAre(1.0, 2.0, 1.0 / 3.0));  // exact doubles
+  EXPECT_EQ(done->results[0].seconds, 0.5);
+  EXPECT_THAT(done->results[1].returns, ElementsAre(4.0, 5.0, 6.5));
+  EXPECT_EQ(store->Counts()->free_evaluation_jobs, 0);
+  EXPECT_EQ(store->GetEvaluation("run-1", 2).status().code(), absl::StatusCode::kNotFound);
+}
+
+TEST_F(RunStoreTest, SubmittingAnEvaluationAgainIsIdempotentAndNeedsTheLearnerLease) {
+  std::unique_ptr<RunStore> store = Open();
+  const LeaseKey learner = SubmitAndAcquire(*store).key;
+  ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1), kStart).ok());
+  ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1), kStart).ok());
+  EXPECT_EQ(store->Counts()->free_evaluation_jobs, 2);
+  EXPECT_THAT(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/3), kStart).message(),
+              HasSubstr("was submitted for evaluation with 2 contexts"));
+  EXPECT_EQ(store->SubmitEvaluation(learner, Evaluation(2, /*contexts=*/0), kStart).code(),
+            absl::StatusCode::kInvalidArgument);
+  LeaseKey stale = learner;
+  stale.epoch = learner.epoch - 1;
+  EXPECT_EQ(store->SubmitEvaluation(stale, Evaluation(2), kStart).code(),
+            absl::StatusCode::kFailedPrecondition);
+}
+
+TEST_F(RunStoreTest, ALapsedJobGoesBackToTheQueueAndItsOldHolderIsRefusedOnceRegranted) {
+  std::unique_ptr<RunStore> store = Open();
+  const LeaseKey learner = SubmitAndAcquire(*store).key;
+  ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/1), kStart).ok());
+  std::optional<EvaluationJob> old = AcquireJob(*store);
+  ASSERT_TRUE(old.has_value());
+  EXPECT_FALSE(AcquireJob(*store, kStart + kLease / 2).has_value());
+
+  // The learner renews its own lease; the job's holder went silent.
+  const absl::Time later = kStart + kLease + absl::Seconds(1);
+  ASSERT_TRUE(store->RenewLease(learner, kStart + kLease / 2).ok());
+  std::optional<EvaluationJob> again = AcquireJob(*store, later);
+  ASSERT_TRUE(again.has_value());
+  EXPECT_EQ(again->key.epoch, old->key.epoch + 1);
+  const absl::StatusOr<bool> refused = store->ReportEvaluationJob(old->key, {{1, 2, 3}, 0});
+  EXPECT_EQ(refused.status().code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT(refused.status().message(), HasSubstr("moved"));
+  EXPECT_EQ(store->ReportEvaluationJob(again->key, {{1, 2, 3}, 0}).value_or(true), false);
+}
+
+TEST_F(RunStoreTest, ABadResultIsRefusedAndTheJobStaysOpen) {
+  std::unique_ptr<RunStore> store = Open();
+  const LeaseKey learner = SubmitAndAcquire(*store).key;
+  ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/1), kStart).ok());
+  std::optional<EvaluationJob> job = AcquireJob(*store);
+  ASSERT_TRUE(job.has_value());
+  EXPECT_THAT(store->ReportEvaluationJob(job->key, {{1, 2}, 0}).status().message(),
+              HasSubstr("has 3 episodes; 2 returns were delivered"));
+  EXPECT_THAT(
+      store->ReportEvaluationJob(job->key, {{1, std::nan(""), 3}, 0}).status().message(),
+      HasSubstr("episode 1"));
+  EvaluationJobKey unknown = job->key;
+  unknown.context = 5;
+  EXPECT_EQ(store->ReportEvaluationJob(unknown, {{1, 2, 3}, 0}).status().code(),
+            absl::StatusCode::kNotFound);
+  EXPECT_EQ(store->GetEvaluation("run-1", 1)->done, 0);
+  EXPECT_EQ(store->ReportEvaluationJob(job->key, {{1, 2, 3}, 0}).value_or(true), false);
+}
+
+TEST_F(RunStoreTest, JobsGoOnlyToActorsOfTheRunsNumericsAndOnlyWhileItRuns) {
+  std::unique_ptr<RunStore> store = Open();
+  const LeaseKey learner = SubmitAndAcquire(*store).key;
+  ASSERT_TRUE(store->AcquireSlot("A", "M", {}, kStart).ok());  // pins the actors' numerics
+  ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/1), kStart).ok());
+  EXPECT_FALSE(AcquireJob(*store, kStart, "N").has_value());
+  ASSERT_TRUE(store->CancelRun("run-1", kStart).ok());
+  EXPECT_FALSE(AcquireJob(*store, kStart, "M").has_value());
+}
+
+TEST_F(RunStoreTest, EvaluationsSurviveAReopen) {
+  {
+    std::unique_ptr<RunStore> store = Open();
+    const LeaseKey learner = SubmitAndAcquire(*store).key;
+    ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/1), kStart).ok());
+    std::optional<EvaluationJob> job = AcquireJob(*store);
+    ASSERT_TRUE(job.has_value());
+    ASSERT_TRUE(store->ReportEvaluationJob(job->key, {{1, 2, 3}, 0}).ok());
+  }
+  std::unique_ptr<RunStore> store = Open(kStart + absl::Seconds(60));
+  absl::StatusOr<EvaluationProgress> evaluation = store->GetEvaluation("run-1", 1);
+  ASSERT_TRUE(evaluation.ok());
+  ASSERT_EQ(evaluation->results.size(), 1u);
+  EXPECT_THAT(evaluation->results[0].returns, ElementsAre(1, 2, 3));
+}
+
+TEST_F(RunStoreTest, AVersionOneDatabaseIsMigrated) {
+  {
+    std::unique_ptr<RunStore> store = Open();
+    SubmitAndAcquire(*store);
+  }
+  {
+    // What DCS wrote before evaluations were stored.
+    SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READWRITE);
+    db.exec("DROP TABLE evaluation_returns; DROP TABLE evaluation_jobs; DROP TABLE evaluations;"
+            "PRAGMA user_version = 1");
+  }
+  std::unique_ptr<RunStore> store = Open();
+  ASSERT_NE(store, nullptr);
+  EXPECT_EQ(store->GetRun("run-1")->state, RunState::kRunning);
+  const LeaseKey learner{.run_id = "run-1", .slot = kLearnerSlot, .epoch = 1};
+  EXPECT_TRUE(store->SubmitEvaluation(learner, Evaluation(1), kStart).ok());
+  SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READONLY);
+  EXPECT_EQ(db.execAndGet("PRAGMA user_version").getInt(), CurrentSchemaVersion());
 }
 
 TEST(RunStateTest, OnlyTheTableMovesARun) {
