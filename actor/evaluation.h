@@ -65,6 +65,15 @@ absl::StatusOr<EvaluationResult> Evaluate(Policy& policy, const env::DynamicCont
                                           const std::vector<EvaluationContext>& contexts,
                                           int episodes, uint64_t seed);
 
+// The episodes of context number `index` of a run's evaluation contexts, `context`: one job of
+// Evaluate, the same returns wherever it runs (an actor evaluates contexts one at a time).
+// Its mean and std are left to Summarize.
+template <typename Env>
+absl::StatusOr<ContextResult> EvaluateContext(Policy& policy,
+                                              const env::DynamicContextOptions& base, int feature,
+                                              const EvaluationContext& context, size_t index,
+                                              int episodes, uint64_t seed);
+
 // Implementation details.
 
 inline void Summarize(EvaluationResult& result) {
@@ -95,11 +104,11 @@ inline void Summarize(EvaluationResult& result) {
 }
 
 template <typename Env>
-absl::StatusOr<EvaluationResult> Evaluate(Policy& policy, const env::DynamicContextOptions& base,
-                                          int feature,
-                                          const std::vector<EvaluationContext>& contexts,
-                                          int episodes, uint64_t seed) {
-  EvaluationResult result;
+absl::StatusOr<ContextResult> EvaluateContext(Policy& policy,
+                                              const env::DynamicContextOptions& base, int feature,
+                                              const EvaluationContext& context, size_t index,
+                                              int episodes, uint64_t seed) {
+  const auto start = std::chrono::steady_clock::now();
   std::vector<typename Env::Observation> observation(Env::kObservationSize);
   const std::span<typename Env::Observation, Env::kObservationSize> obs(observation.data(),
                                                                         Env::kObservationSize);
@@ -108,40 +117,51 @@ absl::StatusOr<EvaluationResult> Evaluate(Policy& policy, const env::DynamicCont
   std::vector<float> input;
   std::vector<uint8_t> image;
   Random unused(0);  // deterministic acting draws nothing
-  for (size_t c = 0; c < contexts.size(); ++c) {
-    const auto start = std::chrono::steady_clock::now();
-    env::DynamicContextOptions options{.context = base.context,
-                                       .observe = base.observe,
-                                       .observed_features = base.observed_features,
-                                       .run_seed = StreamSeed(seed, "eval", {c}).GenerateState64(
-                                           1)[0]};
-    if (options.context.empty()) options.context = Env::Features().Defaults();
-    options.context[feature] = contexts[c].value;
-    DCS_ASSIGN_OR_RETURN(env::DynamicContextEnv<Env> environment,
-                         env::DynamicContextEnv<Env>::Create(std::move(options)));
-    std::vector<float> context(environment.context_size());
-    ContextResult context_result{.context = contexts[c]};
-    for (int episode = 0; episode < episodes; ++episode) {
-      environment.Reset(0, obs, context);
-      double total = 0;
-      while (true) {
-        input.clear();
-        image.clear();
-        AppendPolicyInput<Env>(obs, context, input, image);
-        policy.Act(input, image, /*deterministic=*/true, unused, action);
-        ToEnvAction<Env>(action, env_action);
-        const env::StepResult step = environment.Step(
-            std::span<const typename Env::ActionElement, Env::kActionSize>(env_action.data(),
-                                                                           Env::kActionSize),
-            obs, context);
-        total += step.reward;
-        if (step.done()) break;
-      }
-      context_result.returns.push_back(total);
+  env::DynamicContextOptions options{
+      .context = base.context,
+      .observe = base.observe,
+      .observed_features = base.observed_features,
+      .run_seed = StreamSeed(seed, "eval", {index}).GenerateState64(1)[0]};
+  if (options.context.empty()) options.context = Env::Features().Defaults();
+  options.context[feature] = context.value;
+  DCS_ASSIGN_OR_RETURN(env::DynamicContextEnv<Env> environment,
+                       env::DynamicContextEnv<Env>::Create(std::move(options)));
+  std::vector<float> features(environment.context_size());
+  ContextResult result{.context = context};
+  for (int episode = 0; episode < episodes; ++episode) {
+    environment.Reset(0, obs, features);
+    double total = 0;
+    while (true) {
+      input.clear();
+      image.clear();
+      AppendPolicyInput<Env>(obs, features, input, image);
+      policy.Act(input, image, /*deterministic=*/true, unused, action);
+      ToEnvAction<Env>(action, env_action);
+      const env::StepResult step = environment.Step(
+          std::span<const typename Env::ActionElement, Env::kActionSize>(env_action.data(),
+                                                                         Env::kActionSize),
+          obs, features);
+      total += step.reward;
+      if (step.done()) break;
     }
-    context_result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    result.contexts.push_back(std::move(context_result));
+    result.returns.push_back(total);
+  }
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+template <typename Env>
+absl::StatusOr<EvaluationResult> Evaluate(Policy& policy, const env::DynamicContextOptions& base,
+                                          int feature,
+                                          const std::vector<EvaluationContext>& contexts,
+                                          int episodes, uint64_t seed) {
+  EvaluationResult result;
+  for (size_t c = 0; c < contexts.size(); ++c) {
+    DCS_ASSIGN_OR_RETURN(ContextResult context,
+                         EvaluateContext<Env>(policy, base, feature, contexts[c], c, episodes,
+                                              seed));
+    result.contexts.push_back(std::move(context));
   }
   Summarize(result);
   return result;

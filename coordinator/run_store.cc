@@ -467,7 +467,7 @@ absl::StatusOr<std::optional<EvaluationJob>> RunStore::AcquireEvaluationJob(
     // First in, first out across runs: an evaluation waits behind those handed over before it.
     SQLite::Statement query(
         *db_,
-        "SELECT j.run, j.policy_version, j.context, e.episodes, e.weights, r.seed, r.config "
+        "SELECT j.run, j.policy_version, j.context, e.episodes, e.weights, r.config "
         "FROM evaluation_jobs j "
         "JOIN evaluations e ON e.run = j.run AND e.policy_version = j.policy_version "
         "JOIN runs r ON r.number = j.run "
@@ -480,8 +480,7 @@ absl::StatusOr<std::optional<EvaluationJob>> RunStore::AcquireEvaluationJob(
     EvaluationJob job{.key = {.run_id = RunId(number),
                               .policy_version = query.getColumn(1).getInt64(),
                               .context = query.getColumn(2).getInt()},
-                      .seed = static_cast<uint64_t>(query.getColumn(5).getInt64()),
-                      .config = query.getColumn(6).getString(),
+                      .config = query.getColumn(5).getString(),
                       .episodes = query.getColumn(3).getInt(),
                       .weights = query.getColumn(4).getString()};
     query.reset();
@@ -523,7 +522,9 @@ absl::StatusOr<bool> RunStore::ReportEvaluationJob(const EvaluationJobKey& key,
     query.bind(1, number);
     query.bind(2, key.policy_version);
     query.bind(3, key.context);
-    if (!query.executeStep()) return absl::NotFoundError(absl::StrCat("no ", JobName(key)));
+    if (!query.executeStep()) {
+      return absl::NotFoundError(absl::StrCat(JobName(key), " does not exist"));
+    }
     const int64_t epoch = query.getColumn(0).getInt64();
     const bool done = query.getColumn(1).getInt() != 0;
     const int episodes = query.getColumn(2).getInt();

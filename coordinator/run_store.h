@@ -124,8 +124,7 @@ struct EvaluationJobKey {
 // An evaluation job leased to an actor, with what it needs to run it.
 struct EvaluationJob {
   EvaluationJobKey key;
-  uint64_t seed = 0;
-  std::string config;
+  std::string config;  // the run's, its seed applied
   int episodes = 0;
   std::string weights;
 };

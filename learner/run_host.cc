@@ -68,10 +68,10 @@ absl::Status CheckSlotRollout(const actor::SlotRollout& data, int n_steps, int i
 
 }  // namespace
 
-RunHost::RunHost(std::unique_ptr<TrainingSession> session, EvaluateFunction evaluate,
-                 int input_size, int action_size)
+RunHost::RunHost(std::unique_ptr<TrainingSession> session, Evaluator evaluator, int input_size,
+                 int action_size)
     : session_(std::move(session)),
-      evaluate_(std::move(evaluate)),
+      evaluator_(std::move(evaluator)),
       n_envs_(session_->spec().n_envs),
       n_steps_(session_->spec().ppo.n_steps),
       input_size_(input_size),
@@ -81,8 +81,9 @@ RunHost::RunHost(std::unique_ptr<TrainingSession> session, EvaluateFunction eval
       epochs_(n_envs_, 0),
       pending_(n_envs_) {}
 
-absl::Status RunHost::Publish() {
-  DCS_ASSIGN_OR_RETURN(policy_, actor::MlpPolicy::Create(session_->ActorWeights()));
+RunHost::~RunHost() { Stop(); }
+
+void RunHost::Publish() {
   auto weights = std::make_shared<const actor::MlpWeights>(session_->ActorWeights());
   absl::MutexLock lock(&mu_);
   rollout_ = session_->state().rollouts;
@@ -94,7 +95,6 @@ absl::Status RunHost::Publish() {
   // The slots' parts are learnt from: freeing them releases the slots waiting for new work.
   for (std::optional<actor::SlotRollout>& part : pending_) part.reset();
   pending_count_ = 0;
-  return absl::OkStatus();
 }
 
 absl::Status RunHost::CheckEpoch(int slot, int64_t epoch) {
@@ -117,7 +117,7 @@ absl::StatusOr<SlotWork> RunHost::GetSlotWork(int slot, int64_t epoch, int64_t p
   DCS_RETURN_IF_ERROR(CheckEpoch(slot, epoch));
   // The slot's part of the current rollout is in: its next work comes with the update.
   auto answerable = [this, slot]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_) {
-    return !pending_[slot].has_value() || stopped_ || complete_;
+    return !pending_[slot].has_value() || stop_.HasBeenNotified() || complete_;
   };
   mu_.AwaitWithTimeout(absl::Condition(&answerable), wait);
   SlotWork work{.run_complete = complete_, .n_steps = n_steps_};
@@ -154,11 +154,20 @@ absl::StatusOr<bool> RunHost::PushRollout(int64_t epoch, int64_t rollout, int64_
 }
 
 void RunHost::StartEvaluation(const EvaluationDue& due) {
-  auto policy = std::make_shared<actor::MlpPolicy>(*policy_);
+  std::shared_ptr<const actor::MlpWeights> weights;
+  {
+    absl::MutexLock lock(&mu_);
+    weights = weights_;  // the current version: the one `due` names
+  }
   evaluations_.push_back(
       {.due = due,
-       .result = std::async(std::launch::async, [this, policy] {
-         return evaluate_(*policy, session_->plan());  // the plan is constant
+       .result = std::async(std::launch::async, [this, due, weights = std::move(weights)] {
+         // The spec and plan are constant.
+         return evaluator_({.spec = session_->spec(),
+                            .plan = session_->plan(),
+                            .due = due,
+                            .weights = weights},
+                           stop_);
        })});
 }
 
@@ -181,10 +190,10 @@ absl::StatusOr<HostStep> RunHost::Step() {
   {
     absl::MutexLock lock(&mu_);
     auto ready = [this]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_) {
-      return stopped_ || pending_count_ == n_envs_;
+      return stop_.HasBeenNotified() || pending_count_ == n_envs_;
     };
     mu_.Await(absl::Condition(&ready));
-    if (stopped_) return absl::CancelledError("the run host was stopped");
+    if (stop_.HasBeenNotified()) return absl::CancelledError("the run host was stopped");
     for (std::optional<actor::SlotRollout>& part : pending_) parts.push_back(*std::move(part));
   }
   DCS_ASSIGN_OR_RETURN(actor::MergedRollout merged, actor::MergeSlotRollouts(std::move(parts)));
@@ -194,10 +203,14 @@ absl::StatusOr<HostStep> RunHost::Step() {
                                             std::move(merged.journals)));
   if (due.has_value()) StartEvaluation(*due);
   DCS_ASSIGN_OR_RETURN(const SessionUpdate update, session_->Update());
-  DCS_RETURN_IF_ERROR(Publish());
+  Publish();
   if (update.final_evaluation.has_value()) StartEvaluation(*update.final_evaluation);
+  // A checkpoint waits for the evaluations outstanding; when the next one falls due before
+  // they are in (evaluations lag behind training), training waits for them instead, so a
+  // checkpoint is never more than one evaluation interval late.
+  const bool wait = session_->complete() || (checkpoint_wanted_ && session_->checkpoint_due());
   if (session_->checkpoint_due()) checkpoint_wanted_ = true;
-  DCS_RETURN_IF_ERROR(RecordEvaluations(/*wait=*/session_->complete()));
+  DCS_RETURN_IF_ERROR(RecordEvaluations(wait));
 
   const run::RunState& state = session_->state();
   const double seconds = absl::ToDoubleSeconds(absl::Now() - start_);
@@ -222,8 +235,9 @@ absl::StatusOr<HostStep> RunHost::Step() {
 }
 
 void RunHost::Stop() {
+  // Under mu_: waiters re-check their conditions when it is released.
   absl::MutexLock lock(&mu_);
-  stopped_ = true;
+  if (!stop_.HasBeenNotified()) stop_.Notify();
 }
 
 }  // namespace dcs::learner

@@ -17,10 +17,12 @@
 // `dcs train` in one process, whichever actors step its slots and however often they change
 // (a slot is rebuilt from its journal: env/vector_env.h ReplaySlot).
 //
-// Evaluations run on threads of their own, each with a copy of the policy that fell due, while
-// training goes on; they are recorded in the order they fell due. A checkpoint that falls due
-// is taken once no evaluation is outstanding (so it holds every evaluation up to its step), and
-// the run is complete once its last evaluation is in.
+// Evaluations are the Evaluator's: on threads of this process (EvaluateInProcess), or on
+// actors through the coordinator (the learner service's). Each runs on a thread of its own with
+// the policy that fell due while training goes on, and they are recorded in the order they
+// fell due. A checkpoint that falls due is taken once no evaluation is outstanding (so it holds
+// every evaluation up to its step), at the latest when the next one falls due (training then
+// waits for the evaluations); the run is complete once its last evaluation is in.
 //
 // Slot leases: each slot's holder names the epoch its lease was granted at; the host serves
 // the newest epoch it has seen per slot and refuses older ones (FAILED_PRECONDITION).
@@ -38,6 +40,7 @@
 #include "absl/base/thread_annotations.h"
 #include "absl/status/statusor.h"
 #include "absl/synchronization/mutex.h"
+#include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
 #include "actor/evaluation.h"
 #include "actor/mlp_policy.h"
@@ -66,6 +69,24 @@ struct SlotWork {
   std::optional<actor::SlotJournal> journal;
 };
 
+// One evaluation a host asks of its Evaluator: the policy `due` names, `weights`, on the run's
+// evaluation contexts (plan.evaluation_contexts), spec.eval_episodes episodes each.
+struct EvaluationTask {
+  const run::RunSpec& spec;
+  const run::RunPlan& plan;
+  EvaluationDue due;
+  std::shared_ptr<const actor::MlpWeights> weights;
+};
+
+// Evaluates a task, called on a thread of its own; returns CANCELLED soon after `stop` is
+// notified if it has not finished by then (the host is stopping).
+using Evaluator = std::function<absl::StatusOr<actor::EvaluationResult>(
+    const EvaluationTask& task, const absl::Notification& stop)>;
+
+// Evaluates on the calling thread, as `dcs train` does (actor::Evaluate).
+template <typename Env>
+Evaluator EvaluateInProcess();
+
 // What one Step did.
 struct HostStep {
   TrainingProgress progress;  // `evaluation` points into the host; valid until the next Step
@@ -79,13 +100,16 @@ struct HostStep {
 
 class RunHost {
  public:
-  // A host for `spec` on `Env`, continuing from `checkpoint` if given. Errors as
-  // TrainingSession::Create; UNIMPLEMENTED for image policies (their CNN does not run on
-  // actors yet).
+  // A host for `spec` on `Env`, continuing from `checkpoint` if given, evaluating with
+  // `evaluator`. Errors as TrainingSession::Create; UNIMPLEMENTED for image policies (their CNN
+  // does not run on actors yet).
   template <typename Env>
   static absl::StatusOr<std::unique_ptr<RunHost>> Create(run::RunSpec spec,
-                                                         const run::Checkpoint* checkpoint);
+                                                         const run::Checkpoint* checkpoint,
+                                                         Evaluator evaluator);
 
+  // Stops, and waits for the outstanding evaluations to return.
+  ~RunHost();
   RunHost(const RunHost&) = delete;
   RunHost& operator=(const RunHost&) = delete;
 
@@ -112,22 +136,20 @@ class RunHost {
   // the session otherwise (the host is then not to be stepped again).
   absl::StatusOr<HostStep> Step();
 
-  // Wakes Step and every waiting GetSlotWork; Step then returns CANCELLED.
+  // Wakes Step and every waiting GetSlotWork, and cancels outstanding evaluations; Step then
+  // returns CANCELLED.
   void Stop();
 
   // Every parameter of the current policy (runs are compared with it). Call from Step's thread.
   std::vector<float> Parameters() const { return session_->Parameters(); }
 
  private:
-  using EvaluateFunction = std::function<absl::StatusOr<actor::EvaluationResult>(
-      actor::Policy& policy, const run::RunPlan& plan)>;
-
-  RunHost(std::unique_ptr<TrainingSession> session, EvaluateFunction evaluate, int input_size,
+  RunHost(std::unique_ptr<TrainingSession> session, Evaluator evaluator, int input_size,
           int action_size);
 
   // Publishes the session's current policy and journals, and frees the slots' parts of the
   // rollout learnt from. Called from Step's thread.
-  absl::Status Publish();
+  void Publish();
   // Starts evaluating the current policy for `due`.
   void StartEvaluation(const EvaluationDue& due);
   // Records the evaluations that have finished, in order; with `wait`, all of them.
@@ -137,7 +159,7 @@ class RunHost {
 
   // Fixed at construction.
   const std::unique_ptr<TrainingSession> session_;  // Step's thread only
-  const EvaluateFunction evaluate_;
+  const Evaluator evaluator_;
   const int n_envs_;
   const int n_steps_;
   const int input_size_;
@@ -145,8 +167,9 @@ class RunHost {
   const absl::Time start_;
   const int64_t first_timesteps_;
 
+  absl::Notification stop_;  // outlives evaluations_, whose threads watch it
+
   // Step's thread only.
-  std::optional<actor::MlpPolicy> policy_;  // the current version, copied into evaluations
   struct PendingEvaluation {
     EvaluationDue due;
     std::future<absl::StatusOr<actor::EvaluationResult>> result;
@@ -155,7 +178,6 @@ class RunHost {
   bool checkpoint_wanted_ = false;
 
   absl::Mutex mu_;
-  bool stopped_ ABSL_GUARDED_BY(mu_) = false;
   bool complete_ ABSL_GUARDED_BY(mu_) = false;
   int64_t rollout_ ABSL_GUARDED_BY(mu_) = 0;  // being collected
   int64_t start_timesteps_ ABSL_GUARDED_BY(mu_) = 0;
@@ -170,8 +192,20 @@ class RunHost {
 // Implementation details.
 
 template <typename Env>
+Evaluator EvaluateInProcess() {
+  return [](const EvaluationTask& task,
+            const absl::Notification& /*stop*/) -> absl::StatusOr<actor::EvaluationResult> {
+    DCS_ASSIGN_OR_RETURN(actor::MlpPolicy policy, actor::MlpPolicy::Create(*task.weights));
+    return actor::Evaluate<Env>(policy, task.plan.slot, task.plan.feature,
+                                task.plan.evaluation_contexts, task.spec.eval_episodes,
+                                task.spec.seed);
+  };
+}
+
+template <typename Env>
 absl::StatusOr<std::unique_ptr<RunHost>> RunHost::Create(run::RunSpec spec,
-                                                         const run::Checkpoint* checkpoint) {
+                                                         const run::Checkpoint* checkpoint,
+                                                         Evaluator evaluator) {
   if constexpr (std::is_same_v<typename Env::Observation, uint8_t>) {
     return absl::UnimplementedError(
         "image policies (CarRacing's CNN) cannot run on actors yet: train it with `dcs train` "
@@ -181,16 +215,9 @@ absl::StatusOr<std::unique_ptr<RunHost>> RunHost::Create(run::RunSpec spec,
                          TrainingSession::Create<Env>(std::move(spec), checkpoint));
     const int input_size =
         Env::kObservationSize + static_cast<int>(session->plan().slot.observed_features.size());
-    const uint64_t seed = session->spec().seed;
-    const int episodes = session->spec().eval_episodes;
-    EvaluateFunction evaluate = [seed, episodes](actor::Policy& policy,
-                                                 const run::RunPlan& plan) {
-      return actor::Evaluate<Env>(policy, plan.slot, plan.feature, plan.evaluation_contexts,
-                                  episodes, seed);
-    };
-    std::unique_ptr<RunHost> host(new RunHost(std::move(session), std::move(evaluate), input_size,
-                                              Env::kActionSize));
-    DCS_RETURN_IF_ERROR(host->Publish());
+    std::unique_ptr<RunHost> host(new RunHost(std::move(session), std::move(evaluator),
+                                              input_size, Env::kActionSize));
+    host->Publish();
     return host;
   }
 }

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
 #include "coordinator/run_files.h"
@@ -214,6 +215,78 @@ grpc::ServerUnaryReactor* CoordinatorService::FinishRun(grpc::CallbackServerCont
     return absl::OkStatus();
   };
   return Finish(context, finish());
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::SubmitEvaluation(
+    grpc::CallbackServerContext* context, const v1::SubmitEvaluationRequest* request,
+    v1::SubmitEvaluationResponse* /*response*/) {
+  auto submit = [&]() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
+    return runs_.store->SubmitEvaluation(
+        key,
+        {.policy_version = request->policy_version(),
+         .step = request->step(),
+         .contexts = request->contexts(),
+         .episodes = request->episodes(),
+         .weights = request->has_weights() ? request->weights().SerializeAsString() : ""},
+        absl::Now());
+  };
+  return Finish(context, submit());
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
+    grpc::CallbackServerContext* context, const v1::GetEvaluationRequest* request,
+    v1::GetEvaluationResponse* response) {
+  absl::StatusOr<coordinator::EvaluationProgress> evaluation =
+      runs_.store->GetEvaluation(request->run_id(), request->policy_version());
+  if (evaluation.ok()) {
+    response->set_contexts(evaluation->contexts);
+    response->set_done(evaluation->done);
+    for (const coordinator::ContextReturns& result : evaluation->results) {
+      *response->add_results() = ContextReturnsToProto(result);
+    }
+  }
+  return Finish(context, evaluation.status());
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::AcquireEvaluation(
+    grpc::CallbackServerContext* context, const v1::AcquireEvaluationRequest* request,
+    v1::AcquireEvaluationResponse* response) {
+  auto acquire = [&]() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(
+        const std::optional<coordinator::EvaluationJob> job,
+        runs_.store->AcquireEvaluationJob(request->holder(), request->numerics(), absl::Now()));
+    if (!job.has_value()) return absl::OkStatus();
+    if (!response->mutable_weights()->ParseFromString(job->weights)) {
+      // The job stays leased and lapses; the store holds what the learner sent, so this is a
+      // bug, not bad input.
+      return absl::InternalError(absl::StrCat("the stored policy of ",
+                                              job->key.run_id, " version ",
+                                              job->key.policy_version, " does not parse"));
+    }
+    evaluation_leases_.Increment();
+    *response->mutable_job() = EvaluationJobToProto(job->key);
+    response->set_config(job->config);
+    response->set_episodes(job->episodes);
+    *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
+    return absl::OkStatus();
+  };
+  return Finish(context, acquire());
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::ReportEvaluation(
+    grpc::CallbackServerContext* context, const v1::ReportEvaluationRequest* request,
+    v1::ReportEvaluationResponse* response) {
+  auto report = [&]() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(const coordinator::EvaluationJobKey key,
+                         EvaluationJobFromProto(request->job()));
+    DCS_ASSIGN_OR_RETURN(const bool duplicate,
+                         runs_.store->ReportEvaluationJob(
+                             key, ContextReturnsFromProto(request->result())));
+    response->set_duplicate(duplicate);
+    return absl::OkStatus();
+  };
+  return Finish(context, report());
 }
 
 }  // namespace dcs::services

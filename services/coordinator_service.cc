@@ -22,7 +22,8 @@ prometheus::Family<prometheus::Counter>& RegistrationsFamily(prometheus::Registr
 prometheus::Family<prometheus::Counter>& LeasesFamily(prometheus::Registry& metrics) {
   return prometheus::BuildCounter()
       .Name("dcs_leases_granted_total")
-      .Help("Leases granted by the coordinator, by kind (run: to a learner; slot: to an actor).")
+      .Help("Leases granted by the coordinator, by kind (run: to a learner; slot and "
+            "evaluation: to an actor).")
       .Register(metrics);
 }
 
@@ -39,6 +40,7 @@ CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, Ru
       actor_registrations_(RegistrationsFamily(metrics).Add({{"role", "actor"}})),
       learner_leases_(LeasesFamily(metrics).Add({{"kind", "run"}})),
       slot_leases_(LeasesFamily(metrics).Add({{"kind", "slot"}})),
+      evaluation_leases_(LeasesFamily(metrics).Add({{"kind", "evaluation"}})),
       rejected_(prometheus::BuildCounter()
                     .Name("dcs_requests_rejected_total")
                     .Help("Requests the coordinator refused, by reason (the status code).")

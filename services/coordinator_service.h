@@ -86,6 +86,18 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   grpc::ServerUnaryReactor* FinishRun(grpc::CallbackServerContext* context,
                                       const v1::FinishRunRequest* request,
                                       v1::FinishRunResponse* response) override;
+  grpc::ServerUnaryReactor* SubmitEvaluation(grpc::CallbackServerContext* context,
+                                             const v1::SubmitEvaluationRequest* request,
+                                             v1::SubmitEvaluationResponse* response) override;
+  grpc::ServerUnaryReactor* GetEvaluation(grpc::CallbackServerContext* context,
+                                          const v1::GetEvaluationRequest* request,
+                                          v1::GetEvaluationResponse* response) override;
+  grpc::ServerUnaryReactor* AcquireEvaluation(grpc::CallbackServerContext* context,
+                                              const v1::AcquireEvaluationRequest* request,
+                                              v1::AcquireEvaluationResponse* response) override;
+  grpc::ServerUnaryReactor* ReportEvaluation(grpc::CallbackServerContext* context,
+                                             const v1::ReportEvaluationRequest* request,
+                                             v1::ReportEvaluationResponse* response) override;
 
  private:
   // Finishes the call with `status`, counting a refusal under its reason.
@@ -100,6 +112,7 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   prometheus::Counter& actor_registrations_;
   prometheus::Counter& learner_leases_;
   prometheus::Counter& slot_leases_;
+  prometheus::Counter& evaluation_leases_;
   prometheus::Family<prometheus::Counter>& rejected_;
 };
 

@@ -27,10 +27,12 @@ std::vector<prometheus::MetricFamily> RunCollector::Collect() const {
   }
   prometheus::MetricFamily queues{
       "dcs_queue_depth",
-      "Work waiting: runs for a learner (queue=\"runs\"), env slots for an actor (\"slots\").",
+      "Work waiting: runs for a learner (queue=\"runs\"), env slots and evaluation jobs for "
+      "an actor (\"slots\", \"evaluations\").",
       prometheus::MetricType::Gauge,
       {Gauge("queue", "runs", static_cast<double>(counts->free_learner_leases)),
-       Gauge("queue", "slots", static_cast<double>(counts->free_slot_leases))}};
+       Gauge("queue", "slots", static_cast<double>(counts->free_slot_leases)),
+       Gauge("queue", "evaluations", static_cast<double>(counts->free_evaluation_jobs))}};
   return {std::move(runs), std::move(queues)};
 }
 

@@ -95,6 +95,36 @@ absl::StatusOr<coordinator::LeaseKey> LeaseFromProto(const v1::Lease& proto) {
       .run_id = proto.run_id(), .slot = proto.slot(), .epoch = proto.epoch()};
 }
 
+v1::EvaluationJob EvaluationJobToProto(const coordinator::EvaluationJobKey& key) {
+  v1::EvaluationJob proto;
+  proto.set_run_id(key.run_id);
+  proto.set_policy_version(key.policy_version);
+  proto.set_context(key.context);
+  proto.set_epoch(key.epoch);
+  return proto;
+}
+
+absl::StatusOr<coordinator::EvaluationJobKey> EvaluationJobFromProto(
+    const v1::EvaluationJob& proto) {
+  if (proto.run_id().empty()) return absl::InvalidArgumentError("the job names no run");
+  return coordinator::EvaluationJobKey{.run_id = proto.run_id(),
+                                       .policy_version = proto.policy_version(),
+                                       .context = proto.context(),
+                                       .epoch = proto.epoch()};
+}
+
+v1::ContextReturns ContextReturnsToProto(const coordinator::ContextReturns& returns) {
+  v1::ContextReturns proto;
+  proto.mutable_returns()->Assign(returns.returns.begin(), returns.returns.end());
+  proto.set_seconds(returns.seconds);
+  return proto;
+}
+
+coordinator::ContextReturns ContextReturnsFromProto(const v1::ContextReturns& proto) {
+  return {.returns = {proto.returns().begin(), proto.returns().end()},
+          .seconds = proto.seconds()};
+}
+
 v1::Checkpoint CheckpointToProto(const run::PackedCheckpoint& checkpoint) {
   v1::Checkpoint proto;
   proto.set_name(checkpoint.name);

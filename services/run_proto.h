@@ -25,6 +25,14 @@ v1::Lease LeaseToProto(const coordinator::LeaseKey& key);
 // INVALID_ARGUMENT for a lease without a run id.
 absl::StatusOr<coordinator::LeaseKey> LeaseFromProto(const v1::Lease& proto);
 
+v1::EvaluationJob EvaluationJobToProto(const coordinator::EvaluationJobKey& key);
+// INVALID_ARGUMENT for a job without a run id.
+absl::StatusOr<coordinator::EvaluationJobKey> EvaluationJobFromProto(
+    const v1::EvaluationJob& proto);
+
+v1::ContextReturns ContextReturnsToProto(const coordinator::ContextReturns& returns);
+coordinator::ContextReturns ContextReturnsFromProto(const v1::ContextReturns& proto);
+
 v1::Checkpoint CheckpointToProto(const run::PackedCheckpoint& checkpoint);
 run::PackedCheckpoint CheckpointFromProto(const v1::Checkpoint& proto);
 

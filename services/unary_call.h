@@ -3,17 +3,21 @@
 #define DCS_SERVICES_UNARY_CALL_H_
 
 // One unary call with a deadline, its status as an absl::Status (annotated with the peer's
-// name): the client side of every worker-to-coordinator, actor-to-learner and client call; and
-// which failures are worth the same call again. Thread-safe (gRPC stubs are).
+// name): the client side of every worker-to-coordinator, actor-to-learner and client call;
+// which failures are worth the same call again; and the call retried with backoff until it
+// succeeds or the caller gives up. Thread-safe (gRPC stubs are).
 
 #include <grpcpp/client_context.h>
 #include <grpcpp/support/status.h>
 
+#include "absl/random/random.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
+#include "absl/time/clock.h"
 #include "absl/time/time.h"
 #include "common/status_util.h"
+#include "services/backoff.h"
 #include "services/channel.h"
 #include "services/grpc_status.h"
 
@@ -35,6 +39,24 @@ absl::Status CallUnary(Stub& stub,
   const grpc::Status status = (stub.*method)(&context, request, &response);
   if (status.ok()) return absl::OkStatus();
   return Annotate(FromGrpcStatus(status), peer);
+}
+
+// Calls until the call succeeds or fails for good (not IsTransient), or until
+// `keep_trying(status)` returns false after a transient failure; backs off by `backoff`
+// between attempts. Returns the last status.
+template <typename Stub, typename Request, typename Response, typename KeepTrying>
+absl::Status CallWithRetries(Stub& stub,
+                             grpc::Status (Stub::*method)(grpc::ClientContext*, const Request&,
+                                                          Response*),
+                             const Request& request, Response& response, absl::Duration timeout,
+                             absl::string_view peer, const BackoffPolicy& backoff,
+                             KeepTrying keep_trying) {
+  absl::BitGen random;
+  for (int attempt = 1;; ++attempt) {
+    const absl::Status status = CallUnary(stub, method, request, response, timeout, peer);
+    if (status.ok() || !IsTransient(status) || !keep_trying(status)) return status;
+    absl::SleepFor(BackoffDelay(backoff, attempt, random));
+  }
 }
 
 }  // namespace dcs::services

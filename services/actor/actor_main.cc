@@ -1,7 +1,8 @@
 // Copyright 2026 The DCS Authors.
 //
 // dcs-actor: a stateless cluster member that steps env slots leased from the coordinator and
-// streams their rollouts to the runs' learners (services/actor/).
+// streams their rollouts to the runs' learners, and runs the runs' evaluation jobs
+// (services/actor/).
 
 #include <memory>
 #include <string>
@@ -12,6 +13,8 @@
 #include "common/status_macros.h"
 #include "coordinator/worker_registry.h"
 #include "env/library_versions.h"
+#include "absl/synchronization/mutex.h"
+#include "services/actor/evaluation_worker.h"
 #include "services/actor/slot_workers.h"
 #include "services/service_main.h"
 #include "services/worker_role.h"
@@ -48,24 +51,34 @@ class ActorRole final : public WorkerServiceRole {
 
   absl::Status Start(Server& server, const std::string& listen_address) override {
     DCS_RETURN_IF_ERROR(WorkerServiceRole::Start(server, listen_address));
-    workers_ = std::make_unique<SlotWorkers>(
+    const std::string holder = absl::StrCat("actor@", advertised_address());
+    const std::string numerics = ActorNumerics();
+    slots_ = std::make_unique<SlotWorkers>(
         SlotWorkersOptions{.coordinator_address = coordinator_address(),
-                           .holder = absl::StrCat("actor@", advertised_address()),
-                           .numerics = ActorNumerics(),
+                           .holder = holder,
+                           .numerics = numerics,
                            .max_slots = max_slots_},
-        *metrics_);
+        *metrics_, core_);
+    evaluations_ = std::make_unique<EvaluationWorker>(
+        EvaluationWorkerOptions{.coordinator_address = coordinator_address(),
+                                .holder = holder,
+                                .numerics = numerics},
+        *metrics_, core_);
     return absl::OkStatus();
   }
 
   void Stop() override {
-    if (workers_ != nullptr) workers_->Stop();
+    if (slots_ != nullptr) slots_->Stop();
+    if (evaluations_ != nullptr) evaluations_->Stop();
     WorkerServiceRole::Stop();
   }
 
  private:
   int max_slots_ = 64;
   prometheus::Registry* metrics_ = nullptr;
-  std::unique_ptr<SlotWorkers> workers_;
+  absl::Mutex core_;  // the one core the actor computes on: a slot steps or a job evaluates
+  std::unique_ptr<SlotWorkers> slots_;
+  std::unique_ptr<EvaluationWorker> evaluations_;
 };
 
 }  // namespace

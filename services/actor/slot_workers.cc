@@ -73,7 +73,8 @@ absl::StatusOr<std::unique_ptr<actor::SlotStepper>> MakeStepper(const std::strin
 
 }  // namespace
 
-SlotWorkers::SlotWorkers(SlotWorkersOptions options, prometheus::Registry& metrics)
+SlotWorkers::SlotWorkers(SlotWorkersOptions options, prometheus::Registry& metrics,
+                         absl::Mutex& core)
     : options_(std::move(options)),
       coordinator_(v1::CoordinatorService::NewStub(OpenChannel(options_.coordinator_address))),
       steps_(prometheus::BuildCounter()
@@ -100,6 +101,7 @@ SlotWorkers::SlotWorkers(SlotWorkersOptions options, prometheus::Registry& metri
                           .Add({}, prometheus::Histogram::BucketBoundaries{
                                        0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1,
                                        0.25, 0.5, 1, 2.5, 5, 10})),
+      core_(core),
       manager_([this] { Manage(); }) {}
 
 SlotWorkers::~SlotWorkers() { Stop(); }
@@ -190,13 +192,12 @@ void SlotWorkers::Work(Slot& slot) {
               options_.rpc_timeout, "coordinator")
         .IgnoreError();
   };
-  // Backs off after a failed call; false once the learner has been silent for a lease.
-  auto back_off = [&](const absl::Status& status) {
+  auto log_failure = [&](const absl::Status& status) {
     Log(LogLevel::kWarning, "learner call failed",
         {{"slot", name}, {"error", status.ToString()}});
-    absl::SleepFor(BackoffDelay(kRetryBackoff, ++failures, random));
-    return absl::Now() - learner_answered_at < lease_duration;
   };
+  // The slot is worth keeping until its learner has been silent for a lease.
+  auto learner_alive = [&] { return absl::Now() - learner_answered_at < lease_duration; };
 
   while (!stopping_.HasBeenNotified()) {
     if (absl::Now() - renewed_at >= lease_duration / 3) {
@@ -227,7 +228,12 @@ void SlotWorkers::Work(Slot& slot) {
         CallUnary(*learner, &v1::LearnerService::Stub::GetSlotWork, ask, work,
                   options_.rpc_timeout + options_.work_wait, slot.learner_address);
     if (!asked.ok()) {
-      if (IsTransient(asked) && back_off(asked)) continue;
+      if (IsTransient(asked)) {
+        // Back off here rather than in CallWithRetries: the loop renews the lease meanwhile.
+        log_failure(asked);
+        absl::SleepFor(BackoffDelay(kRetryBackoff, ++failures, random));
+        if (learner_alive()) continue;
+      }
       Log(LogLevel::kInfo, "giving up a slot", {{"slot", name}, {"error", asked.ToString()}});
       return;
     }
@@ -269,7 +275,7 @@ void SlotWorkers::Work(Slot& slot) {
 
     v1::PushRolloutRequest push;
     {
-      absl::MutexLock stepping(&step_mu_);
+      absl::MutexLock on_core(&core_);
       update_latency_.Observe(
           absl::ToDoubleSeconds(absl::Now() - TimeFromProto(work.publish_time())));
       *push.mutable_data() = SlotRolloutToProto((*stepper)->Collect(*policy, work.n_steps()));
@@ -279,21 +285,20 @@ void SlotWorkers::Work(Slot& slot) {
     push.set_learner_epoch(slot.learner_epoch);
     push.set_rollout(work.rollout());
     push.set_policy_version(policy_version);
-    while (!stopping_.HasBeenNotified()) {
-      v1::PushRolloutResponse pushed;
-      const absl::Status status =
-          CallUnary(*learner, &v1::LearnerService::Stub::PushRollout, push, pushed,
-                    options_.rpc_timeout, slot.learner_address);
-      if (status.ok()) {
-        rollouts_.Increment();
-        learner_answered_at = absl::Now();
-        failures = 0;
-        break;
-      }
-      if (IsTransient(status) && back_off(status)) continue;
+    v1::PushRolloutResponse pushed;
+    const absl::Status status = CallWithRetries(
+        *learner, &v1::LearnerService::Stub::PushRollout, push, pushed, options_.rpc_timeout,
+        slot.learner_address, kRetryBackoff, [&](const absl::Status& failed) {
+          log_failure(failed);
+          return !stopping_.HasBeenNotified() && learner_alive();
+        });
+    if (!status.ok()) {
+      if (stopping_.HasBeenNotified()) break;
       Log(LogLevel::kInfo, "giving up a slot", {{"slot", name}, {"error", status.ToString()}});
       return;
     }
+    rollouts_.Increment();
+    learner_answered_at = absl::Now();
   }
   release();
 }

@@ -8,7 +8,8 @@
 // learner for work (waiting there for the next policy version), rebuilds the slot from its
 // journal when it is not positioned where the learner says (actor/slot_stepper.h), collects
 // the slot's part of the rollout with the policy (Eigen) and pushes it, retrying a learner
-// that does not answer. Only one slot is stepped at a time, so an actor uses one core and the
+// that does not answer. Slots step holding the actor's core (a mutex shared with its
+// evaluation jobs: services/actor/evaluation_worker.h), so an actor uses one core and the
 // slots of many runs share it: while one waits for its run's update, another steps.
 //
 // A slot is given up when its lease is lost (it moved, lapsed, or the run ended) or its
@@ -46,8 +47,8 @@ struct SlotWorkersOptions {
 
 class SlotWorkers {
  public:
-  // Starts the manager thread. Borrows `metrics`, which must outlive this.
-  SlotWorkers(SlotWorkersOptions options, prometheus::Registry& metrics);
+  // Starts the manager thread. Borrows `metrics` and `core`, which must outlive this.
+  SlotWorkers(SlotWorkersOptions options, prometheus::Registry& metrics, absl::Mutex& core);
   ~SlotWorkers();
   SlotWorkers(const SlotWorkers&) = delete;
   SlotWorkers& operator=(const SlotWorkers&) = delete;
@@ -69,8 +70,8 @@ class SlotWorkers {
   prometheus::Counter& rebuilds_;
   prometheus::Histogram& update_latency_;
 
+  absl::Mutex& core_;  // held while stepping
   absl::Notification stopping_;
-  absl::Mutex step_mu_;  // one slot steps at a time
 
   absl::Mutex mu_;
   // By "run/slot@epoch".

@@ -7,7 +7,6 @@
 #include <utility>
 #include <vector>
 
-#include "absl/random/random.h"
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
@@ -17,6 +16,7 @@
 #include "services/backoff.h"
 #include "services/channel.h"
 #include "services/finished_threads.h"
+#include "services/learner/remote_evaluation.h"
 #include "services/log.h"
 #include "services/run_proto.h"
 #include "services/time_proto.h"
@@ -205,18 +205,17 @@ absl::Status HostedRuns::Retry(
     grpc::Status (v1::CoordinatorService::Stub::*method)(grpc::ClientContext*, const Request&,
                                                           Response*),
     const Request& request) {
-  absl::BitGen random;
-  for (int attempt = 1;; ++attempt) {
-    Response response;
-    const absl::Status status =
-        CallUnary(*coordinator_, method, request, response, options_.rpc_timeout, "coordinator");
-    if (status.ok()) return status;
-    if (IsLeaseLost(status)) run.lost = true;
-    if (!IsTransient(status) || run.lost || stopping_.HasBeenNotified()) return status;
-    Log(LogLevel::kWarning, "coordinator call failed; retrying",
-        {{"run_id", run.lease.run_id}, {"error", status.ToString()}});
-    absl::SleepFor(BackoffDelay(kRetryBackoff, attempt, random));
-  }
+  Response response;
+  const absl::Status status = CallWithRetries(
+      *coordinator_, method, request, response, options_.rpc_timeout, "coordinator",
+      kRetryBackoff, [&](const absl::Status& failed) {
+        if (run.lost || stopping_.HasBeenNotified()) return false;
+        Log(LogLevel::kWarning, "coordinator call failed; retrying",
+            {{"run_id", run.lease.run_id}, {"error", failed.ToString()}});
+        return true;
+      });
+  if (IsLeaseLost(status)) run.lost = true;
+  return status;
 }
 
 void HostedRuns::Finish(Run& run, coordinator::RunState state, const std::string& error) {
@@ -240,8 +239,12 @@ absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Load(Run& run) {
   }
   std::shared_ptr<learner::RunHost> host;
   DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
-    DCS_ASSIGN_OR_RETURN(host, learner::RunHost::Create<Env>(
-                                   spec, checkpoint.has_value() ? &*checkpoint : nullptr));
+    DCS_ASSIGN_OR_RETURN(
+        host, learner::RunHost::Create<Env>(
+                  spec, checkpoint.has_value() ? &*checkpoint : nullptr,
+                  EvaluateOnActors(coordinator_, run.lease,
+                                   {.poll_interval = options_.poll_interval / 2,
+                                    .rpc_timeout = options_.rpc_timeout})));
     return absl::OkStatus();
   }));
   return host;

@@ -13,6 +13,7 @@
 //
 // A learner's own disk holds nothing: a learner that dies loses only the updates since the
 // run's last checkpoint, which the next learner to take the run repeats, bit for bit.
+// Evaluations are handed to the coordinator for actors (services/learner/remote_evaluation.h).
 //
 // Thread-safe. The destructor stops everything.
 
@@ -85,7 +86,8 @@ class HostedRuns {
   void Finish(Run& run, coordinator::RunState state, const std::string& error);
 
   const HostedRunsOptions options_;
-  const std::unique_ptr<v1::CoordinatorService::Stub> coordinator_;
+  // Shared with the hosts' evaluators (services/learner/remote_evaluation.h).
+  const std::shared_ptr<v1::CoordinatorService::Stub> coordinator_;
   const std::shared_ptr<RunMetrics::Families> metric_families_;
   std::string address_;  // set by Start, before the manager thread starts
 

@@ -321,7 +321,6 @@ TEST_F(RunStoreTest, AnEvaluationIsOneJobPerContextForActorsAndIsCompleteOnceAll
   EXPECT_EQ(second->key.context, 1);
   EXPECT_EQ(first->weights, std::string("w\0v1", 4));  // bytes, NULs included
   EXPECT_EQ(first->episodes, 3);
-  EXPECT_EQ(first->seed, 7u);
   EXPECT_EQ(first->config, "env: cartpole\n");
 
   ASSERT_TRUE(store->ReportEvaluationJob(second->key, {{4.0, 5.0, 6.5}, 0.25}).ok());

@@ -251,12 +251,17 @@ TEST_F(DataPlaneTest, OneActorGivesTheRunOfOneProcess) {
   ExpectSameOutcome(*outcome, InOneProcess());
 
   // The metrics of the run, on every process, pass promtool's lint; the run's own series left
-  // the learner with the run.
+  // the learner with the run. The actor ran every evaluation: 6 policy versions (steps 1536 to
+  // 7680, and the final policy) on 2 contexts.
   const std::map<std::string, std::vector<std::string>> expected = {
       {"coordinator",
-       {"dcs_runs{state=\"completed\"} 1", "dcs_leases_granted_total{kind=\"slot\"} "}},
+       {"dcs_runs{state=\"completed\"} 1", "dcs_leases_granted_total{kind=\"slot\"} ",
+        "dcs_leases_granted_total{kind=\"evaluation\"} 12",
+        "dcs_queue_depth{queue=\"evaluations\"} 0"}},
       {"learner", {"dcs_learner_update_seconds_count 10", "dcs_rollouts_received_total 30"}},
-      {"actor", {"dcs_actor_rollouts_total 30", "dcs_policy_update_latency_seconds_count 30"}}};
+      {"actor",
+       {"dcs_actor_rollouts_total 30", "dcs_policy_update_latency_seconds_count 30",
+        "dcs_actor_evaluation_jobs_total 12"}}};
   for (const auto& [name, series] : expected) {
     absl::StatusOr<std::string> exposition = testing::HttpGet(cluster.metrics_url(name));
     ASSERT_TRUE(exposition.ok()) << exposition.status();
@@ -516,6 +521,114 @@ TEST(DataPlaneBadInputTest, RefusesEachBadRolloutNamingItAndTakesTheGoodOne) {
             4);
   EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"NOT_FOUND\"}"), 1);
   EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_received_total"), 1);
+}
+
+// Calls the coordinator's `method`, failing the test unless it succeeds.
+template <typename Request, typename Response>
+Response CallCoordinator(v1::CoordinatorService::Stub& coordinator,
+                         grpc::Status (v1::CoordinatorService::Stub::*method)(
+                             grpc::ClientContext*, const Request&, Response*),
+                         const Request& request) {
+  Response response;
+  const absl::Status status =
+      services::CallUnary(coordinator, method, request, response, kTimeout, "coordinator");
+  EXPECT_TRUE(status.ok()) << status;
+  return response;
+}
+
+TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoodOne) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  const std::string run_id = cluster.Submit();
+  auto coordinator =
+      v1::CoordinatorService::NewStub(services::OpenChannel(cluster.coordinator_address()));
+  using Stub = v1::CoordinatorService::Stub;
+
+  // A learner's part, played by the test: take the run, hand over an evaluation.
+  v1::AcquireRunRequest acquire_run;
+  acquire_run.set_holder("fake-learner");
+  acquire_run.set_address("127.0.0.1:1");
+  const v1::AcquireRunResponse run = CallCoordinator(*coordinator, &Stub::AcquireRun, acquire_run);
+  ASSERT_EQ(run.lease().run_id(), run_id);
+  v1::SubmitEvaluationRequest submit;
+  *submit.mutable_lease() = run.lease();
+  submit.set_contexts(2);
+  submit.set_episodes(3);
+  submit.mutable_weights()->set_num_actions(2);
+  CallCoordinator(*coordinator, &Stub::SubmitEvaluation, submit);
+
+  v1::AcquireEvaluationRequest acquire_job;
+  acquire_job.set_holder("fake-actor");
+  const v1::AcquireEvaluationResponse job =
+      CallCoordinator(*coordinator, &Stub::AcquireEvaluation, acquire_job);
+  ASSERT_TRUE(job.has_job());
+  EXPECT_EQ(job.episodes(), 3);
+  EXPECT_EQ(job.weights().num_actions(), 2);
+  v1::ReportEvaluationRequest good;
+  *good.mutable_job() = job.job();
+  for (double value : {1.0, 2.0, 3.0}) good.mutable_result()->add_returns(value);
+
+  struct Case {
+    const char* what;
+    std::function<void(v1::ReportEvaluationRequest&)> spoil;
+    absl::StatusCode code;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"unknown run", [](auto& r) { r.mutable_job()->set_run_id("run-99"); },
+       absl::StatusCode::kNotFound, "context 0 of policy version 0 of run-99 does not exist"},
+      {"unknown context", [](auto& r) { r.mutable_job()->set_context(9); },
+       absl::StatusCode::kNotFound, "context 9"},
+      {"too few returns", [](auto& r) { r.mutable_result()->mutable_returns()->RemoveLast(); },
+       absl::StatusCode::kInvalidArgument, "has 3 episodes; 2 returns were delivered"},
+      {"NaN",
+       [](auto& r) {
+         r.mutable_result()->set_returns(1, std::numeric_limits<double>::quiet_NaN());
+       },
+       absl::StatusCode::kInvalidArgument, "the return of episode 1"},
+  };
+  for (const Case& bad : cases) {
+    v1::ReportEvaluationRequest request = good;
+    bad.spoil(request);
+    v1::ReportEvaluationResponse response;
+    const absl::Status status = services::CallUnary(*coordinator, &Stub::ReportEvaluation,
+                                                    request, response, kTimeout, "coordinator");
+    EXPECT_EQ(status.code(), bad.code) << bad.what << ": " << status;
+    EXPECT_THAT(status.message(), HasSubstr(bad.message)) << bad.what;
+  }
+  // The good result is taken, once.
+  EXPECT_FALSE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, good).duplicate());
+  EXPECT_TRUE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, good).duplicate());
+
+  // A holder whose job lapsed and went to another is refused.
+  const v1::AcquireEvaluationResponse lapsing =
+      CallCoordinator(*coordinator, &Stub::AcquireEvaluation, acquire_job);
+  ASSERT_EQ(lapsing.job().context(), 1);
+  absl::SleepFor(kLease * 0.6);
+  v1::RenewLeaseRequest renew;  // the learner stays
+  *renew.mutable_lease() = run.lease();
+  CallCoordinator(*coordinator, &Stub::RenewLease, renew);
+  absl::SleepFor(kLease * 0.6);
+  const v1::AcquireEvaluationResponse again =
+      CallCoordinator(*coordinator, &Stub::AcquireEvaluation, acquire_job);
+  ASSERT_EQ(again.job().context(), 1);
+  EXPECT_GT(again.job().epoch(), lapsing.job().epoch());
+  v1::ReportEvaluationRequest late = good;
+  *late.mutable_job() = lapsing.job();
+  v1::ReportEvaluationResponse refused;
+  const absl::Status moved = services::CallUnary(*coordinator, &Stub::ReportEvaluation, late,
+                                                 refused, kTimeout, "coordinator");
+  EXPECT_EQ(moved.code(), absl::StatusCode::kFailedPrecondition) << moved;
+  EXPECT_THAT(moved.message(), HasSubstr("moved"));
+
+  // Each refusal is counted under its reason.
+  absl::StatusOr<std::string> metrics = testing::HttpGet(cluster.metrics_url("coordinator"));
+  ASSERT_TRUE(metrics.ok()) << metrics.status();
+  EXPECT_EQ(MetricValue(*metrics, "dcs_requests_rejected_total{reason=\"NOT_FOUND\"}"), 2);
+  EXPECT_EQ(MetricValue(*metrics, "dcs_requests_rejected_total{reason=\"INVALID_ARGUMENT\"}"),
+            2);
+  EXPECT_EQ(
+      MetricValue(*metrics, "dcs_requests_rejected_total{reason=\"FAILED_PRECONDITION\"}"), 1);
 }
 
 TEST(DataPlaneBadInputTest, AMalformedConfigSubmittedRemotelyNamesItsFieldAndLine) {

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "absl/synchronization/mutex.h"
+#include "absl/synchronization/notification.h"
 #include "actor/slot_stepper.h"
 #include "env/car_racing.h"
 #include "env/cartpole.h"
@@ -102,7 +104,8 @@ class Actors {
 
 std::unique_ptr<RunHost> NewHost(const run::Checkpoint* checkpoint = nullptr) {
   absl::StatusOr<std::unique_ptr<RunHost>> host =
-      RunHost::Create<env::CartPole>(Spec(kSmallRun), checkpoint);
+      RunHost::Create<env::CartPole>(Spec(kSmallRun), checkpoint,
+                                     EvaluateInProcess<env::CartPole>());
   EXPECT_TRUE(host.ok()) << host.status();
   return host.ok() ? *std::move(host) : nullptr;
 }
@@ -161,6 +164,49 @@ TEST_F(RunHostTest, TellsASlotWhenTheRunIsComplete) {
   ASSERT_TRUE(work.ok());
   EXPECT_TRUE(work->run_complete);
   EXPECT_FALSE(work->ready);
+}
+
+TEST_F(RunHostTest, AsksItsEvaluatorForThePolicyThatFellDueAndStoppingCancelsIt) {
+  Actors actors(Spec(kSmallRun));
+  absl::Mutex mu;
+  std::vector<EvaluationDue> asked;
+  std::vector<std::vector<float>> weights;
+  absl::StatusOr<std::unique_ptr<RunHost>> created = RunHost::Create<env::CartPole>(
+      Spec(kSmallRun), nullptr,
+      [&](const EvaluationTask& task,
+          const absl::Notification& stop) -> absl::StatusOr<actor::EvaluationResult> {
+        {
+          absl::MutexLock lock(&mu);
+          asked.push_back(task.due);
+          weights.push_back(task.weights->layers.back().weight);
+        }
+        stop.WaitForNotification();  // an evaluation that never ends by itself
+        return absl::CancelledError("stopped");
+      });
+  ASSERT_TRUE(created.ok()) << created.status();
+  std::unique_ptr<RunHost> host = *std::move(created);
+  std::vector<float> version_1;  // the output layer as published for rollout 1
+  for (int rollout = 0; rollout < 2; ++rollout) {
+    if (rollout == 1) {
+      absl::StatusOr<SlotWork> work = host->GetSlotWork(0, 0, -1, absl::ZeroDuration());
+      ASSERT_TRUE(work.ok() && work->ready);
+      version_1 = work->weights->layers.back().weight;
+    }
+    actors.CollectRollout(*host);
+    ASSERT_TRUE(host->Step().ok());
+  }
+  {
+    // Rollout 1 reached step 256: the policy that collected it, version 1, fell due.
+    absl::MutexLock lock(&mu);
+    mu.Await(absl::Condition(+[](std::vector<EvaluationDue>* a) { return !a->empty(); }, &asked));
+    ASSERT_EQ(asked.size(), 1u);
+    EXPECT_EQ(asked[0].policy_version, 1);
+    EXPECT_EQ(asked[0].steps, std::vector<int64_t>{256});
+    EXPECT_EQ(weights[0], version_1);
+  }
+  host->Stop();
+  EXPECT_EQ(host->Step().status().code(), absl::StatusCode::kCancelled);
+  host.reset();  // returns: the outstanding evaluation saw the stop
 }
 
 class RunHostInputTest : public RunHostTest {
@@ -236,7 +282,9 @@ TEST_F(RunHostInputTest, RefusesNonFiniteValuesAndWrongShapesNamingThem) {
 TEST_F(RunHostTest, RefusesImagePolicies) {
   run::RunSpec spec = Spec(kSmallRun);
   spec.env = "car_racing";
-  EXPECT_EQ(RunHost::Create<env::CarRacing>(spec, nullptr).status().code(),
+  EXPECT_EQ(RunHost::Create<env::CarRacing>(spec, nullptr, EvaluateInProcess<env::CarRacing>())
+                .status()
+                .code(),
             absl::StatusCode::kUnimplemented);
 }
 

@@ -1,0 +1,123 @@
+// Copyright 2026 The DCS Authors.
+#include "services/actor/evaluation_worker.h"
+
+#include <grpcpp/grpcpp.h>
+
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "actor/evaluation.h"
+#include "actor/mlp_policy.h"
+#include "common/status_macros.h"
+#include "env/env_registry.h"
+#include "run/run_plan.h"
+#include "run/run_spec_yaml.h"
+#include "services/backoff.h"
+#include "services/channel.h"
+#include "services/log.h"
+#include "services/run_proto.h"
+#include "services/trajectory_proto.h"
+#include "services/unary_call.h"
+
+namespace dcs::services {
+namespace {
+
+constexpr BackoffPolicy kRetryBackoff{.initial = absl::Milliseconds(50),
+                                      .max = absl::Seconds(1)};
+
+std::string JobName(const v1::EvaluationJob& job) {
+  return absl::StrCat(job.run_id(), " v", job.policy_version(), " context ", job.context());
+}
+
+}  // namespace
+
+EvaluationWorker::EvaluationWorker(EvaluationWorkerOptions options,
+                                   prometheus::Registry& metrics, absl::Mutex& core)
+    : options_(std::move(options)),
+      coordinator_(v1::CoordinatorService::NewStub(OpenChannel(options_.coordinator_address))),
+      jobs_(prometheus::BuildCounter()
+                .Name("dcs_actor_evaluation_jobs_total")
+                .Help("Evaluation jobs (one context of one policy version) this actor "
+                      "delivered.")
+                .Register(metrics)
+                .Add({})),
+      core_(core),
+      thread_([this] { Work(); }) {}
+
+EvaluationWorker::~EvaluationWorker() { Stop(); }
+
+void EvaluationWorker::Stop() {
+  if (!stopping_.HasBeenNotified()) stopping_.Notify();
+  if (thread_.joinable()) thread_.join();
+}
+
+void EvaluationWorker::Work() {
+  while (!stopping_.HasBeenNotified()) {
+    if (!RunOneJob()) stopping_.WaitForNotificationWithTimeout(options_.poll_interval);
+  }
+}
+
+absl::StatusOr<v1::ContextReturns> EvaluationWorker::Evaluate(
+    const v1::AcquireEvaluationResponse& job) {
+  DCS_ASSIGN_OR_RETURN(const run::RunSpec spec,
+                       run::ParseRunSpecYaml(job.config(), job.job().run_id()));
+  DCS_ASSIGN_OR_RETURN(const actor::MlpWeights weights, WeightsFromProto(job.weights()));
+  DCS_ASSIGN_OR_RETURN(actor::MlpPolicy policy, actor::MlpPolicy::Create(weights));
+  const size_t index = static_cast<size_t>(job.job().context());
+  actor::ContextResult result;
+  DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(const run::RunPlan plan, run::PlanRun(spec, Env::Features()));
+    if (job.job().context() < 0 || index >= plan.evaluation_contexts.size()) {
+      return absl::InvalidArgumentError(absl::StrCat("the run has ",
+                                                     plan.evaluation_contexts.size(),
+                                                     " evaluation contexts, no context ",
+                                                     job.job().context()));
+    }
+    absl::MutexLock on_core(&core_);
+    DCS_ASSIGN_OR_RETURN(result, actor::EvaluateContext<Env>(
+                                     policy, plan.slot, plan.feature,
+                                     plan.evaluation_contexts[index], index, job.episodes(),
+                                     spec.seed));
+    return absl::OkStatus();
+  }));
+  return ContextReturnsToProto({.returns = std::move(result.returns), .seconds = result.seconds});
+}
+
+bool EvaluationWorker::RunOneJob() {
+  v1::AcquireEvaluationRequest request;
+  request.set_holder(options_.holder);
+  request.set_numerics(options_.numerics);
+  v1::AcquireEvaluationResponse job;
+  const absl::Status acquired =
+      CallUnary(*coordinator_, &v1::CoordinatorService::Stub::AcquireEvaluation, request, job,
+                options_.rpc_timeout, "coordinator");
+  if (!acquired.ok() || !job.has_job()) {
+    if (!acquired.ok() && !IsTransient(acquired)) {
+      Log(LogLevel::kWarning, "cannot take an evaluation job", {{"error", acquired.ToString()}});
+    }
+    return false;
+  }
+  absl::StatusOr<v1::ContextReturns> result = Evaluate(job);
+  if (!result.ok()) {
+    Log(LogLevel::kError, "cannot run an evaluation job",
+        {{"job", JobName(job.job())}, {"error", result.status().ToString()}});
+    return true;  // the job lapses; nothing here can run it
+  }
+  v1::ReportEvaluationRequest report;
+  *report.mutable_job() = job.job();
+  *report.mutable_result() = *std::move(result);
+  v1::ReportEvaluationResponse reported;
+  const absl::Status status = CallWithRetries(
+      *coordinator_, &v1::CoordinatorService::Stub::ReportEvaluation, report, reported,
+      options_.rpc_timeout, "coordinator", kRetryBackoff,
+      [&](const absl::Status&) { return !stopping_.HasBeenNotified(); });
+  if (status.ok()) {
+    jobs_.Increment();
+  } else {
+    Log(LogLevel::kWarning, "evaluation job not delivered",
+        {{"job", JobName(job.job())}, {"error", status.ToString()}});
+  }
+  return true;
+}
+
+}  // namespace dcs::services

@@ -1,0 +1,67 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_ACTOR_EVALUATION_WORKER_H_
+#define DCS_SERVICES_ACTOR_EVALUATION_WORKER_H_
+
+// An actor's evaluation jobs (DESIGN.md §3). A thread takes one job at a time from the
+// coordinator (AcquireEvaluation): one evaluation context of one policy version of a run. It
+// evaluates the context with that policy (actor::EvaluateContext, Eigen, as `dcs train` does)
+// and delivers the episodes' returns (ReportEvaluation, retried while the coordinator is
+// down). It evaluates holding the actor's core (the mutex its slots step under), so an actor
+// still uses one core: while its slots wait for their runs' updates, it evaluates.
+//
+// A job that cannot be run here (a config this build does not know, say) is logged and left
+// to lapse. Thread-safe. The destructor stops the thread.
+
+#include <prometheus/counter.h>
+#include <prometheus/registry.h>
+
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "absl/status/statusor.h"
+#include "absl/synchronization/mutex.h"
+#include "absl/synchronization/notification.h"
+#include "absl/time/time.h"
+#include "dcs/v1/coordinator_service.grpc.pb.h"
+
+namespace dcs::services {
+
+struct EvaluationWorkerOptions {
+  std::string coordinator_address;
+  std::string holder;    // the actor's name in leases
+  std::string numerics;  // the numeric libraries' fingerprint
+  absl::Duration poll_interval = absl::Milliseconds(200);  // when there is no job
+  absl::Duration rpc_timeout = absl::Seconds(10);
+};
+
+class EvaluationWorker {
+ public:
+  // Starts the thread. Borrows `metrics` and `core`, which must outlive this.
+  EvaluationWorker(EvaluationWorkerOptions options, prometheus::Registry& metrics,
+                   absl::Mutex& core);
+  ~EvaluationWorker();
+  EvaluationWorker(const EvaluationWorker&) = delete;
+  EvaluationWorker& operator=(const EvaluationWorker&) = delete;
+
+  // Stops taking jobs and joins the thread (after the job at hand).
+  void Stop();
+
+ private:
+  void Work();
+  // Takes a job, runs it and delivers it; false if there was none.
+  bool RunOneJob();
+  // The returns of the job `job` describes.
+  absl::StatusOr<v1::ContextReturns> Evaluate(const v1::AcquireEvaluationResponse& job);
+
+  const EvaluationWorkerOptions options_;
+  const std::unique_ptr<v1::CoordinatorService::Stub> coordinator_;
+  prometheus::Counter& jobs_;
+  absl::Mutex& core_;
+  absl::Notification stopping_;
+  std::thread thread_;  // last: starts after everything above is initialised
+};
+
+}  // namespace dcs::services
+
+#endif  // DCS_SERVICES_ACTOR_EVALUATION_WORKER_H_
