@@ -4,7 +4,8 @@
 # from the first submission to the last run's end, the environment steps of all runs, and their
 # aggregate steps per second (updates and evaluations included; the cluster's start-up not),
 # and how busy the cores were: the CPU seconds of the cluster's processes (their
-# process_cpu_seconds_total) over wall seconds times cores.
+# process_cpu_seconds_total, also printed per process) and of the clients, over wall seconds
+# times cores.
 # Usage: bench/cluster/concurrent_runs.sh [N] [CONFIG]   (BUILD_DIR: default build)
 set -euo pipefail
 dcs="${BUILD_DIR:-build}/services/dcs"
@@ -22,6 +23,7 @@ for i in $(seq 1 "${EXTRA_LEARNERS:-0}"); do
 done
 
 start=$(date +%s.%N)
+clients_cpu_before=$(awk '{print $14 + $15 + $16 + $17}' /proc/$$/stat)
 clients=()
 for seed in $(seq 0 $((runs - 1))); do
   "$dcs" train --cluster --data-dir "$data" --config "$config" --seed "$seed" \
@@ -30,20 +32,28 @@ for seed in $(seq 0 $((runs - 1))); do
 done
 wait "${clients[@]}"
 end=$(date +%s.%N)
+# The clients' CPU: this shell's reaped children (cutime + cstime), in clock ticks.
+clients_cpu=$(awk -v before="$clients_cpu_before" -v hz="$(getconf CLK_TCK)" \
+              '{print ($14 + $15 + $16 + $17 - before) / hz}' /proc/$$/stat)
 
 steps=$("$dcs" runs --data-dir "$data" -o json |
         python3 -c 'import json, sys; print(sum(int(r["progress"]["timesteps"])
                     for r in json.load(sys.stdin)["runs"] if r["state"] == "RUN_STATE_COMPLETED"))')
 cpu=0
-for metrics in $(sed -n 's/^ *metrics: *//p' "$data/cluster.yaml"); do
+per_process=""
+for process in $(sed -n 's/^ *- name: *//p' "$data/cluster.yaml"); do
+  metrics=$(sed -n "/name: $process\$/,/metrics:/s/^ *metrics: *//p" "$data/cluster.yaml")
   seconds=$(curl -s "http://$metrics/metrics" | sed -n 's/^process_cpu_seconds_total //p')
   cpu=$(python3 -c "print($cpu + ${seconds:-0})")
+  per_process="$per_process $process=${seconds%.*}"
 done
-python3 - "$runs" "$start" "$end" "$steps" "$cpu" "$(nproc)" <<'PY'
+python3 - "$runs" "$start" "$end" "$steps" "$cpu" "$clients_cpu" "$(nproc)" "$per_process" <<'PY'
 import sys
-runs, start, end, steps, cpu, cores = (int(sys.argv[1]), float(sys.argv[2]), float(sys.argv[3]),
-                                       int(sys.argv[4]), float(sys.argv[5]), int(sys.argv[6]))
+runs, start, end, steps, cpu, clients, cores = (
+    int(sys.argv[1]), float(sys.argv[2]), float(sys.argv[3]), int(sys.argv[4]),
+    float(sys.argv[5]), float(sys.argv[6]), int(sys.argv[7]))
 wall = end - start
 print(f"runs {runs}  wall_s {wall:.1f}  steps {steps}  steps_per_s {steps / wall:.0f}  "
-      f"cluster_cpu_s {cpu:.0f}  busy {cpu / (wall * cores):.2f}")
+      f"cluster_cpu_s {cpu:.0f} ({sys.argv[8].strip()})  clients_cpu_s {clients:.0f}  "
+      f"busy {(cpu + clients) / (wall * cores):.2f}")
 PY

@@ -7,10 +7,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "actor/evaluation.h"
-#include "actor/mlp_policy.h"
 #include "common/status_macros.h"
 #include "env/env_registry.h"
-#include "run/run_plan.h"
 #include "run/run_spec_yaml.h"
 #include "services/backoff.h"
 #include "services/channel.h"
@@ -57,29 +55,46 @@ void EvaluationWorker::Work() {
   }
 }
 
-absl::StatusOr<v1::ContextReturns> EvaluationWorker::Evaluate(
-    const v1::AcquireEvaluationResponse& job) {
-  DCS_ASSIGN_OR_RETURN(const run::RunSpec spec,
-                       run::ParseRunSpecYaml(job.config(), job.job().run_id()));
+absl::Status EvaluationWorker::Prepare(const v1::AcquireEvaluationResponse& job) {
+  if (prepared_.run_id == job.job().run_id() &&
+      prepared_.policy_version == job.job().policy_version()) {
+    return absl::OkStatus();
+  }
+  prepared_ = {};
+  DCS_ASSIGN_OR_RETURN(run::RunSpec spec, run::ParseRunSpecYaml(job.config(), job.job().run_id()));
   DCS_ASSIGN_OR_RETURN(const actor::MlpWeights weights, WeightsFromProto(job.weights()));
-  DCS_ASSIGN_OR_RETURN(actor::MlpPolicy policy, actor::MlpPolicy::Create(weights));
-  const size_t index = static_cast<size_t>(job.job().context());
-  actor::ContextResult result;
+  DCS_ASSIGN_OR_RETURN(prepared_.policy, actor::MlpPolicy::Create(weights));
   DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
-    DCS_ASSIGN_OR_RETURN(const run::RunPlan plan, run::PlanRun(spec, Env::Features()));
-    if (job.job().context() < 0 || index >= plan.evaluation_contexts.size()) {
-      return absl::InvalidArgumentError(absl::StrCat("the run has ",
-                                                     plan.evaluation_contexts.size(),
-                                                     " evaluation contexts, no context ",
-                                                     job.job().context()));
-    }
-    absl::MutexLock on_core(&core_);
-    DCS_ASSIGN_OR_RETURN(result, actor::EvaluateContext<Env>(
-                                     policy, plan.slot, plan.feature,
-                                     plan.evaluation_contexts[index], index, job.episodes(),
-                                     spec.seed));
+    DCS_ASSIGN_OR_RETURN(prepared_.plan, run::PlanRun(spec, Env::Features()));
     return absl::OkStatus();
   }));
+  prepared_.spec = std::move(spec);
+  prepared_.run_id = job.job().run_id();
+  prepared_.policy_version = job.job().policy_version();
+  return absl::OkStatus();
+}
+
+absl::StatusOr<v1::ContextReturns> EvaluationWorker::Evaluate(
+    const v1::AcquireEvaluationResponse& job) {
+  DCS_RETURN_IF_ERROR(Prepare(job));
+  const run::RunPlan& plan = prepared_.plan;
+  const int context = job.job().context();
+  if (context < 0 || static_cast<size_t>(context) >= plan.evaluation_contexts.size()) {
+    return absl::InvalidArgumentError(absl::StrCat("the run has ",
+                                                   plan.evaluation_contexts.size(),
+                                                   " evaluation contexts, no context ", context));
+  }
+  const size_t index = static_cast<size_t>(context);
+  actor::ContextResult result;
+  DCS_RETURN_IF_ERROR(
+      env::VisitEnvironment(prepared_.spec.env, [&]<typename Env>() -> absl::Status {
+        absl::MutexLock on_core(&core_);
+        DCS_ASSIGN_OR_RETURN(result, actor::EvaluateContext<Env>(
+                                         *prepared_.policy, plan.slot, plan.feature,
+                                         plan.evaluation_contexts[index], index, job.episodes(),
+                                         prepared_.spec.seed));
+        return absl::OkStatus();
+      }));
   return ContextReturnsToProto({.returns = std::move(result.returns), .seconds = result.seconds});
 }
 

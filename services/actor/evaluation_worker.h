@@ -16,6 +16,7 @@
 #include <prometheus/registry.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -23,7 +24,10 @@
 #include "absl/synchronization/mutex.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
+#include "actor/mlp_policy.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
+#include "run/run_plan.h"
+#include "run/run_spec.h"
 
 namespace dcs::services {
 
@@ -53,6 +57,18 @@ class EvaluationWorker {
   bool RunOneJob();
   // The returns of the job `job` describes.
   absl::StatusOr<v1::ContextReturns> Evaluate(const v1::AcquireEvaluationResponse& job);
+  // The run and policy of `job`, made once for the consecutive jobs of an evaluation.
+  absl::Status Prepare(const v1::AcquireEvaluationResponse& job);
+
+  // What the jobs of one evaluation share; the worker thread's only.
+  struct Prepared {
+    std::string run_id;
+    int64_t policy_version = -1;
+    run::RunSpec spec;
+    run::RunPlan plan;
+    std::optional<actor::MlpPolicy> policy;
+  };
+  Prepared prepared_;
 
   const EvaluationWorkerOptions options_;
   const std::unique_ptr<v1::CoordinatorService::Stub> coordinator_;
