@@ -3,6 +3,7 @@
 // CoordinatorService's runs and leases: the run store (coordinator/run_store.h) and the runs'
 // directories (coordinator/run_files.h) on the wire.
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 #include "coordinator/run_files.h"
 #include "coordinator/run_submission.h"
 #include "services/coordinator_service.h"
+#include "services/grpc_status.h"
 #include "services/log.h"
 #include "services/run_proto.h"
 #include "services/time_proto.h"
@@ -22,6 +24,103 @@ namespace dcs::services {
 namespace {
 
 constexpr char kDefaultConfigName[] = "run.yaml";
+
+// A server stream writing `pieces` in order, or finishing at once with an error. Owned by gRPC
+// from construction until OnDone.
+template <typename Piece>
+class PiecesWriter final : public grpc::ServerWriteReactor<Piece> {
+ public:
+  explicit PiecesWriter(absl::StatusOr<std::vector<Piece>> pieces) {
+    if (!pieces.ok()) {
+      this->Finish(ToGrpcStatus(pieces.status()));
+      return;
+    }
+    pieces_ = *std::move(pieces);
+    WriteNext();
+  }
+
+  void OnWriteDone(bool ok) override {
+    if (!ok) {
+      this->Finish(grpc::Status(grpc::StatusCode::CANCELLED, "the stream broke"));
+      return;
+    }
+    WriteNext();
+  }
+
+  void OnDone() override { delete this; }
+
+ private:
+  void WriteNext() {
+    if (next_ == pieces_.size()) {
+      this->Finish(grpc::Status::OK);
+      return;
+    }
+    this->StartWrite(&pieces_[next_++]);
+  }
+
+  std::vector<Piece> pieces_;
+  size_t next_ = 0;
+};
+
+// PutCheckpoint's stream: the pieces of one checkpoint and its evaluation log, stored once the
+// learner has sent them all. Owned by gRPC from construction until OnDone.
+class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointRequest> {
+ public:
+  using Store = std::function<absl::Status(const coordinator::LeaseKey&,
+                                           const run::PackedCheckpoint&,
+                                           const v1::EvaluationLog&)>;
+  using Count = std::function<void(const absl::Status&)>;
+
+  CheckpointReader(Store store, Count count) : store_(std::move(store)), count_(std::move(count)) {
+    StartRead(&request_);
+  }
+
+  void OnReadDone(bool ok) override {
+    // !ok: the learner sent every piece.
+    const absl::Status status = ok ? Add() : Complete();
+    if (ok && status.ok()) {
+      StartRead(&request_);
+      return;
+    }
+    count_(status);
+    Finish(ToGrpcStatus(status));
+  }
+
+  void OnDone() override { delete this; }
+
+ private:
+  absl::Status Add() {
+    const bool first = !key_.has_value();
+    if (first) {
+      DCS_ASSIGN_OR_RETURN(key_, LeaseFromProto(request_.lease()));
+    }
+    DCS_RETURN_IF_ERROR(AddCheckpointPiece(request_.checkpoint(), first, checkpoint_));
+    if (log_.size() + request_.evaluation_log().size() > kMaxCheckpointBytes) {
+      return absl::ResourceExhaustedError(absl::StrCat(
+          "the evaluation log of checkpoint ", checkpoint_.name, " is larger than ",
+          kMaxCheckpointBytes, " bytes"));
+    }
+    log_.append(request_.evaluation_log());
+    return absl::OkStatus();
+  }
+
+  absl::Status Complete() {
+    if (!key_.has_value()) return absl::InvalidArgumentError("the checkpoint stream was empty");
+    v1::EvaluationLog log;
+    if (!log.ParseFromString(log_)) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("the evaluation log of checkpoint ", checkpoint_.name, " does not parse"));
+    }
+    return store_(*key_, checkpoint_, log);
+  }
+
+  const Store store_;
+  const Count count_;
+  v1::PutCheckpointRequest request_;
+  std::optional<coordinator::LeaseKey> key_;  // from the first piece
+  run::PackedCheckpoint checkpoint_;
+  std::string log_;
+};
 
 }  // namespace
 
@@ -89,23 +188,19 @@ grpc::ServerUnaryReactor* CoordinatorService::CancelRun(grpc::CallbackServerCont
   return Finish(context, run.status());
 }
 
-grpc::ServerUnaryReactor* CoordinatorService::GetRunFiles(grpc::CallbackServerContext* context,
-                                                          const v1::GetRunFilesRequest* request,
-                                                          v1::GetRunFilesResponse* response) {
-  auto get = [&]() -> absl::Status {
+grpc::ServerWriteReactor<v1::RunFile>* CoordinatorService::GetRunFiles(
+    grpc::CallbackServerContext* /*context*/, const v1::GetRunFilesRequest* request) {
+  auto get = [&]() -> absl::StatusOr<std::vector<v1::RunFile>> {
     DCS_ASSIGN_OR_RETURN(const coordinator::RunRecord run,
                          runs_.store->GetRun(request->run_id()));
-    DCS_ASSIGN_OR_RETURN(std::vector<coordinator::RunFile> files,
+    DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunFile> files,
                          coordinator::ReadRunFiles(
                              coordinator::RunDirectory(runs_.data_dir, run.id)));
-    for (coordinator::RunFile& file : files) {
-      v1::RunFile& out = *response->add_files();
-      out.set_path(std::move(file.path));
-      out.set_contents(std::move(file.contents));
-    }
-    return absl::OkStatus();
+    return RunFilesToPieces(files);
   };
-  return Finish(context, get());
+  absl::StatusOr<std::vector<v1::RunFile>> pieces = get();
+  CountRefusal(pieces.status());
+  return new PiecesWriter<v1::RunFile>(std::move(pieces));
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerContext* context,
@@ -117,19 +212,11 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerCon
         runs_.store->AcquireRun(request->holder(), request->address(), request->numerics(),
                                 absl::Now()));
     if (!lease.has_value()) return absl::OkStatus();
-    absl::StatusOr<run::PackedCheckpoint> checkpoint = coordinator::LatestCheckpoint(
-        coordinator::RunDirectory(runs_.data_dir, lease->run.id));
-    if (checkpoint.ok()) {
-      *response->mutable_checkpoint() = CheckpointToProto(*checkpoint);
-    } else if (!absl::IsNotFound(checkpoint.status())) {
-      // The lease stays granted; it lapses, and the run is retried, unless an operator acts.
-      return checkpoint.status();
-    }
     learner_leases_.Increment();
     Log(LogLevel::kInfo, "run leased",
         {{"run_id", lease->run.id}, {"learner", request->holder()},
          {"epoch", std::to_string(lease->key.epoch)},
-         {"checkpoint", checkpoint.ok() ? checkpoint->name : "none"}});
+         {"checkpoint", lease->run.checkpoint.empty() ? "none" : lease->run.checkpoint}});
     *response->mutable_lease() = LeaseToProto(lease->key);
     response->set_config(lease->run.submission.config);
     response->set_seed(lease->run.submission.seed);
@@ -185,21 +272,44 @@ grpc::ServerUnaryReactor* CoordinatorService::ReportProgress(
                                                      absl::Now()));
 }
 
-grpc::ServerUnaryReactor* CoordinatorService::PutCheckpoint(
-    grpc::CallbackServerContext* context, const v1::PutCheckpointRequest* request,
-    v1::PutCheckpointResponse* /*response*/) {
-  auto put = [&]() -> absl::Status {
+absl::Status CoordinatorService::StoreCheckpoint(const coordinator::LeaseKey& key,
+                                                 const run::PackedCheckpoint& checkpoint,
+                                                 const v1::EvaluationLog& log) {
+  // Only the lease's holder writes the run's directory; checked again when indexing.
+  DCS_RETURN_IF_ERROR(runs_.store->RenewLease(key, absl::Now()));
+  DCS_ASSIGN_OR_RETURN(const coordinator::CheckpointRecord stored,
+                       coordinator::StoreCheckpoint(
+                           coordinator::RunDirectory(runs_.data_dir, key.run_id), checkpoint,
+                           log, runs_.keep_checkpoints));
+  return runs_.store->RecordCheckpoint(key, stored, absl::Now());
+}
+
+grpc::ServerReadReactor<v1::PutCheckpointRequest>* CoordinatorService::PutCheckpoint(
+    grpc::CallbackServerContext* /*context*/, v1::PutCheckpointResponse* /*response*/) {
+  return new CheckpointReader(
+      [this](const coordinator::LeaseKey& key, const run::PackedCheckpoint& checkpoint,
+             const v1::EvaluationLog& log) { return StoreCheckpoint(key, checkpoint, log); },
+      [this](const absl::Status& status) { CountRefusal(status); });
+}
+
+grpc::ServerWriteReactor<v1::CheckpointPiece>* CoordinatorService::GetCheckpoint(
+    grpc::CallbackServerContext* /*context*/, const v1::GetCheckpointRequest* request) {
+  auto get = [&]() -> absl::StatusOr<std::vector<v1::CheckpointPiece>> {
     DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
-    // Only the lease's holder writes the run's directory; checked again when indexing.
+    if (key.slot != coordinator::kLearnerSlot) {
+      return absl::InvalidArgumentError("a run's checkpoints are for its learner lease");
+    }
+    // Only the lease's holder resumes the run.
     DCS_RETURN_IF_ERROR(runs_.store->RenewLease(key, absl::Now()));
-    DCS_ASSIGN_OR_RETURN(const coordinator::CheckpointRecord stored,
-                         coordinator::StoreCheckpoint(
-                             coordinator::RunDirectory(runs_.data_dir, key.run_id),
-                             CheckpointFromProto(request->checkpoint()),
-                             request->evaluation_log(), runs_.keep_checkpoints));
-    return runs_.store->RecordCheckpoint(key, stored, absl::Now());
+    DCS_ASSIGN_OR_RETURN(const run::PackedCheckpoint checkpoint,
+                         coordinator::LatestCheckpoint(
+                             coordinator::RunDirectory(runs_.data_dir, key.run_id)));
+    return CheckpointToPieces(checkpoint);
   };
-  return Finish(context, put());
+  absl::StatusOr<std::vector<v1::CheckpointPiece>> pieces = get();
+  // NOT_FOUND is the answer for a run without a checkpoint yet, not a refusal.
+  if (!absl::IsNotFound(pieces.status())) CountRefusal(pieces.status());
+  return new PiecesWriter<v1::CheckpointPiece>(std::move(pieces));
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::FinishRun(grpc::CallbackServerContext* context,

@@ -46,11 +46,15 @@ CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, Ru
                     .Help("Requests the coordinator refused, by reason (the status code).")
                     .Register(metrics)) {}
 
-grpc::ServerUnaryReactor* CoordinatorService::Finish(grpc::CallbackServerContext* context,
-                                                     const absl::Status& status) {
+void CoordinatorService::CountRefusal(const absl::Status& status) {
   if (!status.ok()) {
     rejected_.Add({{"reason", absl::StatusCodeToString(status.code())}}).Increment();
   }
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::Finish(grpc::CallbackServerContext* context,
+                                                     const absl::Status& status) {
+  CountRefusal(status);
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   reactor->Finish(ToGrpcStatus(status));
   return reactor;

@@ -16,7 +16,9 @@
 #include "absl/time/time.h"
 #include "coordinator/run_store.h"
 #include "coordinator/worker_registry.h"
+#include "dcs/v1/evaluation.pb.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
+#include "run/run_checkpoint.h"
 #include "services/build_info.h"
 
 namespace dcs::services {
@@ -62,9 +64,8 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   grpc::ServerUnaryReactor* CancelRun(grpc::CallbackServerContext* context,
                                       const v1::CancelRunRequest* request,
                                       v1::CancelRunResponse* response) override;
-  grpc::ServerUnaryReactor* GetRunFiles(grpc::CallbackServerContext* context,
-                                        const v1::GetRunFilesRequest* request,
-                                        v1::GetRunFilesResponse* response) override;
+  grpc::ServerWriteReactor<v1::RunFile>* GetRunFiles(
+      grpc::CallbackServerContext* context, const v1::GetRunFilesRequest* request) override;
   grpc::ServerUnaryReactor* AcquireRun(grpc::CallbackServerContext* context,
                                        const v1::AcquireRunRequest* request,
                                        v1::AcquireRunResponse* response) override;
@@ -80,9 +81,10 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   grpc::ServerUnaryReactor* ReportProgress(grpc::CallbackServerContext* context,
                                            const v1::ReportProgressRequest* request,
                                            v1::ReportProgressResponse* response) override;
-  grpc::ServerUnaryReactor* PutCheckpoint(grpc::CallbackServerContext* context,
-                                          const v1::PutCheckpointRequest* request,
-                                          v1::PutCheckpointResponse* response) override;
+  grpc::ServerReadReactor<v1::PutCheckpointRequest>* PutCheckpoint(
+      grpc::CallbackServerContext* context, v1::PutCheckpointResponse* response) override;
+  grpc::ServerWriteReactor<v1::CheckpointPiece>* GetCheckpoint(
+      grpc::CallbackServerContext* context, const v1::GetCheckpointRequest* request) override;
   grpc::ServerUnaryReactor* FinishRun(grpc::CallbackServerContext* context,
                                       const v1::FinishRunRequest* request,
                                       v1::FinishRunResponse* response) override;
@@ -103,6 +105,12 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   // Finishes the call with `status`, counting a refusal under its reason.
   grpc::ServerUnaryReactor* Finish(grpc::CallbackServerContext* context,
                                    const absl::Status& status);
+  // Counts `status` under its reason unless it is OK.
+  void CountRefusal(const absl::Status& status);
+  // Stores a checkpoint a learner streamed (PutCheckpoint), with the evaluation log as of it.
+  absl::Status StoreCheckpoint(const coordinator::LeaseKey& key,
+                               const run::PackedCheckpoint& checkpoint,
+                               const v1::EvaluationLog& log);
 
   coordinator::WorkerRegistry& registry_;
   const RunStorage runs_;

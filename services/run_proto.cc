@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "services/run_proto.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -125,22 +126,63 @@ coordinator::ContextReturns ContextReturnsFromProto(const v1::ContextReturns& pr
           .seconds = proto.seconds()};
 }
 
-v1::Checkpoint CheckpointToProto(const run::PackedCheckpoint& checkpoint) {
-  v1::Checkpoint proto;
-  proto.set_name(checkpoint.name);
-  proto.set_learner(checkpoint.learner);
-  proto.set_run_state(checkpoint.run_state);
-  proto.set_learner_sha256(checkpoint.learner_sha256);
-  proto.set_run_state_sha256(checkpoint.run_state_sha256);
-  return proto;
+std::vector<absl::string_view> SplitIntoPieces(absl::string_view bytes) {
+  std::vector<absl::string_view> pieces;
+  do {
+    pieces.push_back(bytes.substr(0, kPieceBytes));
+    bytes.remove_prefix(pieces.back().size());
+  } while (!bytes.empty());
+  return pieces;
 }
 
-run::PackedCheckpoint CheckpointFromProto(const v1::Checkpoint& proto) {
-  return {.name = proto.name(),
-          .learner = proto.learner(),
-          .run_state = proto.run_state(),
-          .learner_sha256 = proto.learner_sha256(),
-          .run_state_sha256 = proto.run_state_sha256()};
+std::vector<v1::CheckpointPiece> CheckpointToPieces(const run::PackedCheckpoint& checkpoint) {
+  const std::vector<absl::string_view> learner = SplitIntoPieces(checkpoint.learner);
+  const std::vector<absl::string_view> run_state = SplitIntoPieces(checkpoint.run_state);
+  std::vector<v1::CheckpointPiece> pieces(std::max(learner.size(), run_state.size()));
+  pieces.front().set_name(checkpoint.name);
+  pieces.front().set_learner_sha256(checkpoint.learner_sha256);
+  pieces.front().set_run_state_sha256(checkpoint.run_state_sha256);
+  for (size_t i = 0; i < learner.size(); ++i) pieces[i].set_learner(learner[i].data(), learner[i].size());
+  for (size_t i = 0; i < run_state.size(); ++i) pieces[i].set_run_state(run_state[i].data(), run_state[i].size());
+  return pieces;
+}
+
+absl::Status AddCheckpointPiece(const v1::CheckpointPiece& piece, bool first,
+                                run::PackedCheckpoint& checkpoint) {
+  if (first) {
+    if (piece.name().empty()) {
+      return absl::InvalidArgumentError("the first piece of a checkpoint names no checkpoint");
+    }
+    checkpoint = {.name = piece.name(),
+                  .learner_sha256 = piece.learner_sha256(),
+                  .run_state_sha256 = piece.run_state_sha256()};
+  } else if (!piece.name().empty() && piece.name() != checkpoint.name) {
+    return absl::InvalidArgumentError(absl::StrCat("a piece of checkpoint ", piece.name(),
+                                                   " in the stream of checkpoint ",
+                                                   checkpoint.name));
+  }
+  if (checkpoint.learner.size() + checkpoint.run_state.size() + piece.learner().size() +
+          piece.run_state().size() >
+      kMaxCheckpointBytes) {
+    return absl::ResourceExhaustedError(absl::StrCat("checkpoint ", checkpoint.name,
+                                                     " is larger than ", kMaxCheckpointBytes,
+                                                     " bytes"));
+  }
+  checkpoint.learner.append(piece.learner());
+  checkpoint.run_state.append(piece.run_state());
+  return absl::OkStatus();
+}
+
+std::vector<v1::RunFile> RunFilesToPieces(const std::vector<coordinator::RunFile>& files) {
+  std::vector<v1::RunFile> pieces;
+  for (const coordinator::RunFile& file : files) {
+    for (absl::string_view bytes : SplitIntoPieces(file.contents)) {
+      v1::RunFile& piece = pieces.emplace_back();
+      piece.set_path(file.path);
+      piece.set_contents(bytes.data(), bytes.size());
+    }
+  }
+  return pieces;
 }
 
 }  // namespace dcs::services

@@ -5,7 +5,10 @@
 // Conversions between the coordinator's run types (coordinator/run_store.h,
 // coordinator/run_files.h) and dcs.v1 messages. Thread-safe (pure functions).
 
+#include <vector>
+
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "coordinator/run_files.h"
 #include "coordinator/run_state.h"
 #include "coordinator/run_store.h"
@@ -33,8 +36,25 @@ absl::StatusOr<coordinator::EvaluationJobKey> EvaluationJobFromProto(
 v1::ContextReturns ContextReturnsToProto(const coordinator::ContextReturns& returns);
 coordinator::ContextReturns ContextReturnsFromProto(const v1::ContextReturns& proto);
 
-v1::Checkpoint CheckpointToProto(const run::PackedCheckpoint& checkpoint);
-run::PackedCheckpoint CheckpointFromProto(const v1::Checkpoint& proto);
+// Streams carry files and checkpoints in pieces of at most kPieceBytes each, well under gRPC's
+// 4 MiB message limit; a streamed checkpoint may hold up to kMaxCheckpointBytes.
+inline constexpr size_t kPieceBytes = size_t{1} << 20;
+inline constexpr size_t kMaxCheckpointBytes = size_t{1} << 30;
+
+// `bytes` in consecutive pieces of at most kPieceBytes; one empty piece for empty bytes.
+std::vector<absl::string_view> SplitIntoPieces(absl::string_view bytes);
+
+// `checkpoint` in pieces: the first names it; each carries the next bytes of both files.
+std::vector<v1::CheckpointPiece> CheckpointToPieces(const run::PackedCheckpoint& checkpoint);
+
+// Adds the next piece of a streamed checkpoint to `checkpoint`; the first (`first`) names it.
+// INVALID_ARGUMENT for a first piece without a name, or a later one naming another checkpoint;
+// RESOURCE_EXHAUSTED once its files pass kMaxCheckpointBytes.
+absl::Status AddCheckpointPiece(const v1::CheckpointPiece& piece, bool first,
+                                run::PackedCheckpoint& checkpoint);
+
+// `files` in pieces, each file's in order.
+std::vector<v1::RunFile> RunFilesToPieces(const std::vector<coordinator::RunFile>& files);
 
 v1::RunProgress ProgressToProto(const coordinator::RunProgress& progress,
                                 int64_t total_timesteps);

@@ -41,9 +41,21 @@ absl::Status CallUnary(Stub& stub,
   return Annotate(FromGrpcStatus(status), peer);
 }
 
-// Calls until the call succeeds or fails for good (not IsTransient), or until
-// `keep_trying(status)` returns false after a transient failure; backs off by `backoff`
-// between attempts. Returns the last status.
+// Makes `attempt` (a call: absl::Status()) until it succeeds or fails for good (not
+// IsTransient), or until `keep_trying(status)` returns false after a transient failure; backs
+// off by `backoff` between attempts. Returns the last status.
+template <typename Attempt, typename KeepTrying>
+absl::Status RetryTransient(Attempt attempt, const BackoffPolicy& backoff,
+                            KeepTrying keep_trying) {
+  absl::BitGen random;
+  for (int number = 1;; ++number) {
+    const absl::Status status = attempt();
+    if (status.ok() || !IsTransient(status) || !keep_trying(status)) return status;
+    absl::SleepFor(BackoffDelay(backoff, number, random));
+  }
+}
+
+// CallUnary, retried as RetryTransient retries.
 template <typename Stub, typename Request, typename Response, typename KeepTrying>
 absl::Status CallWithRetries(Stub& stub,
                              grpc::Status (Stub::*method)(grpc::ClientContext*, const Request&,
@@ -51,12 +63,9 @@ absl::Status CallWithRetries(Stub& stub,
                              const Request& request, Response& response, absl::Duration timeout,
                              absl::string_view peer, const BackoffPolicy& backoff,
                              KeepTrying keep_trying) {
-  absl::BitGen random;
-  for (int attempt = 1;; ++attempt) {
-    const absl::Status status = CallUnary(stub, method, request, response, timeout, peer);
-    if (status.ok() || !IsTransient(status) || !keep_trying(status)) return status;
-    absl::SleepFor(BackoffDelay(backoff, attempt, random));
-  }
+  return RetryTransient(
+      [&] { return CallUnary(stub, method, request, response, timeout, peer); }, backoff,
+      keep_trying);
 }
 
 }  // namespace dcs::services

@@ -19,6 +19,7 @@
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "google/protobuf/util/message_differencer.h"
 #include "services/channel.h"
+#include "services/stream_call.h"
 #include "services/unary_call.h"
 
 namespace dcs::services::cli {
@@ -127,11 +128,9 @@ absl::Status DownloadRun(const std::string& address, const std::string& run_id,
                          const std::string& dir, absl::Duration timeout) {
   v1::GetRunFilesRequest request;
   request.set_run_id(run_id);
-  v1::GetRunFilesResponse response;
-  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address),
-                                &v1::CoordinatorService::Stub::GetRunFiles, request, response,
-                                timeout, Peer(address)));
-  for (const v1::RunFile& file : response.files()) {
+  // Files come in pieces, each file's in order: one is written once its last piece is in.
+  v1::RunFile file;
+  auto write = [&]() -> absl::Status {
     const fs::path relative = fs::path(file.path()).lexically_normal();
     if (relative.is_absolute() || relative.empty() || *relative.begin() == "..") {
       return absl::InvalidArgumentError(
@@ -144,9 +143,20 @@ absl::Status DownloadRun(const std::string& address, const std::string& run_id,
       return absl::PermissionDeniedError(
           absl::StrCat("cannot create ", path.parent_path().string(), ": ", error.message()));
     }
-    DCS_RETURN_IF_ERROR(WriteFileAtomically(path.string(), file.contents()));
-  }
-  return absl::OkStatus();
+    return WriteFileAtomically(path.string(), file.contents());
+  };
+  DCS_RETURN_IF_ERROR(CallServerStream(
+      *Coordinator(address), &v1::CoordinatorService::Stub::GetRunFiles, request, timeout,
+      Peer(address), [&](const v1::RunFile& piece) -> absl::Status {
+        if (piece.path() == file.path()) {
+          file.mutable_contents()->append(piece.contents());
+          return absl::OkStatus();
+        }
+        if (!file.path().empty()) DCS_RETURN_IF_ERROR(write());
+        file = piece;
+        return absl::OkStatus();
+      }));
+  return file.path().empty() ? absl::OkStatus() : write();
 }
 
 ProgressLine ProgressLineOf(const v1::RunProgress& progress) {

@@ -3,6 +3,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <algorithm>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "services/learner/remote_evaluation.h"
 #include "services/log.h"
 #include "services/run_proto.h"
+#include "services/stream_call.h"
 #include "services/time_proto.h"
 #include "services/unary_call.h"
 
@@ -27,7 +29,6 @@ namespace dcs::services {
 struct HostedRuns::Run {
   coordinator::LeaseKey lease;
   std::string config;
-  std::optional<v1::Checkpoint> checkpoint;  // to resume from; dropped once loaded
   absl::Time renewed_at;                     // the manager thread's
 
   absl::Mutex mu;
@@ -182,15 +183,11 @@ void HostedRuns::AcquireRun() {
   auto run = std::make_shared<Run>();
   run->lease = *lease;
   run->config = response.config();
-  if (response.has_checkpoint()) run->checkpoint = response.checkpoint();
   run->renewed_at = absl::Now();
   {
     absl::MutexLock lock(&mu_);
     lease_duration_ = DurationFromProto(response.lease_duration());
   }
-  Log(LogLevel::kInfo, "hosting a run",
-      {{"run_id", run->lease.run_id}, {"epoch", std::to_string(run->lease.epoch)},
-       {"checkpoint", run->checkpoint.has_value() ? run->checkpoint->name() : "none"}});
   absl::MutexLock lock(&mu_);
   run->thread = std::thread([this, run] {
     Train(*run);
@@ -199,16 +196,10 @@ void HostedRuns::AcquireRun() {
   runs_[{run->lease.run_id, run->lease.epoch}] = std::move(run);
 }
 
-template <typename Request, typename Response>
-absl::Status HostedRuns::Retry(
-    Run& run,
-    grpc::Status (v1::CoordinatorService::Stub::*method)(grpc::ClientContext*, const Request&,
-                                                          Response*),
-    const Request& request) {
-  Response response;
-  const absl::Status status = CallWithRetries(
-      *coordinator_, method, request, response, options_.rpc_timeout, "coordinator",
-      kRetryBackoff, [&](const absl::Status& failed) {
+template <typename Attempt>
+absl::Status HostedRuns::Retry(Run& run, Attempt attempt) {
+  const absl::Status status =
+      RetryTransient(attempt, kRetryBackoff, [&](const absl::Status& failed) {
         if (run.lost || stopping_.HasBeenNotified()) return false;
         Log(LogLevel::kWarning, "coordinator call failed; retrying",
             {{"run_id", run.lease.run_id}, {"error", failed.ToString()}});
@@ -218,12 +209,60 @@ absl::Status HostedRuns::Retry(
   return status;
 }
 
+absl::StatusOr<std::optional<run::Checkpoint>> HostedRuns::FetchCheckpoint(Run& run) {
+  v1::GetCheckpointRequest request;
+  *request.mutable_lease() = LeaseToProto(run.lease);
+  run::PackedCheckpoint packed;
+  const absl::Status fetched = RetryTransient(
+      [&] {
+        bool first = true;
+        return CallServerStream(*coordinator_, &v1::CoordinatorService::Stub::GetCheckpoint,
+                                request, options_.transfer_timeout, "coordinator",
+                                [&](const v1::CheckpointPiece& piece) {
+                                  const absl::Status added =
+                                      AddCheckpointPiece(piece, first, packed);
+                                  first = false;
+                                  return added;
+                                });
+      },
+      kRetryBackoff,
+      [&](const absl::Status&) { return !run.lost && !stopping_.HasBeenNotified(); });
+  // NOT_FOUND: the run has no checkpoint yet.
+  if (absl::IsNotFound(fetched)) return std::nullopt;
+  if (absl::IsFailedPrecondition(fetched)) run.lost = true;
+  DCS_RETURN_IF_ERROR(fetched);
+  return run::UnpackCheckpoint(packed);
+}
+
+absl::Status HostedRuns::PutCheckpoint(Run& run, const run::Checkpoint& checkpoint,
+                                       const v1::EvaluationLog& log) {
+  const std::vector<v1::CheckpointPiece> pieces =
+      CheckpointToPieces(run::PackCheckpoint(checkpoint));
+  const std::string log_bytes = log.SerializeAsString();
+  const std::vector<absl::string_view> log_pieces = SplitIntoPieces(log_bytes);
+  std::vector<v1::PutCheckpointRequest> requests(std::max(pieces.size(), log_pieces.size()));
+  *requests.front().mutable_lease() = LeaseToProto(run.lease);
+  for (size_t i = 0; i < pieces.size(); ++i) *requests[i].mutable_checkpoint() = pieces[i];
+  for (size_t i = 0; i < log_pieces.size(); ++i) {
+    requests[i].set_evaluation_log(log_pieces[i].data(), log_pieces[i].size());
+  }
+  return Retry(run, [&] {
+    v1::PutCheckpointResponse response;
+    return CallClientStream(*coordinator_, &v1::CoordinatorService::Stub::PutCheckpoint, requests,
+                            response, options_.transfer_timeout, "coordinator");
+  });
+}
+
 void HostedRuns::Finish(Run& run, coordinator::RunState state, const std::string& error) {
   v1::FinishRunRequest request;
   *request.mutable_lease() = LeaseToProto(run.lease);
   request.set_state(RunStateToProto(state));
   request.set_error(error);
-  const absl::Status status = Retry(run, &v1::CoordinatorService::Stub::FinishRun, request);
+  const absl::Status status = Retry(run, [&] {
+    v1::FinishRunResponse response;
+    return CallUnary(*coordinator_, &v1::CoordinatorService::Stub::FinishRun, request, response,
+                     options_.rpc_timeout, "coordinator");
+  });
   if (!status.ok()) {
     Log(LogLevel::kWarning, "cannot finish a run",
         {{"run_id", run.lease.run_id}, {"error", status.ToString()}});
@@ -232,11 +271,10 @@ void HostedRuns::Finish(Run& run, coordinator::RunState state, const std::string
 
 absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Load(Run& run) {
   DCS_ASSIGN_OR_RETURN(run::RunSpec spec, run::ParseRunSpecYaml(run.config, run.lease.run_id));
-  std::optional<run::Checkpoint> checkpoint;
-  if (run.checkpoint.has_value()) {
-    DCS_ASSIGN_OR_RETURN(checkpoint, run::UnpackCheckpoint(CheckpointFromProto(*run.checkpoint)));
-    run.checkpoint.reset();
-  }
+  DCS_ASSIGN_OR_RETURN(const std::optional<run::Checkpoint> checkpoint, FetchCheckpoint(run));
+  Log(LogLevel::kInfo, "hosting a run",
+      {{"run_id", run.lease.run_id}, {"epoch", std::to_string(run.lease.epoch)},
+       {"checkpoint", checkpoint.has_value() ? checkpoint->name : "none"}});
   std::shared_ptr<learner::RunHost> host;
   DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(
@@ -301,11 +339,7 @@ void HostedRuns::Train(Run& run) {
     if (run.lost) return;
 
     if (step->checkpoint.has_value()) {
-      v1::PutCheckpointRequest put;
-      *put.mutable_lease() = LeaseToProto(run.lease);
-      *put.mutable_checkpoint() = CheckpointToProto(run::PackCheckpoint(*step->checkpoint));
-      *put.mutable_evaluation_log() = step->evaluation_log;
-      const absl::Status stored = Retry(run, &v1::CoordinatorService::Stub::PutCheckpoint, put);
+      const absl::Status stored = PutCheckpoint(run, *step->checkpoint, step->evaluation_log);
       if (!stored.ok()) {
         if (run.lost || stopping_.HasBeenNotified()) return;
         Finish(run, coordinator::RunState::kFailed, stored.ToString());

@@ -22,6 +22,7 @@
 #include <atomic>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
@@ -34,6 +35,7 @@
 #include "coordinator/run_store.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "learner/run_host.h"
+#include "run/run_checkpoint.h"
 #include "services/learner/run_metrics.h"
 
 namespace dcs::services {
@@ -44,6 +46,7 @@ struct HostedRunsOptions {
   int max_runs = 1;
   absl::Duration poll_interval = absl::Milliseconds(200);
   absl::Duration rpc_timeout = absl::Seconds(10);
+  absl::Duration transfer_timeout = absl::Minutes(2);  // a checkpoint's stream
 };
 
 class HostedRuns {
@@ -75,14 +78,15 @@ class HostedRuns {
   void Train(Run& run);
   // Loads the run's host. On an error the run is finished as failed.
   absl::StatusOr<std::shared_ptr<learner::RunHost>> Load(Run& run);
-  // Retries a call to the coordinator until it succeeds, the run's lease is lost (FAILED_
-  // PRECONDITION, NOT_FOUND), or the learner stops.
-  template <typename Request, typename Response>
-  absl::Status Retry(Run& run,
-                     grpc::Status (v1::CoordinatorService::Stub::*method)(grpc::ClientContext*,
-                                                                           const Request&,
-                                                                           Response*),
-                     const Request& request);
+  // Makes `attempt`, a call to the coordinator, until it succeeds, the run's lease is lost
+  // (FAILED_PRECONDITION, NOT_FOUND), or the learner stops.
+  template <typename Attempt>
+  absl::Status Retry(Run& run, Attempt attempt);
+  // The run's latest checkpoint from the coordinator; nullopt if it has none yet.
+  absl::StatusOr<std::optional<run::Checkpoint>> FetchCheckpoint(Run& run);
+  // Sends `checkpoint` with `log` to the coordinator, which stores it before answering.
+  absl::Status PutCheckpoint(Run& run, const run::Checkpoint& checkpoint,
+                             const v1::EvaluationLog& log);
   void Finish(Run& run, coordinator::RunState state, const std::string& error);
 
   const HostedRunsOptions options_;

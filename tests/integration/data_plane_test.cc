@@ -44,6 +44,8 @@
 #include "services/cli/run_client.h"
 #include "services/channel.h"
 #include "services/port_file.h"
+#include "services/run_proto.h"
+#include "services/stream_call.h"
 #include "services/trajectory_proto.h"
 #include "services/unary_call.h"
 #include "tests/integration/test_util.h"
@@ -629,6 +631,65 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
             2);
   EXPECT_EQ(
       MetricValue(*metrics, "dcs_requests_rejected_total{reason=\"FAILED_PRECONDITION\"}"), 1);
+}
+
+TEST(DataPlaneStreamTest, ACheckpointLargerThanAMessageTravelsInPieces) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  const std::string run_id = cluster.Submit();
+  auto coordinator =
+      v1::CoordinatorService::NewStub(services::OpenChannel(cluster.coordinator_address()));
+  using Stub = v1::CoordinatorService::Stub;
+  v1::AcquireRunRequest acquire_run;
+  acquire_run.set_holder("fake-learner");
+  const v1::AcquireRunResponse run = CallCoordinator(*coordinator, &Stub::AcquireRun, acquire_run);
+  ASSERT_EQ(run.lease().run_id(), run_id);
+
+  // 6 MiB of learner state: over gRPC's 4 MiB message limit.
+  const run::PackedCheckpoint packed = run::PackCheckpoint(
+      {.name = run::CheckpointName(768),
+       .state = {.timesteps = 768, .rollouts = 1},
+       .learner = std::string(6 << 20, 'w')});
+  std::vector<v1::PutCheckpointRequest> put;
+  for (const v1::CheckpointPiece& piece : services::CheckpointToPieces(packed)) {
+    *put.emplace_back().mutable_checkpoint() = piece;
+  }
+  *put.front().mutable_lease() = run.lease();
+  put.front().set_evaluation_log(v1::EvaluationLog().SerializeAsString());
+  v1::PutCheckpointResponse stored;
+  ASSERT_TRUE(services::CallClientStream(*coordinator, &Stub::PutCheckpoint, put, stored,
+                                         kTimeout, "coordinator")
+                  .ok());
+
+  // The learner that resumes gets it whole; so does `dcs runs get`.
+  v1::GetCheckpointRequest get;
+  *get.mutable_lease() = run.lease();
+  run::PackedCheckpoint fetched;
+  bool first = true;
+  ASSERT_TRUE(services::CallServerStream(*coordinator, &Stub::GetCheckpoint, get, kTimeout,
+                                         "coordinator",
+                                         [&](const v1::CheckpointPiece& piece) {
+                                           const absl::Status added =
+                                               services::AddCheckpointPiece(piece, first,
+                                                                            fetched);
+                                           first = false;
+                                           return added;
+                                         })
+                  .ok());
+  EXPECT_EQ(fetched.name, packed.name);
+  EXPECT_EQ(fetched.learner, packed.learner);
+  EXPECT_EQ(fetched.run_state, packed.run_state);
+  const std::string dir = testing::MakeTempDir();
+  ASSERT_TRUE(services::cli::DownloadRun(cluster.coordinator_address(), run_id, dir, kTimeout)
+                  .ok());
+  EXPECT_EQ(fs::file_size(fs::path(dir) / "checkpoints" / packed.name / "learner.bin"),
+            size_t{6} << 20);
+
+  // A stream whose checkpoint does not match its SHA-256 stores nothing.
+  put.back().mutable_checkpoint()->mutable_learner()->back() = 'x';
+  const absl::Status corrupt = services::CallClientStream(
+      *coordinator, &Stub::PutCheckpoint, put, stored, kTimeout, "coordinator");
+  EXPECT_EQ(corrupt.code(), absl::StatusCode::kDataLoss) << corrupt;
 }
 
 TEST(DataPlaneBadInputTest, AMalformedConfigSubmittedRemotelyNamesItsFieldAndLine) {
