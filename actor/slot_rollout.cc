@@ -13,14 +13,6 @@
 namespace dcs::actor {
 namespace {
 
-// The sizes every part must share, from slot 0's part.
-struct Shape {
-  int num_steps = 0;
-  size_t input = 0;   // floats per step
-  size_t image = 0;   // bytes per step
-  size_t action = 0;  // floats per step
-};
-
 absl::Status CheckSize(int slot, absl::string_view field, size_t size, size_t expected) {
   if (size == expected) return absl::OkStatus();
   return absl::InvalidArgumentError(
@@ -53,12 +45,13 @@ absl::StatusOr<size_t> RowSize(int slot, absl::string_view field, size_t size, i
   return size / num_steps;
 }
 
-absl::StatusOr<Shape> ShapeOf(const SlotRollout& first) {
+// The shape every part must share, from slot 0's part.
+absl::StatusOr<SlotRolloutShape> ShapeOf(const SlotRollout& first) {
   if (first.num_steps <= 0) {
     return absl::InvalidArgumentError(
         absl::StrCat("slot ", first.slot, ": num_steps is ", first.num_steps));
   }
-  Shape shape{.num_steps = first.num_steps};
+  SlotRolloutShape shape{.num_steps = first.num_steps};
   DCS_ASSIGN_OR_RETURN(shape.input,
                        RowSize(first.slot, "inputs", first.inputs.size(), first.num_steps));
   DCS_ASSIGN_OR_RETURN(shape.image,
@@ -69,10 +62,11 @@ absl::StatusOr<Shape> ShapeOf(const SlotRollout& first) {
 }
 
 // The per-step fields and the last row.
-absl::Status CheckSteps(const SlotRollout& part, const Shape& shape) {
+absl::Status CheckSteps(const SlotRollout& part, const SlotRolloutShape& shape) {
   if (part.num_steps != shape.num_steps) {
     return absl::InvalidArgumentError(absl::StrCat("slot ", part.slot, ": num_steps is ",
-                                                   part.num_steps, ", slot 0's ", shape.num_steps));
+                                                   part.num_steps, ", expected ",
+                                                   shape.num_steps));
   }
   const size_t steps = static_cast<size_t>(shape.num_steps);
   DCS_RETURN_IF_ERROR(CheckSize(part.slot, "inputs", part.inputs.size(), steps * shape.input));
@@ -91,7 +85,7 @@ absl::Status CheckStep(int slot, absl::string_view field, int step, int num_step
 }
 
 // The truncations and the finished episodes.
-absl::Status CheckEvents(const SlotRollout& part, const Shape& shape) {
+absl::Status CheckEvents(const SlotRollout& part, const SlotRolloutShape& shape) {
   for (const Rollout::Truncation& cut : part.truncations) {
     DCS_RETURN_IF_ERROR(CheckStep(part.slot, "truncation", cut.step, shape.num_steps));
     DCS_RETURN_IF_ERROR(CheckSize(part.slot, "truncation input", cut.input.size(), shape.input));
@@ -110,7 +104,8 @@ void AppendRow(const std::vector<T>& rows, int t, size_t width, std::vector<T>& 
 }
 
 // The per-step fields, [t][e] with part e as column e.
-void InterleaveSteps(const std::vector<SlotRollout>& by_slot, const Shape& shape, Rollout& out) {
+void InterleaveSteps(const std::vector<SlotRollout>& by_slot, const SlotRolloutShape& shape,
+                     Rollout& out) {
   for (int t = 0; t < shape.num_steps; ++t) {
     for (const SlotRollout& part : by_slot) {
       AppendRow(part.inputs, t, shape.input, out.inputs);
@@ -177,16 +172,18 @@ SlotRollout MakeSlotRollout(Rollout one_slot, int slot, std::vector<EpisodeSumma
                      .journal = std::move(journal)};
 }
 
+absl::Status CheckSlotRollout(const SlotRollout& part, const SlotRolloutShape& shape) {
+  DCS_RETURN_IF_ERROR(CheckSteps(part, shape));
+  return CheckEvents(part, shape);
+}
+
 absl::StatusOr<MergedRollout> MergeSlotRollouts(std::vector<SlotRollout> slots) {
   if (slots.empty()) return absl::InvalidArgumentError("a rollout needs a slot");
   std::sort(slots.begin(), slots.end(),
             [](const SlotRollout& a, const SlotRollout& b) { return a.slot < b.slot; });
   DCS_RETURN_IF_ERROR(CheckSlotIndices(slots));
-  DCS_ASSIGN_OR_RETURN(const Shape shape, ShapeOf(slots.front()));
-  for (const SlotRollout& part : slots) {
-    DCS_RETURN_IF_ERROR(CheckSteps(part, shape));
-    DCS_RETURN_IF_ERROR(CheckEvents(part, shape));
-  }
+  DCS_ASSIGN_OR_RETURN(const SlotRolloutShape shape, ShapeOf(slots.front()));
+  for (const SlotRollout& part : slots) DCS_RETURN_IF_ERROR(CheckSlotRollout(part, shape));
   MergedRollout merged{
       .rollout = {.num_steps = shape.num_steps, .num_envs = static_cast<int>(slots.size())}};
   InterleaveSteps(slots, shape, merged.rollout);

@@ -44,6 +44,20 @@ struct SlotRollout {
 SlotRollout MakeSlotRollout(Rollout one_slot, int slot, std::vector<EpisodeSummary> finished,
                             SlotJournal journal);
 
+// The sizes of one slot's part: num_steps steps of rows of these sizes.
+struct SlotRolloutShape {
+  int num_steps = 0;
+  size_t input = 0;   // floats per step
+  size_t image = 0;   // bytes per step
+  size_t action = 0;  // floats per step
+};
+
+// OK if `part` has `shape`: its num_steps, rows of its sizes, one reward and one episode start
+// per step, a last input and image of one row, and truncations (of one row) and finished
+// episodes at steps inside the rollout. INVALID_ARGUMENT naming the slot and the field
+// otherwise.
+absl::Status CheckSlotRollout(const SlotRollout& part, const SlotRolloutShape& shape);
+
 // A run's rollout put back together from its slots' parts.
 struct MergedRollout {
   Rollout rollout;
@@ -55,9 +69,8 @@ struct MergedRollout {
 // part becomes column e of the rollout; truncations and finished episodes are ordered by step,
 // then slot, as RolloutCollector::Collect orders them.
 // INVALID_ARGUMENT, naming the slot and the field, unless the parts are slots 0 .. n-1 once
-// each, have the same num_steps (above 0) and row sizes (slot 0's: inputs, images and actions
-// divided by num_steps), one reward and one episode start per step, last input and image of
-// one row, and truncations and finished episodes at steps inside the rollout.
+// each and all have slot 0's shape (num_steps above 0; inputs, images and actions divided by
+// num_steps) as CheckSlotRollout checks it.
 absl::StatusOr<MergedRollout> MergeSlotRollouts(std::vector<SlotRollout> slots);
 
 }  // namespace dcs::actor

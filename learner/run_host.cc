@@ -13,13 +13,6 @@
 namespace dcs::learner {
 namespace {
 
-// OK if `values` holds `rows` rows of `row_size`.
-absl::Status CheckSize(absl::string_view field, size_t size, int64_t rows, int64_t row_size) {
-  if (static_cast<int64_t>(size) == rows * row_size) return absl::OkStatus();
-  return absl::InvalidArgumentError(absl::StrCat(field, " has ", size, " values; the run takes ",
-                                                 rows, " x ", row_size));
-}
-
 // OK if every value is finite; otherwise names the field and the row of the first that is not.
 absl::Status CheckFinite(absl::string_view field, std::span<const float> values, int row_size) {
   for (size_t i = 0; i < values.size(); ++i) {
@@ -34,28 +27,16 @@ absl::Status CheckFinite(absl::string_view field, std::span<const float> values,
 // The whole of one slot's part checked against the run's shapes, before anything is taken.
 absl::Status CheckSlotRollout(const actor::SlotRollout& data, int n_steps, int input_size,
                               int action_size) {
-  if (data.num_steps != n_steps) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("num_steps is ", data.num_steps, "; the run's n_steps is ", n_steps));
-  }
-  if (!data.images.empty() || !data.last_image.empty()) {
-    return absl::InvalidArgumentError("images sent for a policy without image observations");
-  }
-  DCS_RETURN_IF_ERROR(CheckSize("inputs", data.inputs.size(), n_steps, input_size));
-  DCS_RETURN_IF_ERROR(CheckSize("actions", data.actions.size(), n_steps, action_size));
-  DCS_RETURN_IF_ERROR(CheckSize("rewards", data.rewards.size(), n_steps, 1));
-  DCS_RETURN_IF_ERROR(CheckSize("episode_starts", data.episode_starts.size(), n_steps, 1));
-  DCS_RETURN_IF_ERROR(CheckSize("last_input", data.last_input.size(), 1, input_size));
+  DCS_RETURN_IF_ERROR(actor::CheckSlotRollout(
+      data, {.num_steps = n_steps,
+             .input = static_cast<size_t>(input_size),
+             .image = 0,  // image policies are not hosted
+             .action = static_cast<size_t>(action_size)}));
   DCS_RETURN_IF_ERROR(CheckFinite("inputs", data.inputs, input_size));
   DCS_RETURN_IF_ERROR(CheckFinite("actions", data.actions, action_size));
   DCS_RETURN_IF_ERROR(CheckFinite("rewards", data.rewards, 1));
   DCS_RETURN_IF_ERROR(CheckFinite("last_input", data.last_input, input_size));
   for (const actor::Rollout::Truncation& cut : data.truncations) {
-    if (cut.step < 0 || cut.step >= n_steps) {
-      return absl::InvalidArgumentError(
-          absl::StrCat("a truncation at step ", cut.step, " is outside the rollout"));
-    }
-    DCS_RETURN_IF_ERROR(CheckSize("a truncation's input", cut.input.size(), 1, input_size));
     DCS_RETURN_IF_ERROR(CheckFinite("a truncation's input", cut.input, input_size));
   }
   if (data.journal.actions.size() % action_size != 0) {

@@ -132,7 +132,7 @@ TEST(SlotRolloutTest, RefusesPartsThatAreNotEachSlotOnce) {
 TEST(SlotRolloutTest, RefusesPartsOfOtherShapes) {
   std::vector<SlotRollout> parts = {Part(0), Part(1)};
   parts[1].num_steps = 3;
-  EXPECT_THAT(MergeError(parts), HasSubstr("slot 1: num_steps is 3, slot 0's 2"));
+  EXPECT_THAT(MergeError(parts), HasSubstr("slot 1: num_steps is 3, expected 2"));
 
   parts = {Part(0), Part(1)};
   parts[0].num_steps = 0;
