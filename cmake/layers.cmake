@@ -16,5 +16,6 @@ dcs_layer(dcs_actor_service 6 GRPC) # env slots stepped for learners
 dcs_layer(dcs-coordinator 7 GRPC)
 dcs_layer(dcs-learner 7 GRPC TORCH)
 dcs_layer(dcs-actor 7 GRPC)
-dcs_layer(dcs_cli 7 GRPC TORCH)     # the dcs client (it trains in process)
-dcs_layer(dcs 8 GRPC TORCH)
+dcs_layer(dcs_cli 7 GRPC)           # the dcs client's commands
+dcs_layer(dcs 8 GRPC)               # the client, without libtorch: it hands training over to
+dcs_layer(dcs-train 8 GRPC TORCH)   # the same client with libtorch

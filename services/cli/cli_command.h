@@ -27,6 +27,9 @@ struct GlobalFlags {
   std::string data_dir = "dcs-data";
   absl::Duration timeout = absl::Seconds(5);
   OutputFormat output = OutputFormat::kTable;
+  // This invocation's arguments, argv[0] first: a command may hand them to another program
+  // (services/cli/torch_commands.h).
+  std::vector<std::string> invocation;
 };
 
 // Prints `status` as `dcs`'s one error line and returns the exit code it maps to.

@@ -1,7 +1,9 @@
 // Copyright 2026 The DCS Authors.
 //
 // dcs: the DCS command-line client. `dcs --help` lists the commands, `dcs <command> --help`
-// describes each; README.md shows them in use. stdout carries data only; progress and errors
+// describes each; README.md shows them in use. Built twice: `dcs`, without libtorch, and
+// `dcs-train`, with it, to which `dcs` hands the commands that need it
+// (services/cli/torch_commands.h). stdout carries data only; progress and errors
 // go to stderr. Exit codes: README.md.
 
 #include <string>
@@ -37,7 +39,7 @@ int Main(int argc, char** argv) {
   CLI::App app("dcs: dynamic context scheduling for reinforcement learning, as a service", "dcs");
   app.require_subcommand(0, 1);
   app.fallthrough();  // global flags may follow the command
-  GlobalFlags flags;
+  GlobalFlags flags{.invocation = {argv, argv + argc}};
   app.add_option("--addr", flags.addr,
                  "a server's gRPC address host:port (default: the local cluster's "
                  "coordinator, else 127.0.0.1:50051)")

@@ -1,0 +1,27 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_CLI_TORCH_COMMANDS_H_
+#define DCS_SERVICES_CLI_TORCH_COMMANDS_H_
+
+// The parts of `dcs` commands that need libtorch: training in this process, and the versions
+// of the numeric kernels it computes with. Two programs share every command file and differ
+// only here: `dcs-train` links the real thing (torch_commands.cc); `dcs`
+// links torch_handover.cc, which hands the invocation to `dcs-train` beside it (exec, same
+// arguments), so that `dcs`, without libtorch, starts at once and only these two commands pay
+// libtorch's start-up.
+
+#include "run/run_directory.h"
+#include "services/cli/cli_command.h"
+
+namespace dcs::services::cli {
+
+// `dcs train` in this process: trains `request` (a new run, or with `resume` the stored one),
+// keeping `keep` checkpoints; prints progress and the summary. Returns the exit code.
+int TrainInProcess(const run::RunRequest& request, bool resume, int keep,
+                   const GlobalFlags& global);
+
+// `dcs version`: this build and its libraries, the pinned numeric kernels included.
+int ShowVersion(const GlobalFlags& global);
+
+}  // namespace dcs::services::cli
+
+#endif  // DCS_SERVICES_CLI_TORCH_COMMANDS_H_

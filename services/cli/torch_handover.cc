@@ -1,0 +1,46 @@
+// Copyright 2026 The DCS Authors.
+//
+// torch_commands.h for `dcs`: the commands that need libtorch are handed to `dcs-train`, the
+// same client with libtorch linked, beside this program, with this invocation's arguments.
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "services/cli/torch_commands.h"
+
+namespace dcs::services::cli {
+namespace {
+
+// Replaces this process by `dcs-train` with the same arguments; returns only if that fails.
+int HandOver(const GlobalFlags& global) {
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+  const std::string program = (self.parent_path() / "dcs-train").string();
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(program.c_str()));
+  for (size_t i = 1; i < global.invocation.size(); ++i) {
+    argv.push_back(const_cast<char*>(global.invocation[i].c_str()));
+  }
+  argv.push_back(nullptr);
+  execv(program.c_str(), argv.data());
+  return FailCommand(absl::FailedPreconditionError(
+      absl::StrCat("cannot run ", program, " (it trains in process): ", std::strerror(errno))));
+}
+
+}  // namespace
+
+int TrainInProcess(const run::RunRequest& /*request*/, bool /*resume*/, int /*keep*/,
+                   const GlobalFlags& global) {
+  return HandOver(global);
+}
+
+int ShowVersion(const GlobalFlags& global) { return HandOver(global); }
+
+}  // namespace dcs::services::cli
