@@ -45,7 +45,7 @@ for process in $(sed -n 's/^ *- name: *//p' "$data/cluster.yaml"); do
   metrics=$(sed -n "/name: $process\$/,/metrics:/s/^ *metrics: *//p" "$data/cluster.yaml")
   seconds=$(curl -s "http://$metrics/metrics" | sed -n 's/^process_cpu_seconds_total //p')
   cpu=$(python3 -c "print($cpu + ${seconds:-0})")
-  per_process="$per_process $process=${seconds%.*}"
+  per_process="$per_process $process=$(printf "%.1f" "${seconds:-0}")"
 done
 python3 - "$runs" "$start" "$end" "$steps" "$cpu" "$clients_cpu" "$(nproc)" "$per_process" <<'PY'
 import sys
