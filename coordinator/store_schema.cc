@@ -56,7 +56,7 @@ CREATE TABLE checkpoints (
 );
 )sql",
     // 1 -> 2: evaluations of runs' policies, as jobs for actors (one per context), and their
-    // episodes' returns.
+    // episodes' returns; indexes for the lease queries.
     R"sql(
 CREATE TABLE evaluations (
   run INTEGER NOT NULL REFERENCES runs(number),
@@ -90,6 +90,9 @@ CREATE TABLE evaluation_returns (
   FOREIGN KEY (run, policy_version, context)
     REFERENCES evaluation_jobs(run, policy_version, context)
 );
+-- What the lease queries scan (held leases, open jobs), not the whole history.
+CREATE INDEX leases_held ON leases(deadline) WHERE holder != '';
+CREATE INDEX evaluation_jobs_open ON evaluation_jobs(done, holder, deadline);
 )sql",
 };
 

@@ -432,7 +432,7 @@ TEST_F(RunStoreTest, AVersionOneDatabaseIsMigrated) {
     // What DCS wrote before evaluations were stored.
     SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READWRITE);
     db.exec("DROP TABLE evaluation_returns; DROP TABLE evaluation_jobs; DROP TABLE evaluations;"
-            "PRAGMA user_version = 1");
+            "DROP INDEX leases_held; PRAGMA user_version = 1");
   }
   std::unique_ptr<RunStore> store = Open();
   ASSERT_NE(store, nullptr);
