@@ -196,6 +196,16 @@ absl::StatusOr<std::optional<Lease>> RefuseOtherNumerics(SQLite::Database& db,
       "\"; this worker with \"", numerics, "\": a run never mixes numeric libraries"));
 }
 
+// Pins run `number`'s numeric fingerprint of one role (`column`: learner_numerics or
+// actor_numerics) to `numerics`: the workers that may take its leases of that role from now on.
+void PinNumerics(SQLite::Database& db, absl::string_view column, int64_t number,
+                 absl::string_view numerics) {
+  SQLite::Statement pin(db, absl::StrCat("UPDATE runs SET ", column, " = ? WHERE number = ?"));
+  pin.bind(1, std::string(numerics));
+  pin.bind(2, number);
+  pin.exec();
+}
+
 }  // namespace
 
 RunStore::RunStore(std::unique_ptr<SQLite::Database> db, RunStoreOptions options)
@@ -328,10 +338,7 @@ absl::StatusOr<std::optional<LearnerLease>> RunStore::AcquireRun(absl::string_vi
     query.reset();
     DCS_ASSIGN_OR_RETURN(const RunRecord queued, FindRun(*db_, RunId(number)));
     DCS_RETURN_IF_ERROR(SetRunState(*db_, queued, RunState::kRunning, "", now));
-    SQLite::Statement pin(*db_, "UPDATE runs SET learner_numerics = ? WHERE number = ?");
-    pin.bind(1, std::string(numerics));
-    pin.bind(2, number);
-    pin.exec();
+    PinNumerics(*db_, "learner_numerics", number, numerics);
     FreeLeases(*db_, number, /*learner=*/false);
     const int64_t epoch =
         Grant(*db_, number, kLearnerSlot, holder, address, now + options_.lease_duration);
@@ -362,10 +369,7 @@ absl::StatusOr<std::optional<SlotLease>> RunStore::AcquireSlot(
       query.reset();
       DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(*db_, RunId(number)));
       const int64_t epoch = Grant(*db_, number, slot, holder, "", now + options_.lease_duration);
-      SQLite::Statement pin(*db_, "UPDATE runs SET actor_numerics = ? WHERE number = ?");
-      pin.bind(1, std::string(numerics));
-      pin.bind(2, number);
-      pin.exec();
+      PinNumerics(*db_, "actor_numerics", number, numerics);
       return SlotLease{.key = {.run_id = run.id, .slot = slot, .epoch = epoch},
                        .learner_address = std::move(learner_address),
                        .learner_epoch = learner_epoch,
@@ -495,10 +499,7 @@ absl::StatusOr<std::optional<EvaluationJob>> RunStore::AcquireEvaluationJob(
     grant.executeStep();
     job.key.epoch = grant.getColumn(0).getInt64();
     grant.reset();
-    SQLite::Statement pin(*db_, "UPDATE runs SET actor_numerics = ? WHERE number = ?");
-    pin.bind(1, std::string(numerics));
-    pin.bind(2, number);
-    pin.exec();
+    PinNumerics(*db_, "actor_numerics", number, numerics);
     return job;
   });
 }

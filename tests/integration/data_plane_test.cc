@@ -538,6 +538,14 @@ Response CallCoordinator(v1::CoordinatorService::Stub& coordinator,
   return response;
 }
 
+// A learner's part, played by the test: the lease of the queued run.
+v1::AcquireRunResponse TakeRunAsLearner(v1::CoordinatorService::Stub& coordinator) {
+  v1::AcquireRunRequest request;
+  request.set_holder("fake-learner");
+  request.set_address("127.0.0.1:1");
+  return CallCoordinator(coordinator, &v1::CoordinatorService::Stub::AcquireRun, request);
+}
+
 TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoodOne) {
   Cluster cluster;
   cluster.StartCoordinator();
@@ -546,11 +554,7 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
       v1::CoordinatorService::NewStub(services::OpenChannel(cluster.coordinator_address()));
   using Stub = v1::CoordinatorService::Stub;
 
-  // A learner's part, played by the test: take the run, hand over an evaluation.
-  v1::AcquireRunRequest acquire_run;
-  acquire_run.set_holder("fake-learner");
-  acquire_run.set_address("127.0.0.1:1");
-  const v1::AcquireRunResponse run = CallCoordinator(*coordinator, &Stub::AcquireRun, acquire_run);
+  const v1::AcquireRunResponse run = TakeRunAsLearner(*coordinator);
   ASSERT_EQ(run.lease().run_id(), run_id);
   v1::SubmitEvaluationRequest submit;
   *submit.mutable_lease() = run.lease();
@@ -640,9 +644,7 @@ TEST(DataPlaneStreamTest, ACheckpointLargerThanAMessageTravelsInPieces) {
   auto coordinator =
       v1::CoordinatorService::NewStub(services::OpenChannel(cluster.coordinator_address()));
   using Stub = v1::CoordinatorService::Stub;
-  v1::AcquireRunRequest acquire_run;
-  acquire_run.set_holder("fake-learner");
-  const v1::AcquireRunResponse run = CallCoordinator(*coordinator, &Stub::AcquireRun, acquire_run);
+  const v1::AcquireRunResponse run = TakeRunAsLearner(*coordinator);
   ASSERT_EQ(run.lease().run_id(), run_id);
 
   // 6 MiB of learner state: over gRPC's 4 MiB message limit.
