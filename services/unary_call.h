@@ -4,8 +4,8 @@
 
 // One unary call with a deadline, its status as an absl::Status (annotated with the peer's
 // name): the client side of every worker-to-coordinator, actor-to-learner and client call;
-// which failures are worth the same call again; and the call retried with backoff until it
-// succeeds or the caller gives up. Thread-safe (gRPC stubs are).
+// which failures are worth the same call again, and which mean a lease is lost; and the call
+// retried with backoff until it succeeds or the caller gives up. Thread-safe (gRPC stubs are).
 
 #include <grpcpp/client_context.h>
 #include <grpcpp/support/status.h>
@@ -26,6 +26,12 @@ namespace dcs::services {
 // The peer is down, restarting or slow, rather than refusing: the same call may succeed later.
 inline bool IsTransient(const absl::Status& status) {
   return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status);
+}
+
+// The coordinator refuses a call made under a lease that is no longer the caller's: the lease
+// moved to another holder or lapsed (FAILED_PRECONDITION), or its run is gone (NOT_FOUND).
+inline bool IsLeaseLost(const absl::Status& status) {
+  return absl::IsFailedPrecondition(status) || absl::IsNotFound(status);
 }
 
 template <typename Stub, typename Request, typename Response>

@@ -51,11 +51,6 @@ namespace {
 constexpr BackoffPolicy kRetryBackoff{.initial = absl::Milliseconds(100),
                                       .max = absl::Seconds(1)};
 
-// The lease is gone: the run moved to another learner, or ended.
-bool IsLeaseLost(const absl::Status& status) {
-  return absl::IsFailedPrecondition(status) || absl::IsNotFound(status);
-}
-
 }  // namespace
 
 HostedRuns::HostedRuns(HostedRunsOptions options, prometheus::Registry& metrics)

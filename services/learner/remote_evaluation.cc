@@ -67,7 +67,7 @@ learner::Evaluator EvaluateOnActors(std::shared_ptr<v1::CoordinatorService::Stub
         options.rpc_timeout, "coordinator", kRetryBackoff,
         [&](const absl::Status&) { return !stop.HasBeenNotified(); });
     if (stop.HasBeenNotified()) return cancelled();
-    if (absl::IsFailedPrecondition(status) || absl::IsNotFound(status)) {
+    if (IsLeaseLost(status)) {
       return absl::CancelledError(absl::StrCat("the run's lease is lost: ", status.message()));
     }
     DCS_RETURN_IF_ERROR(status);
