@@ -5,8 +5,8 @@
 // What acts in an environment: given the policy's input (the flat observation and context, and
 // an image for image policies) it samples an action from its distribution, or takes the mode.
 // Actions are unclipped; whoever steps the environment clips continuous actions to its bounds.
-// Implementations: actor::MlpPolicy (Eigen) and, for image policies, the learner's torch
-// network. Confined to one thread.
+// Implementation: actor::PolicyNetwork (Eigen), for vector and image observations alike.
+// Confined to one thread.
 
 #include <cstdint>
 #include <span>

@@ -24,6 +24,20 @@ void InitWeights(torch::nn::Module& module, double gain) {
   }
 }
 
+// A tensor's elements, row-major.
+std::vector<float> Floats(const torch::Tensor& tensor) {
+  const torch::Tensor t = tensor.detach().contiguous();
+  return std::vector<float>(t.data_ptr<float>(), t.data_ptr<float>() + t.numel());
+}
+
+actor::DenseLayer ExportDense(const torch::nn::LinearImpl& linear, actor::Activation activation) {
+  return {.inputs = static_cast<int>(linear.weight.size(1)),
+          .outputs = static_cast<int>(linear.weight.size(0)),
+          .weight = Floats(linear.weight),
+          .bias = Floats(linear.bias),
+          .activation = activation};
+}
+
 int OutputsOf(const std::vector<int>& widths, int inputs) {
   return widths.empty() ? inputs : widths.back();
 }
@@ -119,26 +133,33 @@ ActorCriticImpl::Evaluation ActorCriticImpl::EvaluateActions(const ObservationBa
   return evaluation;
 }
 
-actor::MlpWeights ActorCriticImpl::ExportActor() const {
-  actor::MlpWeights weights;
+actor::PolicyWeights ActorCriticImpl::ExportActor() const {
+  actor::PolicyWeights weights;
   weights.num_actions = spec_.num_actions;
-  auto add = [&weights](const torch::nn::Linear& linear, bool tanh) {
-    const torch::Tensor w = linear->weight.detach().contiguous();
-    const torch::Tensor b = linear->bias.detach().contiguous();
-    weights.layers.push_back({.inputs = static_cast<int>(w.size(1)),
-                              .outputs = static_cast<int>(w.size(0)),
-                              .weight = std::vector<float>(w.data_ptr<float>(),
-                                                           w.data_ptr<float>() + w.numel()),
-                              .bias = std::vector<float>(b.data_ptr<float>(),
-                                                         b.data_ptr<float>() + b.numel()),
-                              .tanh = tanh});
-  };
-  for (const torch::nn::Linear& layer : pi_.layers) add(layer, true);
-  add(action_net_, false);
-  if (!spec_.discrete()) {
-    const torch::Tensor s = log_std_.detach().contiguous();
-    weights.log_std.assign(s.data_ptr<float>(), s.data_ptr<float>() + s.numel());
+  if (spec_.has_image()) {
+    actor::ImageEncoderWeights& image = weights.image.emplace();
+    image.height = spec_.image_height;
+    image.width = spec_.image_width;
+    image.channels = spec_.image_channels;
+    for (const std::shared_ptr<torch::nn::Module>& child : cnn_->children()) {
+      if (const auto* conv = child->as<torch::nn::Conv2d>()) {
+        const torch::Tensor& w = conv->weight;
+        image.convs.push_back({.in_channels = static_cast<int>(w.size(1)),
+                               .out_channels = static_cast<int>(w.size(0)),
+                               .kernel = static_cast<int>(w.size(2)),
+                               .stride = static_cast<int>(conv->options.stride()->at(0)),
+                               .weight = Floats(w),
+                               .bias = Floats(conv->bias)});
+      } else if (const auto* linear = child->as<torch::nn::Linear>()) {
+        image.linear = ExportDense(*linear, actor::Activation::kRelu);
+      }
+    }
   }
+  for (const torch::nn::Linear& layer : pi_.layers) {
+    weights.layers.push_back(ExportDense(*layer, actor::Activation::kTanh));
+  }
+  weights.layers.push_back(ExportDense(*action_net_, actor::Activation::kNone));
+  if (!spec_.discrete()) weights.log_std = Floats(log_std_);
   return weights;
 }
 

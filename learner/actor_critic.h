@@ -18,7 +18,7 @@
 
 #include <vector>
 
-#include "actor/mlp_policy.h"
+#include "actor/policy_weights.h"
 #include "run/ppo_config.h"
 
 namespace dcs::learner {
@@ -57,8 +57,8 @@ class ActorCriticImpl : public torch::nn::Module {
     return actions.to(torch::kLong);
   }
 
-  // The actor half for Eigen inference on actors. REQUIRES: no image observation.
-  actor::MlpWeights ExportActor() const;
+  // The actor half, for Eigen inference (actor/policy_network.h).
+  actor::PolicyWeights ExportActor() const;
 
   const torch::Tensor& log_std() const { return log_std_; }
 

@@ -356,23 +356,7 @@ absl::StatusOr<UpdateStats> PpoLearner::Update(const actor::Rollout& rollout) {
 
 int64_t PpoLearner::updates() const { return impl_->updates; }
 
-actor::MlpWeights PpoLearner::ActorWeights() const { return impl_->network->ExportActor(); }
-
-void PpoLearner::Act(std::span<const float> inputs, std::span<const uint8_t> image,
-                     bool deterministic, Random& random, std::span<float> action) {
-  const run::PolicySpec& spec = impl_->spec;
-  torch::NoGradGuard no_grad;
-  ObservationBatch batch{.flat = torch::from_blob(const_cast<float*>(inputs.data()),
-                                                  {1, spec.flat_input_size()}, torch::kFloat32)};
-  if (spec.has_image()) batch.images = ImageTensor(image.data(), 1, spec);
-  const torch::Tensor head = impl_->network->ActionHead(batch).contiguous();
-  torch::Tensor std;
-  if (!spec.discrete()) std = torch::exp(impl_->network->log_std()).contiguous();
-  actor::SampleAction(std::span<const float>(head.data_ptr<float>(), head.numel()),
-                      spec.discrete() ? std::span<const float>()
-                                      : std::span<const float>(std.data_ptr<float>(), std.numel()),
-                      spec.num_actions, deterministic, random, action);
-}
+actor::PolicyWeights PpoLearner::ActorWeights() const { return impl_->network->ExportActor(); }
 
 std::vector<float> PpoLearner::Parameters() const {
   std::vector<float> flat;

@@ -20,8 +20,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
-#include "actor/mlp_policy.h"
-#include "actor/policy.h"
+#include "actor/policy_weights.h"
 #include "actor/rollout.h"
 #include "run/ppo_config.h"
 
@@ -41,13 +40,13 @@ struct UpdateStats {
   bool stopped_early = false;  // target_kl reached
 };
 
-class PpoLearner final : public actor::Policy {
+class PpoLearner final {
  public:
   // INVALID_ARGUMENT for an invalid spec or config.
   static absl::StatusOr<std::unique_ptr<PpoLearner>> Create(const run::PolicySpec& spec,
                                                            const run::PpoConfig& config, int n_envs,
                                                            uint64_t seed);
-  ~PpoLearner() override;
+  ~PpoLearner();
   PpoLearner(const PpoLearner&) = delete;
   PpoLearner& operator=(const PpoLearner&) = delete;
 
@@ -59,12 +58,8 @@ class PpoLearner final : public actor::Policy {
   // The number of updates so far: the policy version.
   int64_t updates() const;
 
-  // The actor network, for Eigen inference. REQUIRES: no image observation.
-  actor::MlpWeights ActorWeights() const;
-
-  // actor::Policy, with the torch network: how image policies act (they have no Eigen copy).
-  void Act(std::span<const float> inputs, std::span<const uint8_t> image, bool deterministic,
-           Random& random, std::span<float> action) override;
+  // The actor network, for Eigen inference (actor/policy_network.h).
+  actor::PolicyWeights ActorWeights() const;
 
   // Every parameter, flattened in a fixed order (tests compare runs with it).
   std::vector<float> Parameters() const;

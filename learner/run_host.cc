@@ -25,13 +25,10 @@ absl::Status CheckFinite(absl::string_view field, std::span<const float> values,
 }
 
 // The whole of one slot's part checked against the run's shapes, before anything is taken.
-absl::Status CheckSlotRollout(const actor::SlotRollout& data, int n_steps, int input_size,
-                              int action_size) {
-  DCS_RETURN_IF_ERROR(actor::CheckSlotRollout(
-      data, {.num_steps = n_steps,
-             .input = static_cast<size_t>(input_size),
-             .image = 0,  // image policies are not hosted
-             .action = static_cast<size_t>(action_size)}));
+absl::Status CheckWhole(const actor::SlotRollout& data, const actor::SlotRolloutShape& shape) {
+  DCS_RETURN_IF_ERROR(actor::CheckSlotRollout(data, shape));
+  const int input_size = static_cast<int>(shape.input);
+  const int action_size = static_cast<int>(shape.action);
   DCS_RETURN_IF_ERROR(CheckFinite("inputs", data.inputs, input_size));
   DCS_RETURN_IF_ERROR(CheckFinite("actions", data.actions, action_size));
   DCS_RETURN_IF_ERROR(CheckFinite("rewards", data.rewards, 1));
@@ -49,14 +46,12 @@ absl::Status CheckSlotRollout(const actor::SlotRollout& data, int n_steps, int i
 
 }  // namespace
 
-RunHost::RunHost(std::unique_ptr<TrainingSession> session, Evaluator evaluator, int input_size,
-                 int action_size)
+RunHost::RunHost(std::unique_ptr<TrainingSession> session, Evaluator evaluator,
+                 actor::SlotRolloutShape shape)
     : session_(std::move(session)),
       evaluator_(std::move(evaluator)),
       n_envs_(session_->spec().n_envs),
-      n_steps_(session_->spec().ppo.n_steps),
-      input_size_(input_size),
-      action_size_(action_size),
+      shape_(shape),
       start_(absl::Now()),
       first_timesteps_(session_->state().timesteps),
       epochs_(n_envs_, 0),
@@ -65,7 +60,7 @@ RunHost::RunHost(std::unique_ptr<TrainingSession> session, Evaluator evaluator, 
 RunHost::~RunHost() { Stop(); }
 
 void RunHost::Publish() {
-  auto weights = std::make_shared<const actor::MlpWeights>(session_->ActorWeights());
+  auto weights = std::make_shared<const actor::PolicyWeights>(session_->ActorWeights());
   absl::MutexLock lock(&mu_);
   rollout_ = session_->state().rollouts;
   start_timesteps_ = session_->state().timesteps;
@@ -101,7 +96,7 @@ absl::StatusOr<SlotWork> RunHost::GetSlotWork(int slot, int64_t epoch, int64_t p
     return !pending_[slot].has_value() || stop_.HasBeenNotified() || complete_;
   };
   mu_.AwaitWithTimeout(absl::Condition(&answerable), wait);
-  SlotWork work{.run_complete = complete_, .n_steps = n_steps_};
+  SlotWork work{.run_complete = complete_, .n_steps = shape_.num_steps};
   if (complete_ || pending_[slot].has_value()) return work;
   work.ready = true;
   work.rollout = rollout_;
@@ -120,7 +115,7 @@ absl::StatusOr<bool> RunHost::PushRollout(int64_t epoch, int64_t rollout, int64_
         "rollout ", rollout, " is collected with policy version ", rollout, ", not ",
         policy_version));
   }
-  DCS_RETURN_IF_ERROR(CheckSlotRollout(data, n_steps_, input_size_, action_size_));
+  DCS_RETURN_IF_ERROR(CheckWhole(data, shape_));
   absl::MutexLock lock(&mu_);
   DCS_RETURN_IF_ERROR(CheckEpoch(slot, epoch));
   if (rollout < rollout_ || (rollout == rollout_ && pending_[slot].has_value())) return true;
@@ -135,7 +130,7 @@ absl::StatusOr<bool> RunHost::PushRollout(int64_t epoch, int64_t rollout, int64_
 }
 
 void RunHost::StartEvaluation(const EvaluationDue& due) {
-  std::shared_ptr<const actor::MlpWeights> weights;
+  std::shared_ptr<const actor::PolicyWeights> weights;
   {
     absl::MutexLock lock(&mu_);
     weights = weights_;  // the current version: the one `due` names
@@ -204,7 +199,7 @@ absl::StatusOr<HostStep> RunHost::Step() {
                    .recent_return = session_->recent_return(),
                    .update = update.stats,
                    .evaluation = state.evaluations.empty() ? nullptr : &state.evaluations.back()},
-      .steps = static_cast<int64_t>(n_envs_) * n_steps_,
+      .steps = static_cast<int64_t>(n_envs_) * shape_.num_steps,
       .episodes = episodes,
       .complete = session_->complete()};
   if (checkpoint_wanted_ && evaluations_.empty()) {

@@ -43,7 +43,8 @@
 #include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
 #include "actor/evaluation.h"
-#include "actor/mlp_policy.h"
+#include "actor/policy_network.h"
+#include "actor/policy_weights.h"
 #include "actor/rollout_collector.h"
 #include "actor/slot_rollout.h"
 #include "common/status_macros.h"
@@ -62,7 +63,7 @@ struct SlotWork {
   int64_t rollout = 0;        // collect this rollout with policy version `rollout`
   int64_t start_timesteps = 0;
   int n_steps = 0;
-  std::shared_ptr<const actor::MlpWeights> weights;  // policy version `rollout`
+  std::shared_ptr<const actor::PolicyWeights> weights;  // policy version `rollout`
   absl::Time published_at;                           // when that version was published
   // Where the slot's episode stands before `rollout`: given when the holder is not
   // positioned there (it must rebuild the slot).
@@ -75,7 +76,7 @@ struct EvaluationTask {
   const run::RunSpec& spec;
   const run::RunPlan& plan;
   EvaluationDue due;
-  std::shared_ptr<const actor::MlpWeights> weights;
+  std::shared_ptr<const actor::PolicyWeights> weights;
 };
 
 // Evaluates a task, called on a thread of its own; returns CANCELLED soon after `stop` is
@@ -101,8 +102,7 @@ struct HostStep {
 class RunHost {
  public:
   // A host for `spec` on `Env`, continuing from `checkpoint` if given, evaluating with
-  // `evaluator`. Errors as TrainingSession::Create; UNIMPLEMENTED for image policies (their CNN
-  // does not run on actors yet).
+  // `evaluator`. Errors as TrainingSession::Create.
   template <typename Env>
   static absl::StatusOr<std::unique_ptr<RunHost>> Create(run::RunSpec spec,
                                                          const run::Checkpoint* checkpoint,
@@ -114,7 +114,7 @@ class RunHost {
   RunHost& operator=(const RunHost&) = delete;
 
   int n_envs() const { return n_envs_; }
-  int n_steps() const { return n_steps_; }
+  int n_steps() const { return shape_.num_steps; }
 
   // The work of `slot` for its holder at `epoch`, positioned to collect rollout
   // `positioned_at` (-1: not at all). Waits up to `wait` for the next rollout if the slot's
@@ -144,8 +144,8 @@ class RunHost {
   std::vector<float> Parameters() const { return session_->Parameters(); }
 
  private:
-  RunHost(std::unique_ptr<TrainingSession> session, Evaluator evaluator, int input_size,
-          int action_size);
+  RunHost(std::unique_ptr<TrainingSession> session, Evaluator evaluator,
+          actor::SlotRolloutShape shape);
 
   // Publishes the session's current policy and journals, and frees the slots' parts of the
   // rollout learnt from. Called from Step's thread.
@@ -161,9 +161,7 @@ class RunHost {
   const std::unique_ptr<TrainingSession> session_;  // Step's thread only
   const Evaluator evaluator_;
   const int n_envs_;
-  const int n_steps_;
-  const int input_size_;
-  const int action_size_;
+  const actor::SlotRolloutShape shape_;  // of each slot's part
   const absl::Time start_;
   const int64_t first_timesteps_;
 
@@ -181,7 +179,7 @@ class RunHost {
   bool complete_ ABSL_GUARDED_BY(mu_) = false;
   int64_t rollout_ ABSL_GUARDED_BY(mu_) = 0;  // being collected
   int64_t start_timesteps_ ABSL_GUARDED_BY(mu_) = 0;
-  std::shared_ptr<const actor::MlpWeights> weights_ ABSL_GUARDED_BY(mu_);
+  std::shared_ptr<const actor::PolicyWeights> weights_ ABSL_GUARDED_BY(mu_);
   absl::Time published_at_ ABSL_GUARDED_BY(mu_);
   std::vector<actor::SlotJournal> journals_ ABSL_GUARDED_BY(mu_);  // before rollout_
   std::vector<int64_t> epochs_ ABSL_GUARDED_BY(mu_);
@@ -195,7 +193,7 @@ template <typename Env>
 Evaluator EvaluateInProcess() {
   return [](const EvaluationTask& task,
             const absl::Notification& /*stop*/) -> absl::StatusOr<actor::EvaluationResult> {
-    DCS_ASSIGN_OR_RETURN(actor::MlpPolicy policy, actor::MlpPolicy::Create(*task.weights));
+    DCS_ASSIGN_OR_RETURN(actor::PolicyNetwork policy, actor::PolicyNetwork::Create(*task.weights));
     return actor::Evaluate<Env>(policy, task.plan.slot, task.plan.feature,
                                 task.plan.evaluation_contexts, task.spec.eval_episodes,
                                 task.spec.seed);
@@ -206,20 +204,19 @@ template <typename Env>
 absl::StatusOr<std::unique_ptr<RunHost>> RunHost::Create(run::RunSpec spec,
                                                          const run::Checkpoint* checkpoint,
                                                          Evaluator evaluator) {
-  if constexpr (std::is_same_v<typename Env::Observation, uint8_t>) {
-    return absl::UnimplementedError(
-        "image policies (CarRacing's CNN) cannot run on actors yet: train it with `dcs train` "
-        "in one process");
-  } else {
-    DCS_ASSIGN_OR_RETURN(std::unique_ptr<TrainingSession> session,
-                         TrainingSession::Create<Env>(std::move(spec), checkpoint));
-    const int input_size =
-        Env::kObservationSize + static_cast<int>(session->plan().slot.observed_features.size());
-    std::unique_ptr<RunHost> host(new RunHost(std::move(session), std::move(evaluator),
-                                              input_size, Env::kActionSize));
-    host->Publish();
-    return host;
-  }
+  DCS_ASSIGN_OR_RETURN(std::unique_ptr<TrainingSession> session,
+                       TrainingSession::Create<Env>(std::move(spec), checkpoint));
+  const run::PolicySpec policy =
+      run::PolicySpecFor<Env>(static_cast<int>(session->plan().slot.observed_features.size()));
+  const actor::SlotRolloutShape shape{
+      .num_steps = session->spec().ppo.n_steps,
+      .input = static_cast<size_t>(policy.flat_input_size()),
+      .image = static_cast<size_t>(policy.image_height) * policy.image_width *
+               policy.image_channels,
+      .action = static_cast<size_t>(policy.action_size)};
+  std::unique_ptr<RunHost> host(new RunHost(std::move(session), std::move(evaluator), shape));
+  host->Publish();
+  return host;
 }
 
 }  // namespace dcs::learner

@@ -28,7 +28,7 @@
 
 #include "absl/status/statusor.h"
 #include "actor/evaluation.h"
-#include "actor/mlp_policy.h"
+#include "actor/policy_network.h"
 #include "actor/rollout_collector.h"
 #include "common/status_macros.h"
 #include "dcs/v1/evaluation.pb.h"
@@ -79,40 +79,6 @@ absl::StatusOr<TrainingResult> Train(const run::RunSpec& spec, const TrainingOpt
 
 // Implementation details.
 
-namespace training_internal {
-
-// The policy that acts for a session: an Eigen copy of its actor network for vector
-// observations (refreshed after every update), the torch network itself for images.
-template <typename Env>
-class ActingPolicy {
- public:
-  explicit ActingPolicy(TrainingSession& session) : session_(session) {}
-
-  // Takes the session's current weights. INVALID_ARGUMENT if they do not make an MLP.
-  absl::Status Refresh() {
-    if constexpr (!kImage) {
-      DCS_ASSIGN_OR_RETURN(mlp_, actor::MlpPolicy::Create(session_.ActorWeights()));
-    }
-    return absl::OkStatus();
-  }
-
-  actor::Policy& get() {
-    if constexpr (kImage) {
-      return session_.TorchPolicy();
-    } else {
-      return *mlp_;
-    }
-  }
-
- private:
-  static constexpr bool kImage = std::is_same_v<typename Env::Observation, uint8_t>;
-
-  TrainingSession& session_;
-  std::optional<actor::MlpPolicy> mlp_;
-};
-
-}  // namespace training_internal
-
 template <typename Env>
 absl::StatusOr<TrainingResult> Train(const run::RunSpec& spec, const TrainingOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -131,12 +97,13 @@ absl::StatusOr<TrainingResult> Train(const run::RunSpec& spec, const TrainingOpt
   const int64_t first_timesteps = session->state().timesteps;
   envs.set_global_steps(first_timesteps);
   actor::RolloutCollector<Env> collector(envs, spec.seed, session->state().journals);
-  training_internal::ActingPolicy<Env> policy(*session);
-  DCS_RETURN_IF_ERROR(policy.Refresh());
+  // Acts as actors do (actor/policy_network.h), refreshed after every update.
+  DCS_ASSIGN_OR_RETURN(actor::PolicyNetwork policy,
+                       actor::PolicyNetwork::Create(session->ActorWeights()));
 
   auto evaluate = [&](const EvaluationDue& due) -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const actor::EvaluationResult evaluation,
-                         actor::Evaluate<Env>(policy.get(), plan.slot, plan.feature,
+                         actor::Evaluate<Env>(policy, plan.slot, plan.feature,
                                               plan.evaluation_contexts, spec.eval_episodes,
                                               spec.seed));
     session->RecordEvaluation(due, evaluation);
@@ -153,13 +120,13 @@ absl::StatusOr<TrainingResult> Train(const run::RunSpec& spec, const TrainingOpt
   while (!session->complete()) {
     actor::Rollout rollout;
     std::vector<actor::EpisodeSummary> finished;
-    collector.Collect(policy.get(), spec.ppo.n_steps, session->state().rollouts, rollout,
+    collector.Collect(policy, spec.ppo.n_steps, session->state().rollouts, rollout,
                       finished);
     DCS_ASSIGN_OR_RETURN(const std::optional<EvaluationDue> due,
                          session->AddRollout(std::move(rollout), finished, collector.journals()));
     if (due.has_value()) DCS_RETURN_IF_ERROR(evaluate(*due));
     DCS_ASSIGN_OR_RETURN(const SessionUpdate update, session->Update());
-    DCS_RETURN_IF_ERROR(policy.Refresh());
+    DCS_ASSIGN_OR_RETURN(policy, actor::PolicyNetwork::Create(session->ActorWeights()));
     if (update.final_evaluation.has_value()) {
       DCS_RETURN_IF_ERROR(evaluate(*update.final_evaluation));
     }

@@ -32,8 +32,7 @@
 
 #include "absl/status/statusor.h"
 #include "actor/evaluation.h"
-#include "actor/mlp_policy.h"
-#include "actor/policy.h"
+#include "actor/policy_weights.h"
 #include "actor/rollout.h"
 #include "actor/rollout_collector.h"
 #include "common/status_macros.h"
@@ -78,11 +77,10 @@ class TrainingSession {
   const run::RunState& state() const { return state_; }
   bool complete() const { return state_.timesteps >= spec_.total_timesteps; }
 
-  // The current policy: its version (the updates so far); its actor network for Eigen
-  // inference (REQUIRES: no image observation); for image policies, the torch network itself.
+  // The current policy: its version (the updates so far) and its actor network, for Eigen
+  // inference (actor/policy_network.h).
   int64_t policy_version() const { return learner_->updates(); }
-  actor::MlpWeights ActorWeights() const { return learner_->ActorWeights(); }
-  actor::Policy& TorchPolicy() { return *learner_; }
+  actor::PolicyWeights ActorWeights() const { return learner_->ActorWeights(); }
 
   // Takes rollout number state().rollouts, collected by every slot with the current policy,
   // with the training episodes that finished in it and every slot's journal after it. Returns

@@ -14,9 +14,11 @@
 #include "common/status_macros.h"
 #include "coordinator/run_files.h"
 #include "coordinator/run_submission.h"
+#include "dcs/v1/trajectory.pb.h"
 #include "services/coordinator_service.h"
 #include "services/grpc_status.h"
 #include "services/log.h"
+#include "services/pieces.h"
 #include "services/run_proto.h"
 #include "services/time_proto.h"
 
@@ -62,6 +64,44 @@ class PiecesWriter final : public grpc::ServerWriteReactor<Piece> {
   size_t next_ = 0;
 };
 
+// A client stream of a header and a payload in pieces (services/pieces.h), handed whole to
+// `complete`. Owned by gRPC from construction until OnDone.
+template <typename Request>
+class JoiningReader final : public grpc::ServerReadReactor<Request> {
+ public:
+  using Complete = std::function<absl::Status(PieceJoiner<Request>&)>;
+  using Count = std::function<void(const absl::Status&)>;
+
+  JoiningReader(PieceJoiner<Request> joiner, Complete complete, Count count)
+      : joiner_(std::move(joiner)), complete_(std::move(complete)), count_(std::move(count)) {
+    this->StartRead(&request_);
+  }
+
+  void OnReadDone(bool ok) override {
+    absl::Status status;
+    if (ok) {  // a piece
+      status = joiner_.Add(std::move(request_));
+      if (status.ok()) {
+        this->StartRead(&request_);
+        return;
+      }
+    } else {  // the client sent every piece
+      status = joiner_.started() ? complete_(joiner_)
+                                 : absl::InvalidArgumentError("the stream was empty");
+    }
+    count_(status);
+    this->Finish(ToGrpcStatus(status));
+  }
+
+  void OnDone() override { delete this; }
+
+ private:
+  PieceJoiner<Request> joiner_;
+  const Complete complete_;
+  const Count count_;
+  Request request_;
+};
+
 // PutCheckpoint's stream: the pieces of one checkpoint and its evaluation log, stored once the
 // learner has sent them all. Owned by gRPC from construction until OnDone.
 class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointRequest> {
@@ -95,10 +135,10 @@ class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointR
       DCS_ASSIGN_OR_RETURN(key_, LeaseFromProto(request_.lease()));
     }
     DCS_RETURN_IF_ERROR(AddCheckpointPiece(request_.checkpoint(), first, checkpoint_));
-    if (log_.size() + request_.evaluation_log().size() > kMaxCheckpointBytes) {
+    if (log_.size() + request_.evaluation_log().size() > kMaxStreamedBytes) {
       return absl::ResourceExhaustedError(absl::StrCat(
           "the evaluation log of checkpoint ", checkpoint_.name, " is larger than ",
-          kMaxCheckpointBytes, " bytes"));
+          kMaxStreamedBytes, " bytes"));
     }
     log_.append(request_.evaluation_log());
     return absl::OkStatus();
@@ -327,21 +367,25 @@ grpc::ServerUnaryReactor* CoordinatorService::FinishRun(grpc::CallbackServerCont
   return Finish(context, finish());
 }
 
-grpc::ServerUnaryReactor* CoordinatorService::SubmitEvaluation(
-    grpc::CallbackServerContext* context, const v1::SubmitEvaluationRequest* request,
-    v1::SubmitEvaluationResponse* /*response*/) {
-  auto submit = [&]() -> absl::Status {
-    DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
-    return runs_.store->SubmitEvaluation(
-        key,
-        {.policy_version = request->policy_version(),
-         .step = request->step(),
-         .contexts = request->contexts(),
-         .episodes = request->episodes(),
-         .weights = request->has_weights() ? request->weights().SerializeAsString() : ""},
-        absl::Now());
+grpc::ServerReadReactor<v1::SubmitEvaluationRequest>* CoordinatorService::SubmitEvaluation(
+    grpc::CallbackServerContext* /*context*/, v1::SubmitEvaluationResponse* /*response*/) {
+  auto submit = [this](PieceJoiner<v1::SubmitEvaluationRequest>& joined) -> absl::Status {
+    const v1::SubmitEvaluationRequest& request = joined.header();
+    DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request.lease()));
+    v1::PolicyWeights weights;  // checked here, so that actors are given what parses
+    DCS_RETURN_IF_ERROR(joined.Parse(weights));
+    return runs_.store->SubmitEvaluation(key,
+                                         {.policy_version = request.policy_version(),
+                                          .step = request.step(),
+                                          .contexts = request.contexts(),
+                                          .episodes = request.episodes(),
+                                          .weights = std::move(joined.payload())},
+                                         absl::Now());
   };
-  return Finish(context, submit());
+  return new JoiningReader<v1::SubmitEvaluationRequest>(
+      PieceJoiner<v1::SubmitEvaluationRequest>(&v1::SubmitEvaluationRequest::mutable_weights,
+                                               "the evaluation's policy"),
+      submit, [this](const absl::Status& status) { CountRefusal(status); });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
@@ -359,29 +403,25 @@ grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
   return Finish(context, evaluation.status());
 }
 
-grpc::ServerUnaryReactor* CoordinatorService::AcquireEvaluation(
-    grpc::CallbackServerContext* context, const v1::AcquireEvaluationRequest* request,
-    v1::AcquireEvaluationResponse* response) {
-  auto acquire = [&]() -> absl::Status {
+grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::AcquireEvaluation(
+    grpc::CallbackServerContext* /*context*/, const v1::AcquireEvaluationRequest* request) {
+  auto acquire = [&]() -> absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> {
     DCS_ASSIGN_OR_RETURN(
-        const std::optional<coordinator::EvaluationJob> job,
+        std::optional<coordinator::EvaluationJob> job,
         runs_.store->AcquireEvaluationJob(request->holder(), request->numerics(), absl::Now()));
-    if (!job.has_value()) return absl::OkStatus();
-    if (!response->mutable_weights()->ParseFromString(job->weights)) {
-      // The job stays leased and lapses; the store holds what the learner sent, so this is a
-      // bug, not bad input.
-      return absl::InternalError(absl::StrCat("the stored policy of ",
-                                              job->key.run_id, " version ",
-                                              job->key.policy_version, " does not parse"));
-    }
+    v1::AcquireEvaluationResponse header;
+    if (!job.has_value()) return std::vector{std::move(header)};
     evaluation_leases_.Increment();
-    *response->mutable_job() = EvaluationJobToProto(job->key);
-    response->set_config(job->config);
-    response->set_episodes(job->episodes);
-    *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
-    return absl::OkStatus();
+    *header.mutable_job() = EvaluationJobToProto(job->key);
+    header.set_config(job->config);
+    header.set_episodes(job->episodes);
+    *header.mutable_lease_duration() = DurationToProto(runs_.lease_duration);
+    return CutIntoMessages(std::move(header), job->weights,
+                           &v1::AcquireEvaluationResponse::mutable_weights);
   };
-  return Finish(context, acquire());
+  absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> messages = acquire();
+  CountRefusal(messages.status());
+  return new PiecesWriter<v1::AcquireEvaluationResponse>(std::move(messages));
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ReportEvaluation(

@@ -88,15 +88,13 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   grpc::ServerUnaryReactor* FinishRun(grpc::CallbackServerContext* context,
                                       const v1::FinishRunRequest* request,
                                       v1::FinishRunResponse* response) override;
-  grpc::ServerUnaryReactor* SubmitEvaluation(grpc::CallbackServerContext* context,
-                                             const v1::SubmitEvaluationRequest* request,
-                                             v1::SubmitEvaluationResponse* response) override;
+  grpc::ServerReadReactor<v1::SubmitEvaluationRequest>* SubmitEvaluation(
+      grpc::CallbackServerContext* context, v1::SubmitEvaluationResponse* response) override;
   grpc::ServerUnaryReactor* GetEvaluation(grpc::CallbackServerContext* context,
                                           const v1::GetEvaluationRequest* request,
                                           v1::GetEvaluationResponse* response) override;
-  grpc::ServerUnaryReactor* AcquireEvaluation(grpc::CallbackServerContext* context,
-                                              const v1::AcquireEvaluationRequest* request,
-                                              v1::AcquireEvaluationResponse* response) override;
+  grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* AcquireEvaluation(
+      grpc::CallbackServerContext* context, const v1::AcquireEvaluationRequest* request) override;
   grpc::ServerUnaryReactor* ReportEvaluation(grpc::CallbackServerContext* context,
                                              const v1::ReportEvaluationRequest* request,
                                              v1::ReportEvaluationResponse* response) override;

@@ -126,15 +126,6 @@ coordinator::ContextReturns ContextReturnsFromProto(const v1::ContextReturns& pr
           .seconds = proto.seconds()};
 }
 
-std::vector<absl::string_view> SplitIntoPieces(absl::string_view bytes) {
-  std::vector<absl::string_view> pieces;
-  do {
-    pieces.push_back(bytes.substr(0, kPieceBytes));
-    bytes.remove_prefix(pieces.back().size());
-  } while (!bytes.empty());
-  return pieces;
-}
-
 std::vector<v1::CheckpointPiece> CheckpointToPieces(const run::PackedCheckpoint& checkpoint) {
   const std::vector<absl::string_view> learner = SplitIntoPieces(checkpoint.learner);
   const std::vector<absl::string_view> run_state = SplitIntoPieces(checkpoint.run_state);
@@ -163,9 +154,9 @@ absl::Status AddCheckpointPiece(const v1::CheckpointPiece& piece, bool first,
   }
   if (checkpoint.learner.size() + checkpoint.run_state.size() + piece.learner().size() +
           piece.run_state().size() >
-      kMaxCheckpointBytes) {
+      kMaxStreamedBytes) {
     return absl::ResourceExhaustedError(absl::StrCat("checkpoint ", checkpoint.name,
-                                                     " is larger than ", kMaxCheckpointBytes,
+                                                     " is larger than ", kMaxStreamedBytes,
                                                      " bytes"));
   }
   checkpoint.learner.append(piece.learner());

@@ -15,6 +15,7 @@
 #include "dcs/v1/coordinator_service.pb.h"
 #include "dcs/v1/run.pb.h"
 #include "run/run_checkpoint.h"
+#include "services/pieces.h"
 
 namespace dcs::services {
 
@@ -36,20 +37,15 @@ absl::StatusOr<coordinator::EvaluationJobKey> EvaluationJobFromProto(
 v1::ContextReturns ContextReturnsToProto(const coordinator::ContextReturns& returns);
 coordinator::ContextReturns ContextReturnsFromProto(const v1::ContextReturns& proto);
 
-// Streams carry files and checkpoints in pieces of at most kPieceBytes each, well under gRPC's
-// 4 MiB message limit; a streamed checkpoint may hold up to kMaxCheckpointBytes.
-inline constexpr size_t kPieceBytes = size_t{1} << 20;
-inline constexpr size_t kMaxCheckpointBytes = size_t{1} << 30;
-
-// `bytes` in consecutive pieces of at most kPieceBytes; one empty piece for empty bytes.
-std::vector<absl::string_view> SplitIntoPieces(absl::string_view bytes);
+// Streams carry files and checkpoints in pieces (services/pieces.h); a streamed checkpoint may
+// hold up to kMaxStreamedBytes.
 
 // `checkpoint` in pieces: the first names it; each carries the next bytes of both files.
 std::vector<v1::CheckpointPiece> CheckpointToPieces(const run::PackedCheckpoint& checkpoint);
 
 // Adds the next piece of a streamed checkpoint to `checkpoint`; the first (`first`) names it.
 // INVALID_ARGUMENT for a first piece without a name, or a later one naming another checkpoint;
-// RESOURCE_EXHAUSTED once its files pass kMaxCheckpointBytes.
+// RESOURCE_EXHAUSTED once its files pass kMaxStreamedBytes.
 absl::Status AddCheckpointPiece(const v1::CheckpointPiece& piece, bool first,
                                 run::PackedCheckpoint& checkpoint);
 

@@ -2,8 +2,8 @@
 #ifndef DCS_SERVICES_STREAM_CALL_H_
 #define DCS_SERVICES_STREAM_CALL_H_
 
-// The client side of the streaming calls (checkpoints and run files travel in pieces:
-// services/run_proto.h): one call with a deadline over a sync stub, its status as an
+// The client side of the streaming calls (checkpoints, run files, policies and rollouts travel
+// in pieces: services/pieces.h): one call with a deadline over a sync stub, its status as an
 // absl::Status annotated with the peer's name, as CallUnary (services/unary_call.h) does for
 // unary calls. Thread-safe (gRPC stubs are).
 
@@ -19,6 +19,7 @@
 #include "common/status_util.h"
 #include "services/channel.h"
 #include "services/grpc_status.h"
+#include "services/unary_call.h"
 
 namespace dcs::services {
 
@@ -39,6 +40,19 @@ absl::Status CallClientStream(Stub& stub,
   const grpc::Status status = writer->Finish();
   if (status.ok()) return absl::OkStatus();
   return Annotate(FromGrpcStatus(status), peer);
+}
+
+// CallClientStream, retried as RetryTransient retries: the whole stream again.
+template <typename Stub, typename Request, typename Response, typename KeepTrying>
+absl::Status CallClientStreamWithRetries(
+    Stub& stub,
+    std::unique_ptr<grpc::ClientWriter<Request>> (Stub::*method)(grpc::ClientContext*,
+                                                                 Response*),
+    const std::vector<Request>& requests, Response& response, absl::Duration timeout,
+    absl::string_view peer, const BackoffPolicy& backoff, KeepTrying keep_trying) {
+  return RetryTransient(
+      [&] { return CallClientStream(stub, method, requests, response, timeout, peer); },
+      backoff, keep_trying);
 }
 
 // Hands every message of a server stream to `on_message`, in order; an error it returns ends

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
@@ -38,6 +39,14 @@ v1::Tensor ToTensor(std::span<const T> values, int64_t row_size = 0) {
 template <typename T>
 v1::Tensor ToTensor(const std::vector<T>& values, int64_t row_size = 0) {
   return ToTensor(std::span<const T>(values), row_size);
+}
+
+// A tensor of `values` with `shape`. REQUIRES: the shape's product is values.size().
+v1::Tensor ToTensor(const std::vector<float>& values, std::initializer_list<int64_t> shape) {
+  v1::Tensor tensor = ToTensor(values);
+  tensor.clear_shape();
+  for (int64_t dimension : shape) tensor.add_shape(dimension);
+  return tensor;
 }
 
 // The elements of `tensor`, checked: its dtype is T's, and its shape's product times T's size
@@ -148,34 +157,112 @@ absl::StatusOr<actor::SlotRollout> SlotRolloutFromProto(const v1::SlotRollout& p
   return rollout;
 }
 
-v1::PolicyWeights WeightsToProto(const actor::MlpWeights& weights) {
-  v1::PolicyWeights proto;
-  for (const actor::DenseLayer& layer : weights.layers) {
-    v1::DenseLayer& out = *proto.add_layers();
-    *out.mutable_weight() = ToTensor(layer.weight, layer.inputs);
-    *out.mutable_bias() = ToTensor(layer.bias);
-    out.set_tanh(layer.tanh);
+namespace {
+
+// The one table of activations on the wire.
+constexpr std::pair<actor::Activation, v1::Activation> kActivations[] = {
+    {actor::Activation::kNone, v1::ACTIVATION_NONE},
+    {actor::Activation::kTanh, v1::ACTIVATION_TANH},
+    {actor::Activation::kRelu, v1::ACTIVATION_RELU},
+};
+
+v1::DenseLayer DenseToProto(const actor::DenseLayer& layer) {
+  v1::DenseLayer proto;
+  *proto.mutable_weight() = ToTensor(layer.weight, layer.inputs);
+  *proto.mutable_bias() = ToTensor(layer.bias);
+  for (const auto& [activation, wire] : kActivations) {
+    if (activation == layer.activation) proto.set_activation(wire);
   }
+  return proto;
+}
+
+absl::StatusOr<actor::DenseLayer> DenseFromProto(const v1::DenseLayer& proto,
+                                                 absl::string_view field) {
+  if (proto.weight().shape_size() != 2) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(field, ".weight must have shape [outputs, inputs]"));
+  }
+  actor::DenseLayer layer{.inputs = static_cast<int>(proto.weight().shape(1)),
+                          .outputs = static_cast<int>(proto.weight().shape(0))};
+  DCS_ASSIGN_OR_RETURN(layer.weight,
+                       FromTensor<float>(proto.weight(), absl::StrCat(field, ".weight")));
+  DCS_ASSIGN_OR_RETURN(layer.bias, FromTensor<float>(proto.bias(), absl::StrCat(field, ".bias")));
+  const auto* known =
+      std::find_if(std::begin(kActivations), std::end(kActivations),
+                   [&](const auto& entry) { return entry.second == proto.activation(); });
+  if (known == std::end(kActivations)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(field, ".activation: ", proto.activation(), " is not an activation"));
+  }
+  layer.activation = known->first;
+  return layer;
+}
+
+}  // namespace
+
+v1::PolicyWeights WeightsToProto(const actor::PolicyWeights& weights) {
+  v1::PolicyWeights proto;
+  if (weights.image.has_value()) {
+    const actor::ImageEncoderWeights& image = *weights.image;
+    v1::ImageEncoder& encoder = *proto.mutable_image();
+    encoder.set_height(image.height);
+    encoder.set_width(image.width);
+    encoder.set_channels(image.channels);
+    for (const actor::ConvLayer& conv : image.convs) {
+      v1::ConvLayer& out = *encoder.add_convs();
+      *out.mutable_weight() =
+          ToTensor(conv.weight, {conv.out_channels, conv.in_channels, conv.kernel, conv.kernel});
+      *out.mutable_bias() = ToTensor(conv.bias);
+      out.set_stride(conv.stride);
+    }
+    *encoder.mutable_linear() = DenseToProto(image.linear);
+  }
+  for (const actor::DenseLayer& layer : weights.layers) *proto.add_layers() = DenseToProto(layer);
   *proto.mutable_log_std() = ToTensor(weights.log_std);
   proto.set_num_actions(weights.num_actions);
   return proto;
 }
 
-absl::StatusOr<actor::MlpWeights> WeightsFromProto(const v1::PolicyWeights& proto) {
-  actor::MlpWeights weights{.num_actions = proto.num_actions()};
-  for (const v1::DenseLayer& in : proto.layers()) {
-    if (in.weight().shape_size() != 2) {
-      return absl::InvalidArgumentError("a layer's weight must have shape [outputs, inputs]");
+absl::StatusOr<actor::PolicyWeights> WeightsFromProto(const v1::PolicyWeights& proto) {
+  actor::PolicyWeights weights{.num_actions = proto.num_actions()};
+  if (proto.has_image()) {
+    const v1::ImageEncoder& encoder = proto.image();
+    actor::ImageEncoderWeights& image = weights.image.emplace();
+    image.height = encoder.height();
+    image.width = encoder.width();
+    image.channels = encoder.channels();
+    for (const v1::ConvLayer& in : encoder.convs()) {
+      const auto& shape = in.weight().shape();
+      if (shape.size() != 4 || shape[2] != shape[3]) {
+        return absl::InvalidArgumentError(
+            "image.convs.weight must have shape [out_channels, in_channels, kernel, kernel]");
+      }
+      actor::ConvLayer conv{.in_channels = static_cast<int>(shape[1]),
+                            .out_channels = static_cast<int>(shape[0]),
+                            .kernel = static_cast<int>(shape[2]),
+                            .stride = in.stride()};
+      DCS_ASSIGN_OR_RETURN(conv.weight, FromTensor<float>(in.weight(), "image.convs.weight"));
+      DCS_ASSIGN_OR_RETURN(conv.bias, FromTensor<float>(in.bias(), "image.convs.bias"));
+      image.convs.push_back(std::move(conv));
     }
-    actor::DenseLayer layer{.inputs = static_cast<int>(in.weight().shape(1)),
-                            .outputs = static_cast<int>(in.weight().shape(0)),
-                            .tanh = in.tanh()};
-    DCS_ASSIGN_OR_RETURN(layer.weight, FromTensor<float>(in.weight(), "layers.weight"));
-    DCS_ASSIGN_OR_RETURN(layer.bias, FromTensor<float>(in.bias(), "layers.bias"));
+    DCS_ASSIGN_OR_RETURN(image.linear, DenseFromProto(encoder.linear(), "image.linear"));
+  }
+  for (const v1::DenseLayer& in : proto.layers()) {
+    DCS_ASSIGN_OR_RETURN(actor::DenseLayer layer, DenseFromProto(in, "layers"));
     weights.layers.push_back(std::move(layer));
   }
   DCS_ASSIGN_OR_RETURN(weights.log_std, FromTensor<float>(proto.log_std(), "log_std"));
   return weights;
+}
+
+absl::StatusOr<actor::PolicyNetwork> PolicyFromBytes(absl::string_view bytes) {
+  v1::PolicyWeights proto;
+  if (!proto.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("the policy's weights (", bytes.size(), " bytes) do not parse"));
+  }
+  DCS_ASSIGN_OR_RETURN(const actor::PolicyWeights weights, WeightsFromProto(proto));
+  return actor::PolicyNetwork::Create(weights);
 }
 
 }  // namespace dcs::services

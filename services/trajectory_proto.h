@@ -9,7 +9,9 @@
 // field. Thread-safe (pure functions).
 
 #include "absl/status/statusor.h"
-#include "actor/mlp_policy.h"
+#include "absl/strings/string_view.h"
+#include "actor/policy_network.h"
+#include "actor/policy_weights.h"
 #include "actor/rollout_collector.h"
 #include "actor/slot_rollout.h"
 #include "dcs/v1/trajectory.pb.h"
@@ -22,8 +24,12 @@ absl::StatusOr<actor::SlotRollout> SlotRolloutFromProto(const v1::SlotRollout& p
 v1::SlotJournal JournalToProto(const actor::SlotJournal& journal);
 absl::StatusOr<actor::SlotJournal> JournalFromProto(const v1::SlotJournal& proto);
 
-v1::PolicyWeights WeightsToProto(const actor::MlpWeights& weights);
-absl::StatusOr<actor::MlpWeights> WeightsFromProto(const v1::PolicyWeights& proto);
+v1::PolicyWeights WeightsToProto(const actor::PolicyWeights& weights);
+absl::StatusOr<actor::PolicyWeights> WeightsFromProto(const v1::PolicyWeights& proto);
+
+// The policy network of `bytes`, a serialised PolicyWeights (as it travels: in pieces,
+// services/pieces.h). INVALID_ARGUMENT if they do not parse or do not make a network.
+absl::StatusOr<actor::PolicyNetwork> PolicyFromBytes(absl::string_view bytes);
 
 }  // namespace dcs::services
 

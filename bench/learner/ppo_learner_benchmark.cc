@@ -2,13 +2,18 @@
 //
 // One PPO update with SB3's defaults on CartPole's shape (2048 transitions of one slot, 10 epochs
 // of 32 minibatches of 64: 320 gradient steps), the figure issue 5 asks to time separately;
-// and actor inference per step (Eigen, the 5 -> 64 -> 64 -> 2 MLP), target <= 1 us.
+// and actor inference per step (Eigen, the 5 -> 64 -> 64 -> 2 MLP), target <= 1 us; and for
+// CarRacing's image policy (NatureCNN on a 96 x 96 RGB frame, then the MLP), the Eigen network
+// actors and `dcs train` act with against libtorch's forward pass of the same network on one
+// frame (what acting cost before the Eigen network).
 
+#include <cstdint>
 #include <vector>
 
-#include "actor/mlp_policy.h"
+#include "actor/policy_network.h"
 #include "benchmark/benchmark.h"
 #include "common/random.h"
+#include "learner/actor_critic.h"
 #include "learner/ppo_learner.h"
 #include "learner/torch_runtime.h"
 
@@ -49,17 +54,74 @@ BENCHMARK(BM_PpoUpdateCartPole)->Unit(benchmark::kMillisecond);
 void BM_ActorInferenceCartPole(benchmark::State& state) {
   PinTorchThreads(1).IgnoreError();
   std::unique_ptr<PpoLearner> learner = *PpoLearner::Create(CartPoleSpec(), run::PpoConfig{}, 1, 0);
-  actor::MlpPolicy policy = *actor::MlpPolicy::Create(learner->ActorWeights());
+  actor::PolicyNetwork policy = *actor::PolicyNetwork::Create(learner->ActorWeights());
   Random random(3);
   std::vector<float> input = {0.01f, -0.2f, 0.03f, 0.1f, -0.5f};
   float action = 0;
   for (auto _ : state) {
-    policy.Act(input, /*deterministic=*/false, random, {&action, 1});
+    policy.Act(input, /*image=*/{}, /*deterministic=*/false, random, {&action, 1});
     benchmark::DoNotOptimize(action);
   }
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_ActorInferenceCartPole);
+
+run::PolicySpec CarRacingSpec() {
+  return {.image_height = 96,
+          .image_width = 96,
+          .image_channels = 3,
+          .context_size = 1,
+          .num_actions = 0,
+          .action_size = 3,
+          .action_low = {-1, 0, 0},
+          .action_high = {1, 1, 1}};
+}
+
+std::vector<uint8_t> RandomFrame() {
+  Random random(5);
+  std::vector<uint8_t> frame(96 * 96 * 3);
+  for (uint8_t& byte : frame) byte = static_cast<uint8_t>(random.Integers(0, 256));
+  return frame;
+}
+
+void BM_ActorInferenceCarRacing(benchmark::State& state) {
+  PinTorchThreads(1).IgnoreError();
+  std::unique_ptr<PpoLearner> learner =
+      *PpoLearner::Create(CarRacingSpec(), run::PpoConfig{}, 1, 0);
+  actor::PolicyNetwork policy = *actor::PolicyNetwork::Create(learner->ActorWeights());
+  Random random(3);
+  const std::vector<uint8_t> frame = RandomFrame();
+  std::vector<float> context = {0.25f};
+  std::vector<float> action(3);
+  for (auto _ : state) {
+    policy.Act(context, frame, /*deterministic=*/false, random, action);
+    benchmark::DoNotOptimize(action.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_ActorInferenceCarRacing)->Unit(benchmark::kMicrosecond);
+
+void BM_TorchForwardCarRacing(benchmark::State& state) {
+  PinTorchThreads(1).IgnoreError();
+  const run::PolicySpec spec = CarRacingSpec();
+  ActorCritic network(spec, run::PpoConfig{});
+  std::vector<uint8_t> frame = RandomFrame();
+  std::vector<float> context = {0.25f};
+  torch::NoGradGuard no_grad;
+  for (auto _ : state) {
+    // As PpoLearner turns frames into tensors: channel first, floats in [0, 1].
+    const ObservationBatch batch{
+        .flat = torch::from_blob(context.data(), {1, 1}),
+        .images = torch::from_blob(frame.data(), {1, 96, 96, 3}, torch::kUInt8)
+                      .permute({0, 3, 1, 2})
+                      .to(torch::kFloat32)
+                      .div(255.0)};
+    torch::Tensor head = network->ActionHead(batch);
+    benchmark::DoNotOptimize(head.data_ptr<float>());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_TorchForwardCarRacing)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace dcs::learner

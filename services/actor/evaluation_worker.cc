@@ -13,7 +13,9 @@
 #include "services/backoff.h"
 #include "services/channel.h"
 #include "services/log.h"
+#include "services/pieces.h"
 #include "services/run_proto.h"
+#include "services/stream_call.h"
 #include "services/trajectory_proto.h"
 #include "services/unary_call.h"
 
@@ -55,15 +57,15 @@ void EvaluationWorker::Work() {
   }
 }
 
-absl::Status EvaluationWorker::Prepare(const v1::AcquireEvaluationResponse& job) {
+absl::Status EvaluationWorker::Prepare(const v1::AcquireEvaluationResponse& job,
+                                       absl::string_view weights) {
   if (prepared_.run_id == job.job().run_id() &&
       prepared_.policy_version == job.job().policy_version()) {
     return absl::OkStatus();
   }
   prepared_ = {};
   DCS_ASSIGN_OR_RETURN(run::RunSpec spec, run::ParseRunSpecYaml(job.config(), job.job().run_id()));
-  DCS_ASSIGN_OR_RETURN(const actor::MlpWeights weights, WeightsFromProto(job.weights()));
-  DCS_ASSIGN_OR_RETURN(prepared_.policy, actor::MlpPolicy::Create(weights));
+  DCS_ASSIGN_OR_RETURN(prepared_.policy, PolicyFromBytes(weights));
   DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(prepared_.plan, run::PlanRun(spec, Env::Features()));
     return absl::OkStatus();
@@ -75,8 +77,8 @@ absl::Status EvaluationWorker::Prepare(const v1::AcquireEvaluationResponse& job)
 }
 
 absl::StatusOr<v1::ContextReturns> EvaluationWorker::Evaluate(
-    const v1::AcquireEvaluationResponse& job) {
-  DCS_RETURN_IF_ERROR(Prepare(job));
+    const v1::AcquireEvaluationResponse& job, absl::string_view weights) {
+  DCS_RETURN_IF_ERROR(Prepare(job, weights));
   const run::RunPlan& plan = prepared_.plan;
   const int context = job.job().context();
   if (context < 0 || static_cast<size_t>(context) >= plan.evaluation_contexts.size()) {
@@ -102,17 +104,20 @@ bool EvaluationWorker::RunOneJob() {
   v1::AcquireEvaluationRequest request;
   request.set_holder(options_.holder);
   request.set_numerics(options_.numerics);
-  v1::AcquireEvaluationResponse job;
-  const absl::Status acquired =
-      CallUnary(*coordinator_, &v1::CoordinatorService::Stub::AcquireEvaluation, request, job,
-                options_.rpc_timeout, "coordinator");
+  PieceJoiner<v1::AcquireEvaluationResponse> reply(
+      &v1::AcquireEvaluationResponse::mutable_weights, "the evaluation's policy");
+  const absl::Status acquired = CallServerStream(
+      *coordinator_, &v1::CoordinatorService::Stub::AcquireEvaluation, request,
+      options_.rpc_timeout, "coordinator",
+      [&](v1::AcquireEvaluationResponse& message) { return reply.Add(std::move(message)); });
+  const v1::AcquireEvaluationResponse& job = reply.header();
   if (!acquired.ok() || !job.has_job()) {
     if (!acquired.ok() && !IsTransient(acquired)) {
       Log(LogLevel::kWarning, "cannot take an evaluation job", {{"error", acquired.ToString()}});
     }
     return false;
   }
-  absl::StatusOr<v1::ContextReturns> result = Evaluate(job);
+  absl::StatusOr<v1::ContextReturns> result = Evaluate(job, reply.payload());
   if (!result.ok()) {
     Log(LogLevel::kError, "cannot run an evaluation job",
         {{"job", JobName(job.job())}, {"error", result.status().ToString()}});

@@ -24,7 +24,7 @@
 #include "absl/synchronization/mutex.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
-#include "actor/mlp_policy.h"
+#include "actor/policy_network.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "run/run_plan.h"
 #include "run/run_spec.h"
@@ -55,10 +55,12 @@ class EvaluationWorker {
   void Work();
   // Takes a job, runs it and delivers it; false if there was none.
   bool RunOneJob();
-  // The returns of the job `job` describes.
-  absl::StatusOr<v1::ContextReturns> Evaluate(const v1::AcquireEvaluationResponse& job);
+  // The returns of the job `job` describes, with the policy `weights` (a serialised
+  // PolicyWeights).
+  absl::StatusOr<v1::ContextReturns> Evaluate(const v1::AcquireEvaluationResponse& job,
+                                              absl::string_view weights);
   // The run and policy of `job`, made once for the consecutive jobs of an evaluation.
-  absl::Status Prepare(const v1::AcquireEvaluationResponse& job);
+  absl::Status Prepare(const v1::AcquireEvaluationResponse& job, absl::string_view weights);
 
   // What the jobs of one evaluation share; the worker thread's only.
   struct Prepared {
@@ -66,7 +68,7 @@ class EvaluationWorker {
     int64_t policy_version = -1;
     run::RunSpec spec;
     run::RunPlan plan;
-    std::optional<actor::MlpPolicy> policy;
+    std::optional<actor::PolicyNetwork> policy;
   };
   Prepared prepared_;
 

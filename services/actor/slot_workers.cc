@@ -13,7 +13,7 @@
 #include "absl/random/random.h"
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
-#include "actor/mlp_policy.h"
+#include "actor/policy_network.h"
 #include "actor/slot_stepper.h"
 #include "common/status_macros.h"
 #include "dcs/v1/learner_service.grpc.pb.h"
@@ -24,7 +24,9 @@
 #include "services/channel.h"
 #include "services/finished_threads.h"
 #include "services/log.h"
+#include "services/pieces.h"
 #include "services/run_proto.h"
+#include "services/stream_call.h"
 #include "services/time_proto.h"
 #include "services/trajectory_proto.h"
 #include "services/unary_call.h"
@@ -175,7 +177,7 @@ void SlotWorkers::Work(Slot& slot) {
   }
   auto learner = v1::LearnerService::NewStub(OpenChannel(slot.learner_address));
   const v1::Lease lease = LeaseToProto(slot.lease);
-  std::optional<actor::MlpPolicy> policy;
+  std::optional<actor::PolicyNetwork> policy;
   int64_t policy_version = -1;
   absl::Time renewed_at = absl::Now();
   absl::Time learner_answered_at = absl::Now();
@@ -223,10 +225,12 @@ void SlotWorkers::Work(Slot& slot) {
     ask.set_policy_version(policy_version);
     // Back in time to renew the lease: a wait as long as the lease would let it lapse.
     *ask.mutable_wait() = DurationToProto(std::min(options_.work_wait, lease_duration / 3));
-    v1::GetSlotWorkResponse work;
-    const absl::Status asked =
-        CallUnary(*learner, &v1::LearnerService::Stub::GetSlotWork, ask, work,
-                  options_.rpc_timeout + options_.work_wait, slot.learner_address);
+    PieceJoiner<v1::GetSlotWorkResponse> reply(&v1::GetSlotWorkResponse::mutable_weights,
+                                               "the policy");
+    const absl::Status asked = CallServerStream(
+        *learner, &v1::LearnerService::Stub::GetSlotWork, ask,
+        options_.rpc_timeout + options_.work_wait, slot.learner_address,
+        [&](v1::GetSlotWorkResponse& message) { return reply.Add(std::move(message)); });
     if (!asked.ok()) {
       if (IsTransient(asked)) {
         // Back off here rather than in CallWithRetries: the loop renews the lease meanwhile.
@@ -239,15 +243,14 @@ void SlotWorkers::Work(Slot& slot) {
     }
     learner_answered_at = absl::Now();
     failures = 0;
+    const v1::GetSlotWorkResponse& work = reply.header();
     if (work.run_complete()) {
       release();
       return;
     }
     if (!work.ready()) continue;
-    if (work.has_weights()) {
-      absl::StatusOr<actor::MlpWeights> weights = WeightsFromProto(work.weights());
-      absl::StatusOr<actor::MlpPolicy> made =
-          weights.ok() ? actor::MlpPolicy::Create(*weights) : weights.status();
+    if (!reply.payload().empty()) {
+      absl::StatusOr<actor::PolicyNetwork> made = PolicyFromBytes(reply.payload());
       if (!made.ok()) {
         Log(LogLevel::kError, "bad policy from the learner",
             {{"slot", name}, {"error", made.status().ToString()}});
@@ -273,20 +276,23 @@ void SlotWorkers::Work(Slot& slot) {
       continue;
     }
 
-    v1::PushRolloutRequest push;
+    std::string data;
     {
       absl::MutexLock on_core(&core_);
       update_latency_.Observe(
           absl::ToDoubleSeconds(absl::Now() - TimeFromProto(work.publish_time())));
-      *push.mutable_data() = SlotRolloutToProto((*stepper)->Collect(*policy, work.n_steps()));
+      data = SlotRolloutToProto((*stepper)->Collect(*policy, work.n_steps())).SerializeAsString();
     }
     steps_.Increment(work.n_steps());
-    *push.mutable_lease() = lease;
-    push.set_learner_epoch(slot.learner_epoch);
-    push.set_rollout(work.rollout());
-    push.set_policy_version(policy_version);
+    v1::PushRolloutRequest header;
+    *header.mutable_lease() = lease;
+    header.set_learner_epoch(slot.learner_epoch);
+    header.set_rollout(work.rollout());
+    header.set_policy_version(policy_version);
+    const std::vector<v1::PushRolloutRequest> push =
+        CutIntoMessages(std::move(header), data, &v1::PushRolloutRequest::mutable_data);
     v1::PushRolloutResponse pushed;
-    const absl::Status status = CallWithRetries(
+    const absl::Status status = CallClientStreamWithRetries(
         *learner, &v1::LearnerService::Stub::PushRollout, push, pushed, options_.rpc_timeout,
         slot.learner_address, kRetryBackoff, [&](const absl::Status& failed) {
           log_failure(failed);

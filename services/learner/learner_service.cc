@@ -5,9 +5,12 @@
 
 #include <algorithm>
 #include <memory>
+#include <string>
+#include <utility>
 
 #include "common/status_macros.h"
 #include "services/grpc_status.h"
+#include "services/pieces.h"
 #include "services/time_proto.h"
 #include "services/trajectory_proto.h"
 
@@ -34,7 +37,9 @@ LearnerService::LearnerService(HostedRuns& runs, prometheus::Registry& metrics)
 
 grpc::Status LearnerService::GetSlotWork(grpc::ServerContext* /*context*/,
                                          const v1::GetSlotWorkRequest* request,
-                                         v1::GetSlotWorkResponse* response) {
+                                         grpc::ServerWriter<v1::GetSlotWorkResponse>* writer) {
+  v1::GetSlotWorkResponse header;
+  std::string weights;  // serialised, if the actor lacks them
   auto get = [&]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const std::shared_ptr<learner::RunHost> host,
                          runs_.Find(request->lease().run_id(), request->learner_epoch()));
@@ -43,30 +48,48 @@ grpc::Status LearnerService::GetSlotWork(grpc::ServerContext* /*context*/,
     DCS_ASSIGN_OR_RETURN(const learner::SlotWork work,
                          host->GetSlotWork(request->lease().slot(), request->lease().epoch(),
                                            request->positioned_at(), wait));
-    response->set_ready(work.ready);
-    response->set_run_complete(work.run_complete);
+    header.set_ready(work.ready);
+    header.set_run_complete(work.run_complete);
     if (!work.ready) return absl::OkStatus();
-    response->set_rollout(work.rollout);
-    response->set_start_timesteps(work.start_timesteps);
-    response->set_n_steps(work.n_steps);
-    *response->mutable_publish_time() = TimeToProto(work.published_at);
+    header.set_rollout(work.rollout);
+    header.set_start_timesteps(work.start_timesteps);
+    header.set_n_steps(work.n_steps);
+    *header.mutable_publish_time() = TimeToProto(work.published_at);
     if (request->policy_version() != work.rollout) {
-      *response->mutable_weights() = WeightsToProto(*work.weights);
+      weights = WeightsToProto(*work.weights).SerializeAsString();
     }
-    if (work.journal.has_value()) *response->mutable_journal() = JournalToProto(*work.journal);
+    if (work.journal.has_value()) *header.mutable_journal() = JournalToProto(*work.journal);
     return absl::OkStatus();
   };
-  return ToGrpcStatus(get());
+  if (const absl::Status status = get(); !status.ok()) return ToGrpcStatus(status);
+  for (const v1::GetSlotWorkResponse& message :
+       CutIntoMessages(std::move(header), weights, &v1::GetSlotWorkResponse::mutable_weights)) {
+    if (!writer->Write(message)) break;  // the actor went away; it will ask again
+  }
+  return grpc::Status::OK;
 }
 
 grpc::Status LearnerService::PushRollout(grpc::ServerContext* /*context*/,
-                                         const v1::PushRolloutRequest* request,
+                                         grpc::ServerReader<v1::PushRolloutRequest>* reader,
                                          v1::PushRolloutResponse* response) {
   auto push = [&]() -> absl::Status {
-    rollout_bytes_.Observe(static_cast<double>(request->data().ByteSizeLong()));
+    PieceJoiner<v1::PushRolloutRequest> joiner(&v1::PushRolloutRequest::mutable_data,
+                                               "the slot's rollout");
+    for (v1::PushRolloutRequest piece; reader->Read(&piece);) {
+      DCS_RETURN_IF_ERROR(joiner.Add(std::move(piece)));
+    }
+    if (!joiner.started()) {
+      // Also what a stream looks like here when gRPC ended it for a message over its limit
+      // (the actor is told RESOURCE_EXHAUSTED).
+      return absl::InvalidArgumentError("no piece of a rollout came: the stream was empty");
+    }
+    const v1::PushRolloutRequest* request = &joiner.header();
+    rollout_bytes_.Observe(static_cast<double>(joiner.payload().size()));
+    v1::SlotRollout proto;
+    DCS_RETURN_IF_ERROR(joiner.Parse(proto));
     DCS_ASSIGN_OR_RETURN(const std::shared_ptr<learner::RunHost> host,
                          runs_.Find(request->lease().run_id(), request->learner_epoch()));
-    DCS_ASSIGN_OR_RETURN(actor::SlotRollout data, SlotRolloutFromProto(request->data()));
+    DCS_ASSIGN_OR_RETURN(actor::SlotRollout data, SlotRolloutFromProto(proto));
     if (data.slot != request->lease().slot()) {
       return absl::InvalidArgumentError(absl::StrCat("the rollout of slot ", data.slot,
                                                      " came under the lease of slot ",

@@ -4,8 +4,9 @@
 
 // dcs.v1.LearnerService over the runs a learner hosts (services/learner/hosted_runs.h and
 // learner/run_host.h): decodes and checks what actors send, waits for work on their behalf,
-// encodes the policy. The synchronous API: GetSlotWork blocks its handler thread while it
-// waits (at most kMaxWait). Thread-safe. Borrows `runs`, which must outlive the service.
+// encodes the policy. Weights and rollouts travel in pieces (services/pieces.h). The
+// synchronous API: GetSlotWork blocks its handler thread while it waits (at most kMaxWait).
+// Thread-safe. Borrows `runs`, which must outlive the service.
 //
 // Metrics: dcs_rollout_bytes (histogram of a slot's rollout on the wire),
 // dcs_rollouts_received_total, dcs_rollouts_rejected_total{reason}. Training is strictly
@@ -29,8 +30,9 @@ class LearnerService final : public v1::LearnerService::Service {
   LearnerService(HostedRuns& runs, prometheus::Registry& metrics);
 
   grpc::Status GetSlotWork(grpc::ServerContext* context, const v1::GetSlotWorkRequest* request,
-                           v1::GetSlotWorkResponse* response) override;
-  grpc::Status PushRollout(grpc::ServerContext* context, const v1::PushRolloutRequest* request,
+                           grpc::ServerWriter<v1::GetSlotWorkResponse>* writer) override;
+  grpc::Status PushRollout(grpc::ServerContext* context,
+                           grpc::ServerReader<v1::PushRolloutRequest>* reader,
                            v1::PushRolloutResponse* response) override;
 
  private:

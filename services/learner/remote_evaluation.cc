@@ -2,12 +2,15 @@
 #include "services/learner/remote_evaluation.h"
 
 #include <utility>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "actor/evaluation.h"
 #include "common/status_macros.h"
 #include "services/backoff.h"
+#include "services/pieces.h"
 #include "services/run_proto.h"
+#include "services/stream_call.h"
 #include "services/trajectory_proto.h"
 #include "services/unary_call.h"
 
@@ -54,15 +57,17 @@ learner::Evaluator EvaluateOnActors(std::shared_ptr<v1::CoordinatorService::Stub
                                                task.due.policy_version, " of ", lease.run_id,
                                                " was stopped"));
     };
-    v1::SubmitEvaluationRequest submit;
-    *submit.mutable_lease() = LeaseToProto(lease);
-    submit.set_policy_version(task.due.policy_version);
-    submit.set_step(task.due.steps.front());
-    submit.set_contexts(static_cast<int>(task.plan.evaluation_contexts.size()));
-    submit.set_episodes(task.spec.eval_episodes);
-    *submit.mutable_weights() = WeightsToProto(*task.weights);
+    v1::SubmitEvaluationRequest header;
+    *header.mutable_lease() = LeaseToProto(lease);
+    header.set_policy_version(task.due.policy_version);
+    header.set_step(task.due.steps.front());
+    header.set_contexts(static_cast<int>(task.plan.evaluation_contexts.size()));
+    header.set_episodes(task.spec.eval_episodes);
+    const std::vector<v1::SubmitEvaluationRequest> submit =
+        CutIntoMessages(std::move(header), WeightsToProto(*task.weights).SerializeAsString(),
+                        &v1::SubmitEvaluationRequest::mutable_weights);
     v1::SubmitEvaluationResponse submitted;
-    const absl::Status status = CallWithRetries(
+    const absl::Status status = CallClientStreamWithRetries(
         *coordinator, &v1::CoordinatorService::Stub::SubmitEvaluation, submit, submitted,
         options.rpc_timeout, "coordinator", kRetryBackoff,
         [&](const absl::Status&) { return !stop.HasBeenNotified(); });

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "actor/mlp_policy.h"
+#include "actor/policy_network.h"
 #include "actor/rollout.h"
 #include "actor/slot_rollout.h"
 #include "common/random.h"
@@ -65,7 +65,7 @@ run::RunPlan Plan() {
 // A CartPole policy that samples: its first hidden unit balances the pole (push towards the
 // lean), the rest are fixed random weights, and the logits are soft enough that it sometimes
 // pushes the wrong way, so some episodes fall early and some reach the time limit.
-MlpPolicy SamplingPolicy(int input_size) {
+PolicyNetwork SamplingPolicy(int input_size) {
   Random random(7);
   auto draw = [&random](int n) {
     std::vector<float> values(n);
@@ -78,11 +78,15 @@ MlpPolicy SamplingPolicy(int input_size) {
   hidden.weight[2] = 20;  // theta
   hidden.weight[3] = 5;   // theta_dot
   hidden.bias[0] = 0;
-  DenseLayer head{.inputs = 4, .outputs = 2, .weight = draw(8), .bias = {0, 0}, .tanh = false};
+  DenseLayer head{.inputs = 4,
+                  .outputs = 2,
+                  .weight = draw(8),
+                  .bias = {0, 0},
+                  .activation = Activation::kNone};
   head.weight[0] = -0.75f;  // push left's logit falls with the lean to the right
   head.weight[4] = 0.75f;
-  absl::StatusOr<MlpPolicy> policy =
-      MlpPolicy::Create({.layers = {hidden, head}, .num_actions = 2});
+  absl::StatusOr<PolicyNetwork> policy =
+      PolicyNetwork::Create({.layers = {hidden, head}, .num_actions = 2});
   EXPECT_TRUE(policy.ok()) << policy.status();
   return policy.value();
 }
@@ -214,7 +218,7 @@ struct Coverage {
 TEST(RolloutCollectorTest, SlotsCollectedApartMergeIntoTheWholeRunsRollouts) {
   const run::RunPlan plan = Plan();
   ASSERT_EQ(plan.stage_boundaries.size(), 1u);
-  MlpPolicy policy = SamplingPolicy(env::CartPole::kObservationSize + 1);
+  PolicyNetwork policy = SamplingPolicy(env::CartPole::kObservationSize + 1);
   WholeRun whole(plan);
   std::vector<std::unique_ptr<LoneSlot>> apart;
   for (int i = 0; i < kSlots; ++i) apart.push_back(std::make_unique<LoneSlot>(plan, i));
@@ -233,7 +237,7 @@ TEST(RolloutCollectorTest, SlotsCollectedApartMergeIntoTheWholeRunsRollouts) {
 
 TEST(RolloutCollectorTest, ASlotRebuiltFromItsJournalContinuesExactly) {
   const run::RunPlan plan = Plan();
-  MlpPolicy policy = SamplingPolicy(env::CartPole::kObservationSize + 1);
+  PolicyNetwork policy = SamplingPolicy(env::CartPole::kObservationSize + 1);
   WholeRun whole(plan);
   constexpr int kRebuildAfter = 5;  // at step 960, so the rebuilt slots cross the boundary
   std::vector<SlotJournal> journals;

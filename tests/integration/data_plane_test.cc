@@ -22,7 +22,7 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
-#include "actor/mlp_policy.h"
+#include "actor/policy_network.h"
 #include "actor/slot_stepper.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
@@ -30,6 +30,7 @@
 #include "dcs/v1/learner_service.grpc.pb.h"
 #include "dcs/proto_json.h"
 #include "env/cartpole.h"
+#include "env/env_registry.h"
 #include "gmock/gmock.h"
 #include "google/protobuf/util/field_comparator.h"
 #include "google/protobuf/util/message_differencer.h"
@@ -43,6 +44,7 @@
 #include "services/cli/cluster_client.h"
 #include "services/cli/run_client.h"
 #include "services/channel.h"
+#include "services/pieces.h"
 #include "services/port_file.h"
 #include "services/run_proto.h"
 #include "services/stream_call.h"
@@ -78,6 +80,20 @@ evaluation: {freq: 1536, episodes: 3, contexts: {id: [0.5], ood_high: [1.0]}}
 ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
 )";
 
+// An image policy (NatureCNN on CarRacing's frames), two slots: its policy (4.5 MB) and each
+// slot's rollout (48 frames of 27 kB) are larger than one message and travel in pieces.
+constexpr char kImageConfig[] = R"(env: car_racing
+seed: 3
+total_timesteps: 192
+n_envs: 2
+feature: COM_Y
+training_range: [-0.8, 0.8]
+pool: {size: 3}
+observe: live
+evaluation: {freq: 96, episodes: 1, contexts: {id: [0.0]}}
+ppo: {n_steps: 48, batch_size: 48, n_epochs: 2}
+)";
+
 constexpr absl::Duration kLease = absl::Seconds(1);
 constexpr absl::Duration kTimeout = absl::Seconds(5);
 
@@ -87,22 +103,25 @@ struct RunOutcome {
   std::vector<float> parameters;
 };
 
-// The outcome stored in `dir`, as `dcs train` lays a run out. Weights are compared as loaded
-// back, not as bytes: libtorch's serialisation is not byte-stable.
-std::optional<RunOutcome> ReadOutcome(const std::string& dir) {
+// The outcome of run `config` stored in `dir`, as `dcs train` lays a run out. Weights are
+// compared as loaded back, not as bytes: libtorch's serialisation is not byte-stable.
+std::optional<RunOutcome> ReadOutcome(const std::string& dir, const char* config = kConfig) {
   absl::StatusOr<v1::EvaluationLog> log = run::ReadEvaluationLog(dir);
   EXPECT_TRUE(log.ok()) << log.status();
   absl::StatusOr<run::Checkpoint> checkpoint = run::ReadLatestCheckpoint(dir);
   EXPECT_TRUE(checkpoint.ok()) << checkpoint.status();
-  absl::StatusOr<run::RunSpec> spec = run::ParseRunSpecYaml(kConfig, "config");
+  absl::StatusOr<run::RunSpec> spec = run::ParseRunSpecYaml(config, "config");
   EXPECT_TRUE(spec.ok()) << spec.status();
   if (!log.ok() || !checkpoint.ok() || !spec.ok()) return std::nullopt;
-  absl::StatusOr<std::unique_ptr<learner::TrainingSession>> session =
-      learner::TrainingSession::Create<env::CartPole>(*spec, &*checkpoint);
-  EXPECT_TRUE(session.ok()) << session.status();
-  if (!session.ok()) return std::nullopt;
-  EXPECT_TRUE((*session)->complete()) << dir << " holds an unfinished run";
-  return RunOutcome{.log = *std::move(log), .parameters = (*session)->Parameters()};
+  std::unique_ptr<learner::TrainingSession> session;
+  const absl::Status made = env::VisitEnvironment(spec->env, [&]<typename Env>() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(session, learner::TrainingSession::Create<Env>(*spec, &*checkpoint));
+    return absl::OkStatus();
+  });
+  EXPECT_TRUE(made.ok()) << made;
+  if (!made.ok()) return std::nullopt;
+  EXPECT_TRUE(session->complete()) << dir << " holds an unfinished run";
+  return RunOutcome{.log = *std::move(log), .parameters = session->Parameters()};
 }
 
 void ExpectSameOutcome(const RunOutcome& actual, const RunOutcome& expected) {
@@ -117,19 +136,20 @@ void ExpectSameOutcome(const RunOutcome& actual, const RunOutcome& expected) {
   EXPECT_TRUE(differencer.Compare(actual.log, expected.log)) << differences;
 }
 
-// The run as `dcs train` trains it in one process: the reference, made once.
+// Run `config` as `dcs train` trains it in one process.
+RunOutcome TrainInOneProcess(const char* config) {
+  const std::string dir = testing::MakeTempDir();
+  const std::string file = dir + "/run.yaml";
+  EXPECT_TRUE(WriteFileAtomically(file, config).ok());
+  const RunResult trained = RunProgram(
+      BinaryPath("dcs"), {"train", "--config", file, "--out", dir + "/run"}, absl::Minutes(5));
+  EXPECT_EQ(trained.exit_code, 0) << trained.output;
+  return ReadOutcome(dir + "/run", config).value_or(RunOutcome{});
+}
+
+// kConfig's run in one process: the reference, made once.
 const RunOutcome& InOneProcess() {
-  static const RunOutcome* outcome = [] {
-    const std::string dir = testing::MakeTempDir();
-    const std::string config = dir + "/run.yaml";
-    EXPECT_TRUE(WriteFileAtomically(config, kConfig).ok());
-    const RunResult trained = RunProgram(BinaryPath("dcs"),
-                                         {"train", "--config", config, "--out", dir + "/run"},
-                                         absl::Minutes(5));
-    EXPECT_EQ(trained.exit_code, 0) << trained.output;
-    std::optional<RunOutcome> read = ReadOutcome(dir + "/run");
-    return new RunOutcome(read.value_or(RunOutcome{}));
-  }();
+  static const RunOutcome* outcome = new RunOutcome(TrainInOneProcess(kConfig));
   return *outcome;
 }
 
@@ -176,9 +196,9 @@ class Cluster {
     return ReadFile(absl::StrCat(dir_, "/", name, ".log")).value_or("");
   }
 
-  // Submits the run; returns its id.
-  std::string Submit() {
-    absl::StatusOr<v1::Run> run = services::cli::SubmitRun(coordinator_address(), kConfig,
+  // Submits the run of `config`; returns its id.
+  std::string Submit(const char* config = kConfig) {
+    absl::StatusOr<v1::Run> run = services::cli::SubmitRun(coordinator_address(), config,
                                                            "run.yaml", std::nullopt, kTimeout);
     EXPECT_TRUE(run.ok()) << run.status();
     return run.ok() ? run->run_id() : "";
@@ -195,8 +215,8 @@ class Cluster {
     FAIL() << run_id << " did not reach step " << timesteps << "; logs in " << dir_;
   }
 
-  // Waits for the run to end, downloads it, and reads what it left.
-  std::optional<RunOutcome> Finish(const std::string& run_id) {
+  // Waits for the run of `config` to end, downloads it, and reads what it left.
+  std::optional<RunOutcome> Finish(const std::string& run_id, const char* config = kConfig) {
     const absl::Time deadline = absl::Now() + absl::Minutes(4);
     absl::StatusOr<v1::Run> run = services::cli::WatchRun(
         coordinator_address(), run_id, kTimeout, [](const v1::Run&) {},
@@ -208,7 +228,7 @@ class Cluster {
     absl::Status downloaded =
         services::cli::DownloadRun(coordinator_address(), run_id, out, kTimeout);
     EXPECT_TRUE(downloaded.ok()) << downloaded;
-    return ReadOutcome(out);
+    return ReadOutcome(out, config);
   }
 
  private:
@@ -285,6 +305,17 @@ TEST_F(DataPlaneTest, ThreeActorsGiveTheRunOfOneProcess) {
   std::optional<RunOutcome> outcome = cluster.Finish(cluster.Submit());
   ASSERT_TRUE(outcome.has_value());
   ExpectSameOutcome(*outcome, InOneProcess());
+}
+
+TEST_F(DataPlaneTest, AnImagePolicyOnTwoActorsGivesTheRunOfOneProcess) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  cluster.StartLearner("learner");
+  for (const char* actor : {"actor-1", "actor-2"}) cluster.StartActor(actor, 1);
+  std::optional<RunOutcome> outcome =
+      cluster.Finish(cluster.Submit(kImageConfig), kImageConfig);
+  ASSERT_TRUE(outcome.has_value());
+  ExpectSameOutcome(*outcome, TrainInOneProcess(kImageConfig));
 }
 
 TEST_F(DataPlaneTest, AKilledActorsSlotsAreRebuiltByAnother) {
@@ -367,28 +398,45 @@ class FakeActor {
     return {};
   }
 
-  absl::StatusOr<v1::GetSlotWorkResponse> GetWork(const v1::AcquireSlotResponse& slot) {
+  // The work of the slot and its policy, joined from their pieces.
+  struct Work {
+    v1::GetSlotWorkResponse work;
+    std::string weights;  // a serialised PolicyWeights
+  };
+
+  absl::StatusOr<Work> GetWork(const v1::AcquireSlotResponse& slot) {
     v1::GetSlotWorkRequest request;
     *request.mutable_lease() = slot.lease();
     request.set_learner_epoch(slot.learner_epoch());
     request.set_positioned_at(-1);
     request.set_policy_version(-1);
-    v1::GetSlotWorkResponse response;
     const absl::Time deadline = absl::Now() + absl::Seconds(30);
-    absl::Status status;
-    do {  // UNAVAILABLE while the learner loads the run
-      status = services::CallUnary(*learner_, &v1::LearnerService::Stub::GetSlotWork, request,
-                                   response, kTimeout, "learner");
-    } while (absl::IsUnavailable(status) && absl::Now() < deadline);
-    if (!status.ok()) return status;
+    while (true) {  // UNAVAILABLE while the learner loads the run
+      services::PieceJoiner<v1::GetSlotWorkResponse> reply(
+          &v1::GetSlotWorkResponse::mutable_weights, "the policy");
+      const absl::Status status = services::CallServerStream(
+          *learner_, &v1::LearnerService::Stub::GetSlotWork, request, kTimeout, "learner",
+          [&](v1::GetSlotWorkResponse& message) { return reply.Add(std::move(message)); });
+      if (status.ok()) return Work{reply.header(), reply.payload()};
+      if (!absl::IsUnavailable(status) || absl::Now() > deadline) return status;
+    }
+  }
+
+  // Pushes the stream of `messages`.
+  absl::StatusOr<v1::PushRolloutResponse> Push(
+      const std::vector<v1::PushRolloutRequest>& messages) {
+    v1::PushRolloutResponse response;
+    DCS_RETURN_IF_ERROR(services::CallClientStream(*learner_,
+                                                   &v1::LearnerService::Stub::PushRollout,
+                                                   messages, response, kTimeout, "learner"));
     return response;
   }
 
-  absl::StatusOr<v1::PushRolloutResponse> Push(const v1::PushRolloutRequest& request) {
-    v1::PushRolloutResponse response;
-    DCS_RETURN_IF_ERROR(services::CallUnary(*learner_, &v1::LearnerService::Stub::PushRollout,
-                                            request, response, kTimeout, "learner"));
-    return response;
+  // Pushes `data` under `header`, in pieces as actors do.
+  absl::StatusOr<v1::PushRolloutResponse> Push(const v1::PushRolloutRequest& header,
+                                               const v1::SlotRollout& data) {
+    return Push(services::CutIntoMessages(header, data.SerializeAsString(),
+                                          &v1::PushRolloutRequest::mutable_data));
   }
 
   // What the actor DCS ships computes with (services/actor/actor_main.cc): the run pins it.
@@ -400,19 +448,17 @@ class FakeActor {
 };
 
 // Slot 0's part of rollout 0, as an actor collects it with the policy of `work`.
-v1::SlotRollout CollectSlot0(const v1::GetSlotWorkResponse& work) {
+v1::SlotRollout CollectSlot0(const FakeActor::Work& work) {
   absl::StatusOr<run::RunSpec> spec = run::ParseRunSpecYaml(kConfig, "config");
   absl::StatusOr<run::RunPlan> plan = run::PlanRun(*spec, env::CartPole::Features());
   EXPECT_TRUE(plan.ok()) << plan.status();
   absl::StatusOr<std::unique_ptr<actor::SlotStepper>> stepper =
       actor::MakeSlotStepper<env::CartPole>(plan->slot, spec->n_envs);
-  absl::StatusOr<actor::SlotJournal> journal = services::JournalFromProto(work.journal());
-  absl::StatusOr<actor::MlpWeights> weights = services::WeightsFromProto(work.weights());
-  EXPECT_TRUE(stepper.ok() && journal.ok() && weights.ok());
-  (*stepper)->Rebuild(*journal, work.rollout(), work.start_timesteps());
-  absl::StatusOr<actor::MlpPolicy> policy = actor::MlpPolicy::Create(*weights);
-  EXPECT_TRUE(policy.ok()) << policy.status();
-  return services::SlotRolloutToProto((*stepper)->Collect(*policy, work.n_steps()));
+  absl::StatusOr<actor::SlotJournal> journal = services::JournalFromProto(work.work.journal());
+  absl::StatusOr<actor::PolicyNetwork> policy = services::PolicyFromBytes(work.weights);
+  EXPECT_TRUE(stepper.ok() && journal.ok() && policy.ok());
+  (*stepper)->Rebuild(*journal, work.work.rollout(), work.work.start_timesteps());
+  return services::SlotRolloutToProto((*stepper)->Collect(*policy, work.work.n_steps()));
 }
 
 // The value of the series `name{labels}` in a Prometheus exposition, or -1.
@@ -434,70 +480,83 @@ TEST(DataPlaneBadInputTest, RefusesEachBadRolloutNamingItAndTakesTheGoodOne) {
   FakeActor actor(cluster.coordinator_address(), cluster.address("learner"));
   const v1::AcquireSlotResponse slot = actor.AcquireSlot("fake-actor");
   ASSERT_EQ(slot.lease().run_id(), run_id);
-  absl::StatusOr<v1::GetSlotWorkResponse> work = actor.GetWork(slot);
+  absl::StatusOr<FakeActor::Work> work = actor.GetWork(slot);
   ASSERT_TRUE(work.ok()) << work.status();
-  ASSERT_TRUE(work->ready());
-  v1::PushRolloutRequest good;
-  *good.mutable_lease() = slot.lease();
-  good.set_learner_epoch(slot.learner_epoch());
-  good.set_rollout(0);
-  good.set_policy_version(0);
-  *good.mutable_data() = CollectSlot0(*work);
+  ASSERT_TRUE(work->work.ready());
+  v1::PushRolloutRequest header;
+  *header.mutable_lease() = slot.lease();
+  header.set_learner_epoch(slot.learner_epoch());
+  header.set_rollout(0);
+  header.set_policy_version(0);
+  const v1::SlotRollout data = CollectSlot0(*work);
 
   struct Case {
     const char* what;
-    std::function<void(v1::PushRolloutRequest&)> spoil;
+    std::function<void(v1::PushRolloutRequest&, v1::SlotRollout&)> spoil;
     absl::StatusCode code;
     const char* message;
   };
   const Case cases[] = {
-      {"unknown run", [](auto& r) { r.mutable_lease()->set_run_id("run-99"); },
+      {"unknown run", [](auto& r, auto&) { r.mutable_lease()->set_run_id("run-99"); },
        absl::StatusCode::kNotFound, "this learner does not host run-99"},
-      {"stale learner epoch", [](auto& r) { r.set_learner_epoch(r.learner_epoch() + 7); },
+      {"stale learner epoch",
+       [](auto& r, auto&) { r.set_learner_epoch(r.learner_epoch() + 7); },
        absl::StatusCode::kFailedPrecondition, "another learner lease epoch"},
-      {"stale policy version", [](auto& r) { r.set_policy_version(3); },
+      {"stale policy version", [](auto& r, auto&) { r.set_policy_version(3); },
        absl::StatusCode::kFailedPrecondition, "collected with policy version 0, not 3"},
-      {"a rollout not being collected", [](auto& r) { r.set_rollout(4); r.set_policy_version(4); },
+      {"a rollout not being collected",
+       [](auto& r, auto&) {
+         r.set_rollout(4);
+         r.set_policy_version(4);
+       },
        absl::StatusCode::kFailedPrecondition, "rollout 4 is not being collected"},
       {"wrong observation size",
-       [](auto& r) {
-         v1::Tensor& inputs = *r.mutable_data()->mutable_inputs();
+       [](auto&, auto& d) {
+         v1::Tensor& inputs = *d.mutable_inputs();
          inputs.set_shape(1, inputs.shape(1) - 1);
          inputs.mutable_data()->resize(inputs.shape(0) * inputs.shape(1) * sizeof(float));
        },
        absl::StatusCode::kInvalidArgument, "inputs has"},
       {"tensor shape not its length",
-       [](auto& r) { r.mutable_data()->mutable_rewards()->mutable_data()->resize(12); },
+       [](auto&, auto& d) { d.mutable_rewards()->mutable_data()->resize(12); },
        absl::StatusCode::kInvalidArgument, "rewards: shape [256] of D_TYPE_FLOAT32 needs 1024"},
       {"NaN",
-       [](auto& r) {
+       [](auto&, auto& d) {
          const float nan = std::numeric_limits<float>::quiet_NaN();
-         std::memcpy(r.mutable_data()->mutable_rewards()->mutable_data()->data() + 8, &nan, 4);
+         std::memcpy(d.mutable_rewards()->mutable_data()->data() + 8, &nan, 4);
        },
        absl::StatusCode::kInvalidArgument, "rewards at step 2 is nan"},
       {"infinity",
-       [](auto& r) {
+       [](auto&, auto& d) {
          const float inf = std::numeric_limits<float>::infinity();
-         std::memcpy(r.mutable_data()->mutable_inputs()->mutable_data()->data(), &inf, 4);
+         std::memcpy(d.mutable_inputs()->mutable_data()->data(), &inf, 4);
        },
        absl::StatusCode::kInvalidArgument, "inputs at step 0 is inf"},
-      {"oversized message",
-       [](auto& r) { r.mutable_data()->mutable_images()->mutable_data()->resize(5 << 20); },
-       absl::StatusCode::kResourceExhausted, ""},
   };
   for (const Case& bad : cases) {
-    v1::PushRolloutRequest request = good;
-    bad.spoil(request);
-    const absl::Status status = actor.Push(request).status();
+    v1::PushRolloutRequest spoilt_header = header;
+    v1::SlotRollout spoilt_data = data;
+    bad.spoil(spoilt_header, spoilt_data);
+    const absl::Status status = actor.Push(spoilt_header, spoilt_data).status();
     EXPECT_EQ(status.code(), bad.code) << bad.what << ": " << status;
     EXPECT_THAT(status.message(), HasSubstr(bad.message)) << bad.what;
   }
+  // What breaks the stream itself: a piece over gRPC's message limit (refused by gRPC, before
+  // the learner sees it), pieces that do not parse, no message at all.
+  v1::PushRolloutRequest oversized = header;
+  oversized.mutable_data()->resize(5 << 20);
+  EXPECT_EQ(actor.Push({oversized}).status().code(), absl::StatusCode::kResourceExhausted);
+  v1::PushRolloutRequest garbage = header;
+  garbage.set_data("not a rollout");
+  EXPECT_THAT(actor.Push({garbage}).status().message(),
+              HasSubstr("the slot's rollout (13 bytes in pieces) does not parse"));
+  EXPECT_THAT(actor.Push({}).status().message(), HasSubstr("the stream was empty"));
 
   // The run and the process are unharmed: the good rollout is taken, once.
-  absl::StatusOr<v1::PushRolloutResponse> taken = actor.Push(good);
+  absl::StatusOr<v1::PushRolloutResponse> taken = actor.Push(header, data);
   ASSERT_TRUE(taken.ok()) << taken.status();
   EXPECT_FALSE(taken->duplicate());
-  taken = actor.Push(good);
+  taken = actor.Push(header, data);
   ASSERT_TRUE(taken.ok()) << taken.status();
   EXPECT_TRUE(taken->duplicate());
 
@@ -508,7 +567,7 @@ TEST(DataPlaneBadInputTest, RefusesEachBadRolloutNamingItAndTakesTheGoodOne) {
   EXPECT_EQ(again.lease().slot(), 0);
   EXPECT_GT(again.lease().epoch(), slot.lease().epoch());
   ASSERT_TRUE(other.GetWork(again).ok());
-  const absl::Status moved = actor.Push(good).status();
+  const absl::Status moved = actor.Push(header, data).status();
   EXPECT_EQ(moved.code(), absl::StatusCode::kFailedPrecondition) << moved;
   EXPECT_THAT(moved.message(), HasSubstr("slot 0's lease moved to epoch"));
 
@@ -518,7 +577,9 @@ TEST(DataPlaneBadInputTest, RefusesEachBadRolloutNamingItAndTakesTheGoodOne) {
   ASSERT_TRUE(metrics.ok()) << metrics.status();
   EXPECT_EQ(MetricValue(*metrics, "dcs_env_steps_total{run_id=\"run-1\"}"), 0);
   EXPECT_EQ(MetricValue(*metrics, "dcs_episodes_total{run_id=\"run-1\"}"), 0);
-  EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"INVALID_ARGUMENT\"}"), 4);
+  // The shapes and values, the pieces that do not parse, the empty stream and the one gRPC cut
+  // short (it looks empty to the learner).
+  EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"INVALID_ARGUMENT\"}"), 7);
   EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"FAILED_PRECONDITION\"}"),
             4);
   EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"NOT_FOUND\"}"), 1);
@@ -536,6 +597,26 @@ Response CallCoordinator(v1::CoordinatorService::Stub& coordinator,
       services::CallUnary(coordinator, method, request, response, kTimeout, "coordinator");
   EXPECT_TRUE(status.ok()) << status;
   return response;
+}
+
+// An evaluation job, as an actor takes it: the job and its policy joined from their pieces.
+struct Job {
+  v1::AcquireEvaluationResponse job;
+  v1::PolicyWeights weights;
+};
+
+Job AcquireJob(v1::CoordinatorService::Stub& coordinator,
+               const v1::AcquireEvaluationRequest& request) {
+  services::PieceJoiner<v1::AcquireEvaluationResponse> reply(
+      &v1::AcquireEvaluationResponse::mutable_weights, "the evaluation's policy");
+  const absl::Status status = services::CallServerStream(
+      coordinator, &v1::CoordinatorService::Stub::AcquireEvaluation, request, kTimeout,
+      "coordinator",
+      [&](v1::AcquireEvaluationResponse& message) { return reply.Add(std::move(message)); });
+  EXPECT_TRUE(status.ok()) << status;
+  Job job{.job = reply.header()};
+  EXPECT_TRUE(reply.Parse(job.weights).ok());
+  return job;
 }
 
 // A learner's part, played by the test: the lease of the queued run.
@@ -560,16 +641,29 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
   *submit.mutable_lease() = run.lease();
   submit.set_contexts(2);
   submit.set_episodes(3);
-  submit.mutable_weights()->set_num_actions(2);
-  CallCoordinator(*coordinator, &Stub::SubmitEvaluation, submit);
+  v1::PolicyWeights weights;
+  weights.set_num_actions(2);
+  v1::SubmitEvaluationResponse submitted;
+  const absl::Status not_weights = services::CallClientStream(
+      *coordinator, &Stub::SubmitEvaluation,
+      services::CutIntoMessages(submit, "not weights",
+                                &v1::SubmitEvaluationRequest::mutable_weights),
+      submitted, kTimeout, "coordinator");
+  EXPECT_THAT(not_weights.message(), HasSubstr("the evaluation's policy (11 bytes in pieces)"));
+  const absl::Status submitted_status = services::CallClientStream(
+      *coordinator, &Stub::SubmitEvaluation,
+      services::CutIntoMessages(submit, weights.SerializeAsString(),
+                                &v1::SubmitEvaluationRequest::mutable_weights),
+      submitted, kTimeout, "coordinator");
+  ASSERT_TRUE(submitted_status.ok()) << submitted_status;
 
   v1::AcquireEvaluationRequest acquire_job;
   acquire_job.set_holder("fake-actor");
-  const v1::AcquireEvaluationResponse job =
-      CallCoordinator(*coordinator, &Stub::AcquireEvaluation, acquire_job);
+  const Job acquired = AcquireJob(*coordinator, acquire_job);
+  const v1::AcquireEvaluationResponse& job = acquired.job;
   ASSERT_TRUE(job.has_job());
   EXPECT_EQ(job.episodes(), 3);
-  EXPECT_EQ(job.weights().num_actions(), 2);
+  EXPECT_EQ(acquired.weights.num_actions(), 2);
   v1::ReportEvaluationRequest good;
   *good.mutable_job() = job.job();
   for (double value : {1.0, 2.0, 3.0}) good.mutable_result()->add_returns(value);
@@ -607,16 +701,14 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
   EXPECT_TRUE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, good).duplicate());
 
   // A holder whose job lapsed and went to another is refused.
-  const v1::AcquireEvaluationResponse lapsing =
-      CallCoordinator(*coordinator, &Stub::AcquireEvaluation, acquire_job);
+  const v1::AcquireEvaluationResponse lapsing = AcquireJob(*coordinator, acquire_job).job;
   ASSERT_EQ(lapsing.job().context(), 1);
   absl::SleepFor(kLease * 0.6);
   v1::RenewLeaseRequest renew;  // the learner stays
   *renew.mutable_lease() = run.lease();
   CallCoordinator(*coordinator, &Stub::RenewLease, renew);
   absl::SleepFor(kLease * 0.6);
-  const v1::AcquireEvaluationResponse again =
-      CallCoordinator(*coordinator, &Stub::AcquireEvaluation, acquire_job);
+  const v1::AcquireEvaluationResponse again = AcquireJob(*coordinator, acquire_job).job;
   ASSERT_EQ(again.job().context(), 1);
   EXPECT_GT(again.job().epoch(), lapsing.job().epoch());
   v1::ReportEvaluationRequest late = good;
@@ -632,7 +724,7 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
   ASSERT_TRUE(metrics.ok()) << metrics.status();
   EXPECT_EQ(MetricValue(*metrics, "dcs_requests_rejected_total{reason=\"NOT_FOUND\"}"), 2);
   EXPECT_EQ(MetricValue(*metrics, "dcs_requests_rejected_total{reason=\"INVALID_ARGUMENT\"}"),
-            2);
+            3);
   EXPECT_EQ(
       MetricValue(*metrics, "dcs_requests_rejected_total{reason=\"FAILED_PRECONDITION\"}"), 1);
 }

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "actor/mlp_policy.h"
+#include "actor/policy_network.h"
 #include "common/random.h"
 #include "gtest/gtest.h"
 
@@ -26,23 +26,49 @@ run::PolicySpec WalkerSpec() {
           .action_high = {1, 1, 1, 1}};
 }
 
+// CarRacing's: a 96 x 96 RGB image and one context value, three continuous actions.
+run::PolicySpec ImageSpec() {
+  return {.image_height = 96,
+          .image_width = 96,
+          .image_channels = 3,
+          .context_size = 1,
+          .num_actions = 0,
+          .action_size = 3,
+          .action_low = {-1, 0, 0},
+          .action_high = {1, 1, 1}};
+}
+
 // The actor's Eigen network computes the same function as the learner's torch network.
-void ExpectEigenMatchesTorch(const run::PolicySpec& spec) {
+void ExpectEigenMatchesTorch(const run::PolicySpec& spec, int samples) {
   torch::manual_seed(7);
   ActorCritic network(spec, run::PpoConfig{});
-  absl::StatusOr<actor::MlpPolicy> policy = actor::MlpPolicy::Create(network->ExportActor());
+  absl::StatusOr<actor::PolicyNetwork> policy =
+      actor::PolicyNetwork::Create(network->ExportActor());
   ASSERT_TRUE(policy.ok()) << policy.status();
   ASSERT_EQ(policy->input_size(), spec.flat_input_size());
+  const int image_size = spec.image_height * spec.image_width * spec.image_channels;
+  ASSERT_EQ(policy->image_size(), image_size);
   Random random(3);
   const int head = spec.discrete() ? spec.num_actions : spec.action_size;
-  for (int sample = 0; sample < 200; ++sample) {
+  for (int sample = 0; sample < samples; ++sample) {
     std::vector<float> input(spec.flat_input_size());
     for (float& x : input) x = static_cast<float>(random.Uniform(-3, 3));
+    std::vector<uint8_t> image(image_size);
+    for (uint8_t& byte : image) byte = static_cast<uint8_t>(random.Integers(0, 256));
     std::vector<float> eigen(head);
-    policy->Forward(input, eigen);
+    policy->Forward(input, image, eigen);
     torch::NoGradGuard no_grad;
-    const torch::Tensor torch_head = network->ActionHead(
-        {.flat = torch::from_blob(input.data(), {1, spec.flat_input_size()})});
+    ObservationBatch batch{.flat = torch::from_blob(input.data(), {1, spec.flat_input_size()})};
+    if (spec.has_image()) {
+      batch.images =
+          torch::from_blob(image.data(),
+                           {1, spec.image_height, spec.image_width, spec.image_channels},
+                           torch::kUInt8)
+              .permute({0, 3, 1, 2})
+              .to(torch::kFloat32)
+              .div(255.0);
+    }
+    const torch::Tensor torch_head = network->ActionHead(batch);
     for (int i = 0; i < head; ++i) {
       EXPECT_NEAR(eigen[i], torch_head[0][i].item<float>(), 1e-5) << "sample " << sample;
     }
@@ -50,11 +76,15 @@ void ExpectEigenMatchesTorch(const run::PolicySpec& spec) {
 }
 
 TEST(ActorCriticTest, EigenInferenceMatchesTorchForCategoricalPolicies) {
-  ExpectEigenMatchesTorch(CartPoleSpec());
+  ExpectEigenMatchesTorch(CartPoleSpec(), 200);
 }
 
 TEST(ActorCriticTest, EigenInferenceMatchesTorchForGaussianPolicies) {
-  ExpectEigenMatchesTorch(WalkerSpec());
+  ExpectEigenMatchesTorch(WalkerSpec(), 200);
+}
+
+TEST(ActorCriticTest, EigenInferenceMatchesTorchForImagePolicies) {
+  ExpectEigenMatchesTorch(ImageSpec(), 20);
 }
 
 TEST(ActorCriticTest, InitialisesWithSb3Gains) {
@@ -62,7 +92,7 @@ TEST(ActorCriticTest, InitialisesWithSb3Gains) {
   // use W^T W = gain^2 I on the 64 x 64 hidden layer), 0.01 for the action head, zero biases.
   torch::manual_seed(1);
   ActorCritic network(CartPoleSpec(), run::PpoConfig{});
-  const actor::MlpWeights weights = network->ExportActor();
+  const actor::PolicyWeights weights = network->ExportActor();
   ASSERT_EQ(weights.layers.size(), 3u);  // 5 -> 64 -> 64 -> 2
   const actor::DenseLayer& hidden = weights.layers[1];
   ASSERT_EQ(hidden.inputs, 64);

@@ -5,7 +5,7 @@
 #include <limits>
 #include <vector>
 
-#include "actor/mlp_policy.h"
+#include "actor/policy_network.h"
 #include "common/random.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
@@ -27,14 +27,14 @@ run::PpoConfig SmallConfig() { return {.n_steps = kSteps, .batch_size = 64, .n_e
 // A two-armed bandit as a rollout: random observations, actions sampled from the learner's
 // current policy, reward 1 for action 1; episodes of 32 steps.
 actor::Rollout BanditRollout(PpoLearner& learner, uint64_t seed) {
-  actor::MlpPolicy policy = *actor::MlpPolicy::Create(learner.ActorWeights());
+  actor::PolicyNetwork policy = *actor::PolicyNetwork::Create(learner.ActorWeights());
   Random random(seed);
   actor::Rollout rollout{.num_steps = kSteps, .num_envs = 1};
   for (int t = 0; t < kSteps; ++t) {
     std::vector<float> input(5);
     for (float& x : input) x = static_cast<float>(random.Uniform(-1, 1));
     float action = 0;
-    policy.Act(input, /*deterministic=*/false, random, {&action, 1});
+    policy.Act(input, /*image=*/{}, /*deterministic=*/false, random, {&action, 1});
     rollout.inputs.insert(rollout.inputs.end(), input.begin(), input.end());
     rollout.actions.push_back(action);
     rollout.rewards.push_back(action);
@@ -64,14 +64,14 @@ TEST_F(PpoLearnerTest, LearnsToPreferTheRewardedAction) {
     ASSERT_TRUE(stats.ok()) << stats.status();
     EXPECT_EQ(stats->gradient_steps, 4 * kSteps / 64);
   }
-  actor::MlpPolicy policy = *actor::MlpPolicy::Create(learner->ActorWeights());
+  actor::PolicyNetwork policy = *actor::PolicyNetwork::Create(learner->ActorWeights());
   Random random(99);
   int rewarded = 0;
   for (int i = 0; i < 1000; ++i) {
     std::vector<float> input(5);
     for (float& x : input) x = static_cast<float>(random.Uniform(-1, 1));
     float action = 0;
-    policy.Act(input, false, random, {&action, 1});
+    policy.Act(input, /*image=*/{}, false, random, {&action, 1});
     rewarded += action == 1;
   }
   EXPECT_GT(rewarded, 900);  // from about 500 before training

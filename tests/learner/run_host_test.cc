@@ -52,7 +52,8 @@ void ExpectSameEvaluations(const v1::EvaluationLog& actual, const v1::Evaluation
       << differences;
 }
 
-// The slots' holders, as actors would be: each slot a stepper at a lease epoch.
+// The slots' holders, as actors would be: each slot a stepper of `Env` at a lease epoch.
+template <typename Env = env::CartPole>
 class Actors {
  public:
   explicit Actors(const run::RunSpec& spec) : spec_(spec) {}
@@ -70,12 +71,12 @@ class Actors {
     for (int slot = 0; slot < host.n_envs(); ++slot) {
       std::unique_ptr<actor::SlotStepper>& stepper = steppers_[slot];
       if (stepper == nullptr) {
-        absl::StatusOr<run::RunPlan> plan = run::PlanRun(spec_, env::CartPole::Features());
+        absl::StatusOr<run::RunPlan> plan = run::PlanRun(spec_, Env::Features());
         ASSERT_TRUE(plan.ok()) << plan.status();
         env::DynamicContextOptions options = plan->slot;
         options.slot = static_cast<uint64_t>(slot);
         absl::StatusOr<std::unique_ptr<actor::SlotStepper>> made =
-            actor::MakeSlotStepper<env::CartPole>(options, spec_.n_envs);
+            actor::MakeSlotStepper<Env>(options, spec_.n_envs);
         ASSERT_TRUE(made.ok()) << made.status();
         stepper = *std::move(made);
       }
@@ -87,7 +88,7 @@ class Actors {
       if (work->journal.has_value()) {
         stepper->Rebuild(*work->journal, work->rollout, work->start_timesteps);
       }
-      absl::StatusOr<actor::MlpPolicy> policy = actor::MlpPolicy::Create(*work->weights);
+      absl::StatusOr<actor::PolicyNetwork> policy = actor::PolicyNetwork::Create(*work->weights);
       ASSERT_TRUE(policy.ok()) << policy.status();
       absl::StatusOr<bool> duplicate = host.PushRollout(epoch(slot), work->rollout, work->rollout,
                                                         stepper->Collect(*policy, work->n_steps));
@@ -223,7 +224,7 @@ class RunHostInputTest : public RunHostTest {
     absl::StatusOr<SlotWork> work = host_->GetSlotWork(0, 1, -1, absl::ZeroDuration());
     ASSERT_TRUE(work.ok() && work->journal.has_value());
     (*stepper)->Rebuild(*work->journal, 0, 0);
-    absl::StatusOr<actor::MlpPolicy> policy = actor::MlpPolicy::Create(*work->weights);
+    absl::StatusOr<actor::PolicyNetwork> policy = actor::PolicyNetwork::Create(*work->weights);
     ASSERT_TRUE(policy.ok());
     part_ = (*stepper)->Collect(*policy, work->n_steps);
   }
@@ -279,13 +280,25 @@ TEST_F(RunHostInputTest, RefusesNonFiniteValuesAndWrongShapesNamingThem) {
   EXPECT_EQ(Push(part_).value_or(true), false);
 }
 
-TEST_F(RunHostTest, RefusesImagePolicies) {
-  run::RunSpec spec = Spec(kSmallRun);
-  spec.env = "car_racing";
-  EXPECT_EQ(RunHost::Create<env::CarRacing>(spec, nullptr, EvaluateInProcess<env::CarRacing>())
-                .status()
-                .code(),
-            absl::StatusCode::kUnimplemented);
+TEST_F(RunHostTest, HostsImagePoliciesAsTrainingInOneProcessDoes) {
+  const run::RunSpec spec = Spec(kSmallImageRun);
+  absl::StatusOr<TrainingResult> expected = Train<env::CarRacing>(spec, {});
+  ASSERT_TRUE(expected.ok()) << expected.status();
+  absl::StatusOr<std::unique_ptr<RunHost>> host =
+      RunHost::Create<env::CarRacing>(spec, nullptr, EvaluateInProcess<env::CarRacing>());
+  ASSERT_TRUE(host.ok()) << host.status();
+  Actors<env::CarRacing> actors(spec);
+  v1::EvaluationLog log;
+  for (int rollout = 0;; ++rollout) {
+    if (rollout == 1) actors.HandOver(0);
+    actors.CollectRollout(**host);
+    absl::StatusOr<HostStep> step = (*host)->Step();
+    ASSERT_TRUE(step.ok()) << step.status();
+    if (step->checkpoint.has_value()) log = step->evaluation_log;
+    if (step->complete) break;
+  }
+  EXPECT_EQ((*host)->Parameters(), expected->parameters);
+  ExpectSameEvaluations(log, expected->log);
 }
 
 }  // namespace

@@ -31,6 +31,21 @@ evaluation: {freq: 256, episodes: 2, contexts: {id: [0.5], ood_high: [1.0]}}
 ppo: {n_steps: 64, batch_size: 32, n_epochs: 2}
 )";
 
+// A CarRacing run (an image policy: NatureCNN) small enough for a unit test: 3 rollouts of 32
+// steps of two slots, one evaluation episode at the end.
+inline constexpr char kSmallImageRun[] = R"(
+env: car_racing
+seed: 5
+total_timesteps: 192
+n_envs: 2
+feature: COM_Y
+training_range: [-0.8, 0.8]
+pool: {size: 3}
+observe: live
+evaluation: {freq: 1000, episodes: 1, contexts: {id: [0.0]}}
+ppo: {n_steps: 32, batch_size: 32, n_epochs: 2}
+)";
+
 // The run config in `yaml`; a test failure if it does not parse.
 inline run::RunSpec Spec(absl::string_view yaml) {
   absl::StatusOr<run::RunSpec> spec = run::ParseRunSpecYaml(yaml, "test.yaml");

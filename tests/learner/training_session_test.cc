@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "actor/policy_network.h"
 #include "actor/rollout_collector.h"
 #include "env/cartpole.h"
 #include "env/vector_env.h"
@@ -46,7 +47,8 @@ class Driver {
 
   // Collects the next rollout with the session's current policy and adds it.
   absl::StatusOr<std::optional<EvaluationDue>> Collect() {
-    absl::StatusOr<actor::MlpPolicy> policy = actor::MlpPolicy::Create(session_->ActorWeights());
+    absl::StatusOr<actor::PolicyNetwork> policy =
+        actor::PolicyNetwork::Create(session_->ActorWeights());
     if (!policy.ok()) return policy.status();
     actor::Rollout rollout;
     std::vector<actor::EpisodeSummary> finished;

@@ -72,19 +72,64 @@ TEST(TrajectoryProtoTest, RefusesTheWrongDtype) {
 }
 
 TEST(TrajectoryProtoTest, PolicyWeightsRoundTrip) {
-  const actor::MlpWeights weights{
+  const actor::PolicyWeights weights{
       .layers = {{.inputs = 2, .outputs = 3, .weight = {1, 2, 3, 4, 5, 6}, .bias = {7, 8, 9}},
-                 {.inputs = 3, .outputs = 1, .weight = {1, 1, 1}, .bias = {0}, .tanh = false}},
+                 {.inputs = 3,
+                  .outputs = 1,
+                  .weight = {1, 1, 1},
+                  .bias = {0},
+                  .activation = actor::Activation::kNone}},
       .log_std = {-0.5},
       .num_actions = 0};
-  absl::StatusOr<actor::MlpWeights> back = WeightsFromProto(WeightsToProto(weights));
+  absl::StatusOr<actor::PolicyWeights> back = WeightsFromProto(WeightsToProto(weights));
   ASSERT_TRUE(back.ok()) << back.status();
   ASSERT_EQ(back->layers.size(), 2u);
   EXPECT_EQ(back->layers[0].inputs, 2);
   EXPECT_EQ(back->layers[0].outputs, 3);
   EXPECT_EQ(back->layers[0].weight, weights.layers[0].weight);
-  EXPECT_FALSE(back->layers[1].tanh);
+  EXPECT_EQ(back->layers[1].activation, actor::Activation::kNone);
   EXPECT_EQ(back->log_std, weights.log_std);
+  EXPECT_FALSE(back->image.has_value());
+}
+
+TEST(TrajectoryProtoTest, ImagePolicyWeightsRoundTrip) {
+  const actor::PolicyWeights weights{
+      .image = actor::ImageEncoderWeights{.height = 3,
+                                          .width = 3,
+                                          .channels = 2,
+                                          .convs = {{.in_channels = 2,
+                                                     .out_channels = 1,
+                                                     .kernel = 2,
+                                                     .stride = 1,
+                                                     .weight = {1, 2, 3, 4, 5, 6, 7, 8},
+                                                     .bias = {0.5f}}},
+                                          .linear = {.inputs = 4,
+                                                     .outputs = 1,
+                                                     .weight = {1, 2, 3, 4},
+                                                     .bias = {0},
+                                                     .activation = actor::Activation::kRelu}},
+      .layers = {{.inputs = 2,
+                  .outputs = 2,
+                  .weight = {1, 0, 0, 1},
+                  .bias = {0, 0},
+                  .activation = actor::Activation::kNone}},
+      .num_actions = 2};
+  absl::StatusOr<actor::PolicyWeights> back = WeightsFromProto(WeightsToProto(weights));
+  ASSERT_TRUE(back.ok()) << back.status();
+  ASSERT_TRUE(back->image.has_value());
+  EXPECT_EQ(back->image->height, 3);
+  EXPECT_EQ(back->image->channels, 2);
+  ASSERT_EQ(back->image->convs.size(), 1u);
+  EXPECT_EQ(back->image->convs[0].in_channels, 2);
+  EXPECT_EQ(back->image->convs[0].kernel, 2);
+  EXPECT_EQ(back->image->convs[0].weight, weights.image->convs[0].weight);
+  EXPECT_EQ(back->image->linear.activation, actor::Activation::kRelu);
+  EXPECT_EQ(back->image->linear.weight, weights.image->linear.weight);
+
+  v1::PolicyWeights unknown = WeightsToProto(weights);
+  unknown.mutable_layers(0)->set_activation(v1::ACTIVATION_UNSPECIFIED);
+  EXPECT_THAT(WeightsFromProto(unknown).status().message(),
+              HasSubstr("layers.activation: 0 is not an activation"));
 }
 
 }  // namespace
