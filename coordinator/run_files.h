@@ -28,11 +28,13 @@ struct RunFile {
 // <data_dir>/runs/<run_id>.
 std::string RunDirectory(absl::string_view data_dir, absl::string_view run_id);
 
-// Checks `checkpoint` (errors as run::UnpackCheckpoint), then stores it in `run_dir` with `log` as run::WriteCheckpoint and run::WriteEvaluationLog do,
-// keeping the newest `keep`. Nothing is stored unless all of it checks. Returns its index entry
-// (the SHA-256 is learner.bin's).
-absl::StatusOr<CheckpointRecord> StoreCheckpoint(const std::string& run_dir, const run::PackedCheckpoint& checkpoint,
-                             const v1::EvaluationLog& log, int keep);
+// Checks `checkpoint` (errors as run::CheckPackedCheckpoint), then stores it in `run_dir`
+// with `log` as run::WritePackedCheckpoint and run::WriteEvaluationLog do, keeping the newest
+// `keep`. Nothing is stored unless all of it checks. Returns its index entry (the SHA-256 is
+// learner.bin's).
+absl::StatusOr<CheckpointRecord> StoreCheckpoint(const std::string& run_dir,
+                                                 const run::PackedCheckpoint& checkpoint,
+                                                 const v1::EvaluationLog& log, int keep);
 
 // The newest readable checkpoint of `run_dir` as a learner receives it. Errors as
 // run::ReadLatestCheckpoint (NOT_FOUND when there is none yet).

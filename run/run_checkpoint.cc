@@ -11,7 +11,10 @@
 #include <optional>
 #include <tuple>
 
+#include "absl/algorithm/container.h"
+#include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/strip.h"
@@ -157,7 +160,15 @@ PackedCheckpoint PackCheckpoint(const Checkpoint& checkpoint) {
   return packed;
 }
 
-absl::StatusOr<Checkpoint> UnpackCheckpoint(const PackedCheckpoint& packed) {
+absl::StatusOr<int64_t> CheckPackedCheckpoint(const PackedCheckpoint& packed) {
+  int64_t timesteps = -1;
+  if (packed.name.size() != CheckpointName(0).size() ||
+      !absl::c_all_of(packed.name, absl::ascii_isdigit) ||
+      !absl::SimpleAtoi(packed.name, &timesteps)) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "\"", packed.name, "\" is not a checkpoint's name (its step, as ", CheckpointName(0),
+        " is step 0)"));
+  }
   for (const auto& [file, bytes, sent] :
        {std::tuple("learner.bin", &packed.learner, &packed.learner_sha256),
         std::tuple("run.yaml", &packed.run_state, &packed.run_state_sha256)}) {
@@ -168,6 +179,11 @@ absl::StatusOr<Checkpoint> UnpackCheckpoint(const PackedCheckpoint& packed) {
                                               ", the sender's ", *sent));
     }
   }
+  return timesteps;
+}
+
+absl::StatusOr<Checkpoint> UnpackCheckpoint(const PackedCheckpoint& packed) {
+  DCS_RETURN_IF_ERROR(CheckPackedCheckpoint(packed).status());
   DCS_ASSIGN_OR_RETURN(RunState state,
                        DecodeRunState(packed.run_state,
                                       absl::StrCat("run.yaml of checkpoint ", packed.name)));
@@ -181,8 +197,16 @@ absl::StatusOr<Checkpoint> UnpackCheckpoint(const PackedCheckpoint& packed) {
 
 absl::Status WriteCheckpoint(const std::string& run_dir, const RunState& state,
                              const std::string& learner, int keep) {
+  return WritePackedCheckpoint(
+      run_dir,
+      PackCheckpoint({.name = CheckpointName(state.timesteps), .state = state, .learner = learner}),
+      keep);
+}
+
+absl::Status WritePackedCheckpoint(const std::string& run_dir, const PackedCheckpoint& packed,
+                                   int keep) {
   const fs::path root = CheckpointsDir(run_dir);
-  const std::string name = CheckpointName(state.timesteps);
+  const std::string& name = packed.name;
   std::error_code error;
   fs::create_directories(root / name, error);
   if (error) {
@@ -191,11 +215,13 @@ absl::Status WriteCheckpoint(const std::string& run_dir, const RunState& state,
   }
   // The manifest (sha256sum's format: `sha256sum -c MANIFEST` checks it) after the files it
   // vouches for.
-  const std::string contents[] = {learner, EncodeRunState(state)};
+  const std::string* contents[][2] = {{&packed.learner, &packed.learner_sha256},
+                                       {&packed.run_state, &packed.run_state_sha256}};
+  static_assert(std::size(contents) == std::size(kFiles));
   std::string manifest;
   for (size_t i = 0; i < std::size(kFiles); ++i) {
-    DCS_RETURN_IF_ERROR(WriteFileAtomically(root / name / kFiles[i], contents[i]));
-    absl::StrAppend(&manifest, Sha256Hex(contents[i]), "  ", kFiles[i], "\n");
+    DCS_RETURN_IF_ERROR(WriteFileAtomically(root / name / kFiles[i], *contents[i][0]));
+    absl::StrAppend(&manifest, *contents[i][1], "  ", kFiles[i], "\n");
   }
   DCS_RETURN_IF_ERROR(WriteFileAtomically(root / name / kManifest, manifest));
   // The pointer last: until it moves, the previous checkpoint is the one a resume reads.

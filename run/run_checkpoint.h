@@ -63,9 +63,13 @@ struct PackedCheckpoint {
 
 PackedCheckpoint PackCheckpoint(const Checkpoint& checkpoint);
 
-// The checkpoint `packed` holds. DATA_LOSS naming the file whose bytes do not match their
-// SHA-256, or whose run state does not parse; INVALID_ARGUMENT for a name other than its
-// step's.
+// The step of checkpoint `packed`, whose files are checked against their SHA-256s but not
+// decoded. DATA_LOSS naming the file whose bytes do not match; INVALID_ARGUMENT for a name
+// that is not a checkpoint's.
+absl::StatusOr<int64_t> CheckPackedCheckpoint(const PackedCheckpoint& packed);
+
+// The checkpoint `packed` holds. Errors as CheckPackedCheckpoint; DATA_LOSS naming the run
+// state if it does not parse; INVALID_ARGUMENT for a name other than its step's.
 absl::StatusOr<Checkpoint> UnpackCheckpoint(const PackedCheckpoint& packed);
 
 // Writes `state` and `learner` as checkpoint `<state.timesteps>` of `run_dir`, points `latest`
@@ -73,6 +77,11 @@ absl::StatusOr<Checkpoint> UnpackCheckpoint(const PackedCheckpoint& packed);
 // full disk); the previous checkpoint stays valid whatever fails.
 absl::Status WriteCheckpoint(const std::string& run_dir, const RunState& state,
                              const std::string& learner, int keep);
+
+// The same for a checkpoint as it travelled: its files as they are, named `packed.name`, the
+// manifest from its SHA-256s. REQUIRES: CheckPackedCheckpoint(packed) is OK.
+absl::Status WritePackedCheckpoint(const std::string& run_dir, const PackedCheckpoint& packed,
+                                   int keep);
 
 // The newest checkpoint of `run_dir` that reads back whole: if the one `latest` names is
 // corrupt or truncated (checksum, YAML), the next older one. NOT_FOUND if there is none;

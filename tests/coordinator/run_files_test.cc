@@ -59,10 +59,15 @@ TEST_F(RunFilesTest, RefusesACorruptCheckpointAndStoresNothing) {
   EXPECT_THAT(status.message(), HasSubstr("learner.bin of checkpoint 000000000256 arrived corrupt"));
   EXPECT_EQ(LatestCheckpoint(run_dir).status().code(), absl::StatusCode::kNotFound);
 
-  run::PackedCheckpoint misnamed = Arriving(256);
-  misnamed.name = "000000000512";
-  EXPECT_THAT(StoreCheckpoint(run_dir, misnamed, Log(), 3).status().message(),
-              HasSubstr("holds step 256; it must be named 000000000256"));
+  // The name becomes a directory: only a step's name is taken.
+  for (const char* name : {"../../escape", "latest", "256", "00000000025x"}) {
+    run::PackedCheckpoint misnamed = Arriving(256);
+    misnamed.name = name;
+    const absl::Status refused = StoreCheckpoint(run_dir, misnamed, Log(), 3).status();
+    EXPECT_EQ(refused.code(), absl::StatusCode::kInvalidArgument) << name;
+    EXPECT_THAT(refused.message(), HasSubstr("is not a checkpoint's name")) << name;
+  }
+  EXPECT_EQ(LatestCheckpoint(run_dir).status().code(), absl::StatusCode::kNotFound);
 }
 
 TEST_F(RunFilesTest, AMissingRunHasNoFiles) {
