@@ -13,9 +13,11 @@
 #include "actor/policy_network.h"
 #include "benchmark/benchmark.h"
 #include "common/random.h"
+#include "env/car_racing.h"
 #include "learner/actor_critic.h"
 #include "learner/ppo_learner.h"
 #include "learner/torch_runtime.h"
+#include "run/run_plan.h"
 
 namespace dcs::learner {
 namespace {
@@ -66,16 +68,8 @@ void BM_ActorInferenceCartPole(benchmark::State& state) {
 }
 BENCHMARK(BM_ActorInferenceCartPole);
 
-run::PolicySpec CarRacingSpec() {
-  return {.image_height = 96,
-          .image_width = 96,
-          .image_channels = 3,
-          .context_size = 1,
-          .num_actions = 0,
-          .action_size = 3,
-          .action_low = {-1, 0, 0},
-          .action_high = {1, 1, 1}};
-}
+// A 96 x 96 RGB frame and one context value, three continuous actions.
+run::PolicySpec CarRacingSpec() { return run::PolicySpecFor<env::CarRacing>(1); }
 
 std::vector<uint8_t> RandomFrame() {
   Random random(5);

@@ -8,7 +8,9 @@
 
 #include "actor/policy_network.h"
 #include "common/random.h"
+#include "env/car_racing.h"
 #include "gtest/gtest.h"
+#include "run/run_plan.h"
 
 namespace dcs::learner {
 namespace {
@@ -24,18 +26,6 @@ run::PolicySpec WalkerSpec() {
           .action_size = 4,
           .action_low = {-1, -1, -1, -1},
           .action_high = {1, 1, 1, 1}};
-}
-
-// CarRacing's: a 96 x 96 RGB image and one context value, three continuous actions.
-run::PolicySpec ImageSpec() {
-  return {.image_height = 96,
-          .image_width = 96,
-          .image_channels = 3,
-          .context_size = 1,
-          .num_actions = 0,
-          .action_size = 3,
-          .action_low = {-1, 0, 0},
-          .action_high = {1, 1, 1}};
 }
 
 // The actor's Eigen network computes the same function as the learner's torch network.
@@ -84,7 +74,8 @@ TEST(ActorCriticTest, EigenInferenceMatchesTorchForGaussianPolicies) {
 }
 
 TEST(ActorCriticTest, EigenInferenceMatchesTorchForImagePolicies) {
-  ExpectEigenMatchesTorch(ImageSpec(), 20);
+  // CarRacing's: a 96 x 96 RGB image and one context value, three continuous actions.
+  ExpectEigenMatchesTorch(run::PolicySpecFor<env::CarRacing>(1), 20);
 }
 
 TEST(ActorCriticTest, InitialisesWithSb3Gains) {
