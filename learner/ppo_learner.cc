@@ -123,8 +123,7 @@ struct PpoLearner::Impl {
                                                      " slots"));
     }
     const size_t n = static_cast<size_t>(r.num_steps) * r.num_envs;
-    const size_t image = static_cast<size_t>(spec.image_height) * spec.image_width *
-                         spec.image_channels;
+    const size_t image = spec.image_size();
     DCS_RETURN_IF_ERROR(CheckSize(r.inputs.size(), n * spec.flat_input_size(), "inputs"));
     DCS_RETURN_IF_ERROR(CheckSize(r.images.size(), n * image, "images"));
     DCS_RETURN_IF_ERROR(CheckSize(r.actions.size(), n * spec.action_size, "actions"));

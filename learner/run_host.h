@@ -64,7 +64,7 @@ struct SlotWork {
   int64_t start_timesteps = 0;
   int n_steps = 0;
   std::shared_ptr<const actor::PolicyWeights> weights;  // policy version `rollout`
-  absl::Time published_at;                           // when that version was published
+  absl::Time published_at;                              // when that version was published
   // Where the slot's episode stands before `rollout`: given when the holder is not
   // positioned there (it must rebuild the slot).
   std::optional<actor::SlotJournal> journal;
@@ -211,8 +211,7 @@ absl::StatusOr<std::unique_ptr<RunHost>> RunHost::Create(run::RunSpec spec,
   const actor::SlotRolloutShape shape{
       .num_steps = session->spec().ppo.n_steps,
       .input = static_cast<size_t>(policy.flat_input_size()),
-      .image = static_cast<size_t>(policy.image_height) * policy.image_width *
-               policy.image_channels,
+      .image = policy.image_size(),
       .action = static_cast<size_t>(policy.action_size)};
   std::unique_ptr<RunHost> host(new RunHost(std::move(session), std::move(evaluator), shape));
   host->Publish();

@@ -5,6 +5,7 @@
 // PPO's hyperparameters, defaulting to Stable-Baselines3's (spec/ppo.md §2-3), which the paper
 // used untuned; and the shape of the policy a learner trains. Thread-safe (plain data).
 
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -57,6 +58,10 @@ struct PolicySpec {
 
   bool discrete() const { return num_actions > 0; }
   bool has_image() const { return image_height > 0; }
+  // Bytes of one image observation; 0 without.
+  size_t image_size() const {
+    return static_cast<size_t>(image_height) * image_width * image_channels;
+  }
   // Floats per observation given to the MLP: the vector observation, then the context.
   int flat_input_size() const { return observation_size + context_size; }
 };

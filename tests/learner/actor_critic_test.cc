@@ -36,7 +36,7 @@ void ExpectEigenMatchesTorch(const run::PolicySpec& spec, int samples) {
       actor::PolicyNetwork::Create(network->ExportActor());
   ASSERT_TRUE(policy.ok()) << policy.status();
   ASSERT_EQ(policy->input_size(), spec.flat_input_size());
-  const int image_size = spec.image_height * spec.image_width * spec.image_channels;
+  const int image_size = static_cast<int>(spec.image_size());
   ASSERT_EQ(policy->image_size(), image_size);
   Random random(3);
   const int head = spec.discrete() ? spec.num_actions : spec.action_size;
