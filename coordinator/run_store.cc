@@ -179,6 +179,72 @@ std::string JobName(const EvaluationJobKey& key) {
                       key.policy_version, " of ", key.run_id);
 }
 
+// Records `result` for the job `key` names, in the caller's transaction; returns true if it was
+// recorded before. Errors as RunStore::ReportEvaluationJobs.
+absl::StatusOr<bool> RecordJobResult(SQLite::Database& db, const EvaluationJobKey& key,
+                                     const ContextReturns& result) {
+  DCS_ASSIGN_OR_RETURN(const int64_t number, RunNumber(key.run_id));
+  SQLite::Statement query(db, "SELECT j.epoch, j.done, e.episodes, e.contexts "
+                              "FROM evaluation_jobs j JOIN evaluations e "
+                              "ON e.run = j.run AND e.policy_version = j.policy_version "
+                              "WHERE j.run = ? AND j.policy_version = ? AND j.context = ?");
+  query.bind(1, number);
+  query.bind(2, key.policy_version);
+  query.bind(3, key.context);
+  if (!query.executeStep()) {
+    return absl::NotFoundError(absl::StrCat(JobName(key), " does not exist"));
+  }
+  const int64_t epoch = query.getColumn(0).getInt64();
+  const bool done = query.getColumn(1).getInt() != 0;
+  const int episodes = query.getColumn(2).getInt();
+  const int contexts = query.getColumn(3).getInt();
+  query.reset();
+  if (epoch != key.epoch) {
+    return absl::FailedPreconditionError(absl::StrCat(JobName(key), " moved: epoch ", epoch,
+                                                      " was granted after epoch ", key.epoch));
+  }
+  if (done) return true;
+  if (static_cast<int>(result.returns.size()) != episodes) {
+    return absl::InvalidArgumentError(absl::StrCat(JobName(key), " has ", episodes,
+                                                   " episodes; ", result.returns.size(),
+                                                   " returns were delivered"));
+  }
+  SQLite::Statement insert(db, "INSERT INTO evaluation_returns (run, policy_version, "
+                               "context, episode, value) VALUES (?, ?, ?, ?, ?)");
+  for (int episode = 0; episode < episodes; ++episode) {
+    insert.bind(1, number);
+    insert.bind(2, key.policy_version);
+    insert.bind(3, key.context);
+    insert.bind(4, episode);
+    insert.bind(5, result.returns[episode]);
+    insert.exec();
+    insert.reset();
+  }
+  SQLite::Statement finish(db, "UPDATE evaluation_jobs SET done = 1, holder = '', "
+                               "deadline = 0, seconds = ? WHERE run = ? AND "
+                               "policy_version = ? AND context = ?");
+  finish.bind(1, result.seconds);
+  finish.bind(2, number);
+  finish.bind(3, key.policy_version);
+  finish.bind(4, key.context);
+  finish.exec();
+  // Once every context is in, nothing evaluates the policy again: drop it.
+  SQLite::Statement remaining(db, "SELECT count(*) FROM evaluation_jobs WHERE run = ? AND "
+                                  "policy_version = ? AND done = 1");
+  remaining.bind(1, number);
+  remaining.bind(2, key.policy_version);
+  remaining.executeStep();
+  if (remaining.getColumn(0).getInt() == contexts) {
+    remaining.reset();
+    SQLite::Statement drop(db, "UPDATE evaluations SET weights = x'' WHERE run = ? AND "
+                               "policy_version = ?");
+    drop.bind(1, number);
+    drop.bind(2, key.policy_version);
+    drop.exec();
+  }
+  return false;
+}
+
 // When no work fits a worker: FAILED_PRECONDITION if some run (of `which` state) waits for
 // workers of other numerics (`column`), naming both fingerprints; nullopt otherwise.
 template <typename Lease>
@@ -464,117 +530,78 @@ absl::Status RunStore::SubmitEvaluation(const LeaseKey& key,
   });
 }
 
-absl::StatusOr<std::optional<EvaluationJob>> RunStore::AcquireEvaluationJob(
-    absl::string_view holder, absl::string_view numerics, absl::Time now) {
-  return Transaction([&]() -> absl::StatusOr<std::optional<EvaluationJob>> {
+absl::StatusOr<std::optional<EvaluationGrant>> RunStore::AcquireEvaluationJobs(
+    absl::string_view holder, absl::string_view numerics, int max_jobs, int actors,
+    absl::Time now) {
+  return Transaction([&]() -> absl::StatusOr<std::optional<EvaluationGrant>> {
     DCS_RETURN_IF_ERROR(ExpireLapsed(*db_, now).status());
     // First in, first out across runs: an evaluation waits behind those handed over before it.
-    SQLite::Statement query(
+    SQLite::Statement oldest(
         *db_,
-        "SELECT j.run, j.policy_version, j.context, e.episodes, e.weights, r.config "
+        "SELECT j.run, j.policy_version, e.episodes, e.weights, r.config "
         "FROM evaluation_jobs j "
         "JOIN evaluations e ON e.run = j.run AND e.policy_version = j.policy_version "
         "JOIN runs r ON r.number = j.run "
         "WHERE j.done = 0 AND j.holder = '' AND r.state = 'running' "
         "AND (r.actor_numerics = '' OR r.actor_numerics = ?) "
-        "ORDER BY e.created_at, j.run, j.policy_version, j.context LIMIT 1");
-    query.bind(1, std::string(numerics));
-    if (!query.executeStep()) return std::nullopt;
-    const int64_t number = query.getColumn(0).getInt64();
-    EvaluationJob job{.key = {.run_id = RunId(number),
-                              .policy_version = query.getColumn(1).getInt64(),
-                              .context = query.getColumn(2).getInt()},
-                      .config = query.getColumn(5).getString(),
-                      .episodes = query.getColumn(3).getInt(),
-                      .weights = query.getColumn(4).getString()};
-    query.reset();
-    SQLite::Statement grant(*db_, "UPDATE evaluation_jobs SET epoch = epoch + 1, holder = ?, "
+        "ORDER BY e.created_at, j.run, j.policy_version LIMIT 1");
+    oldest.bind(1, std::string(numerics));
+    if (!oldest.executeStep()) return std::nullopt;
+    const int64_t number = oldest.getColumn(0).getInt64();
+    const int64_t policy_version = oldest.getColumn(1).getInt64();
+    EvaluationGrant grant{.config = oldest.getColumn(4).getString(),
+                          .episodes = oldest.getColumn(2).getInt(),
+                          .weights = oldest.getColumn(3).getString()};
+    oldest.reset();
+    SQLite::Statement free(*db_, "SELECT context FROM evaluation_jobs WHERE run = ? AND "
+                                 "policy_version = ? AND done = 0 AND holder = '' "
+                                 "ORDER BY context");
+    free.bind(1, number);
+    free.bind(2, policy_version);
+    std::vector<int> contexts;
+    while (free.executeStep()) contexts.push_back(free.getColumn(0).getInt());
+    const size_t share = (contexts.size() + std::max(actors, 1) - 1) / std::max(actors, 1);
+    contexts.resize(std::min({contexts.size(), share, static_cast<size_t>(std::max(max_jobs, 1))}));
+    SQLite::Statement lease(*db_, "UPDATE evaluation_jobs SET epoch = epoch + 1, holder = ?, "
                                   "deadline = ? WHERE run = ? AND policy_version = ? AND "
                                   "context = ? RETURNING epoch");
-    grant.bind(1, std::string(holder));
-    grant.bind(2, Micros(now + options_.lease_duration));
-    grant.bind(3, number);
-    grant.bind(4, job.key.policy_version);
-    grant.bind(5, job.key.context);
-    grant.executeStep();
-    job.key.epoch = grant.getColumn(0).getInt64();
-    grant.reset();
+    for (const int context : contexts) {
+      lease.bind(1, std::string(holder));
+      lease.bind(2, Micros(now + options_.lease_duration));
+      lease.bind(3, number);
+      lease.bind(4, policy_version);
+      lease.bind(5, context);
+      lease.executeStep();
+      grant.jobs.push_back({.run_id = RunId(number),
+                            .policy_version = policy_version,
+                            .context = context,
+                            .epoch = lease.getColumn(0).getInt64()});
+      lease.reset();
+    }
     PinNumerics(*db_, "actor_numerics", number, numerics);
-    return job;
+    return grant;
   });
 }
 
-absl::StatusOr<bool> RunStore::ReportEvaluationJob(const EvaluationJobKey& key,
-                                                   const ContextReturns& result) {
-  for (size_t episode = 0; episode < result.returns.size(); ++episode) {
-    if (!std::isfinite(result.returns[episode])) {
-      return absl::InvalidArgumentError(absl::StrCat("the return of episode ", episode, " of ",
-                                                     JobName(key), " is ",
-                                                     result.returns[episode],
-                                                     "; returns must be finite"));
+absl::StatusOr<std::vector<bool>> RunStore::ReportEvaluationJobs(
+    absl::Span<const JobResult> results) {
+  for (const auto& [key, result] : results) {
+    for (size_t episode = 0; episode < result.returns.size(); ++episode) {
+      if (!std::isfinite(result.returns[episode])) {
+        return absl::InvalidArgumentError(absl::StrCat("the return of episode ", episode, " of ",
+                                                       JobName(key), " is ",
+                                                       result.returns[episode],
+                                                       "; returns must be finite"));
+      }
     }
   }
-  return Transaction([&]() -> absl::StatusOr<bool> {
-    DCS_ASSIGN_OR_RETURN(const int64_t number, RunNumber(key.run_id));
-    SQLite::Statement query(*db_, "SELECT j.epoch, j.done, e.episodes, e.contexts "
-                                  "FROM evaluation_jobs j JOIN evaluations e "
-                                  "ON e.run = j.run AND e.policy_version = j.policy_version "
-                                  "WHERE j.run = ? AND j.policy_version = ? AND j.context = ?");
-    query.bind(1, number);
-    query.bind(2, key.policy_version);
-    query.bind(3, key.context);
-    if (!query.executeStep()) {
-      return absl::NotFoundError(absl::StrCat(JobName(key), " does not exist"));
+  return Transaction([&]() -> absl::StatusOr<std::vector<bool>> {
+    std::vector<bool> delivered_before;
+    for (const auto& [key, result] : results) {
+      DCS_ASSIGN_OR_RETURN(const bool duplicate, RecordJobResult(*db_, key, result));
+      delivered_before.push_back(duplicate);
     }
-    const int64_t epoch = query.getColumn(0).getInt64();
-    const bool done = query.getColumn(1).getInt() != 0;
-    const int episodes = query.getColumn(2).getInt();
-    const int contexts = query.getColumn(3).getInt();
-    query.reset();
-    if (epoch != key.epoch) {
-      return absl::FailedPreconditionError(absl::StrCat(JobName(key), " moved: epoch ", epoch,
-                                                        " was granted after epoch ", key.epoch));
-    }
-    if (done) return true;
-    if (static_cast<int>(result.returns.size()) != episodes) {
-      return absl::InvalidArgumentError(absl::StrCat(JobName(key), " has ", episodes,
-                                                     " episodes; ", result.returns.size(),
-                                                     " returns were delivered"));
-    }
-    SQLite::Statement insert(*db_, "INSERT INTO evaluation_returns (run, policy_version, "
-                                   "context, episode, value) VALUES (?, ?, ?, ?, ?)");
-    for (int episode = 0; episode < episodes; ++episode) {
-      insert.bind(1, number);
-      insert.bind(2, key.policy_version);
-      insert.bind(3, key.context);
-      insert.bind(4, episode);
-      insert.bind(5, result.returns[episode]);
-      insert.exec();
-      insert.reset();
-    }
-    SQLite::Statement finish(*db_, "UPDATE evaluation_jobs SET done = 1, holder = '', "
-                                   "deadline = 0, seconds = ? WHERE run = ? AND "
-                                   "policy_version = ? AND context = ?");
-    finish.bind(1, result.seconds);
-    finish.bind(2, number);
-    finish.bind(3, key.policy_version);
-    finish.bind(4, key.context);
-    finish.exec();
-    // Once every context is in, nothing evaluates the policy again: drop it.
-    SQLite::Statement remaining(*db_, "SELECT count(*) FROM evaluation_jobs WHERE run = ? AND "
-                                      "policy_version = ? AND done = 1");
-    remaining.bind(1, number);
-    remaining.bind(2, key.policy_version);
-    remaining.executeStep();
-    if (remaining.getColumn(0).getInt() == contexts) {
-      remaining.reset();
-      SQLite::Statement drop(*db_, "UPDATE evaluations SET weights = x'' WHERE run = ? AND "
-                                   "policy_version = ?");
-      drop.bind(1, number);
-      drop.bind(2, key.policy_version);
-      drop.exec();
-    }
-    return false;
+    return delivered_before;
   });
 }
 

@@ -36,6 +36,7 @@
 #include "absl/strings/string_view.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
+#include "absl/types/span.h"
 #include "coordinator/run_state.h"
 
 namespace SQLite {
@@ -121,10 +122,10 @@ struct EvaluationJobKey {
   int64_t epoch = 0;
 };
 
-// An evaluation job leased to an actor, with what it needs to run it.
-struct EvaluationJob {
-  EvaluationJobKey key;
-  std::string config;  // the run's, its seed applied
+// Jobs of one evaluation leased to an actor together, with what it needs to run them.
+struct EvaluationGrant {
+  std::vector<EvaluationJobKey> jobs;  // of one run and policy version, by context
+  std::string config;                  // the run's, its seed applied
   int episodes = 0;
   std::string weights;
 };
@@ -133,6 +134,12 @@ struct EvaluationJob {
 struct ContextReturns {
   std::vector<double> returns;  // one per episode, in episode order
   double seconds = 0;
+};
+
+// A job's result as its holder delivers it.
+struct JobResult {
+  EvaluationJobKey job;
+  ContextReturns result;
 };
 
 // How an evaluation stands: `results` holds every context's, in context order, once `done`
@@ -219,19 +226,22 @@ class RunStore {
   absl::Status SubmitEvaluation(const LeaseKey& key, const EvaluationRequest& evaluation,
                                 absl::Time now);
 
-  // The oldest free evaluation job of a running run that an actor with `numerics` may run,
-  // leased to `holder` until now + lease_duration. nullopt if there is none.
-  absl::StatusOr<std::optional<EvaluationJob>> AcquireEvaluationJob(absl::string_view holder,
-                                                                    absl::string_view numerics,
-                                                                    absl::Time now);
+  // Free jobs of the oldest evaluation with any, of a running run that an actor with
+  // `numerics` may run, leased to `holder` until now + lease_duration: at most `max_jobs`, and
+  // at most this actor's share of them among `actors` actors (rounded up), so that one
+  // evaluation spreads over the cluster while each actor takes its part in one call. nullopt
+  // if there is none.
+  absl::StatusOr<std::optional<EvaluationGrant>> AcquireEvaluationJobs(absl::string_view holder,
+                                                                       absl::string_view numerics,
+                                                                       int max_jobs, int actors,
+                                                                       absl::Time now);
 
-  // The holder of `key` delivers the job's result; returns true if it was delivered before (a
-  // retry). A lapsed job not yet granted again is still accepted: its result is the same
-  // whoever computes it. NOT_FOUND for an unknown job; FAILED_PRECONDITION if it moved to a
-  // newer epoch; INVALID_ARGUMENT for a number of returns other than the evaluation's episodes
-  // or a non-finite one.
-  absl::StatusOr<bool> ReportEvaluationJob(const EvaluationJobKey& key,
-                                           const ContextReturns& result);
+  // The holder delivers jobs' results, all of them or (on an error) none; returns, for each,
+  // whether it was delivered before (a retry). A lapsed job not yet granted again is still
+  // accepted: its result is the same whoever computes it. Errors name the job: NOT_FOUND for
+  // an unknown one; FAILED_PRECONDITION if it moved to a newer epoch; INVALID_ARGUMENT for a
+  // number of returns other than the evaluation's episodes or a non-finite one.
+  absl::StatusOr<std::vector<bool>> ReportEvaluationJobs(absl::Span<const JobResult> results);
 
   // Where the evaluation of `policy_version` of `run_id` stands. NOT_FOUND if it was never
   // submitted.

@@ -406,17 +406,21 @@ grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
 grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::AcquireEvaluation(
     grpc::CallbackServerContext* /*context*/, const v1::AcquireEvaluationRequest* request) {
   auto acquire = [&]() -> absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> {
-    DCS_ASSIGN_OR_RETURN(
-        std::optional<coordinator::EvaluationJob> job,
-        runs_.store->AcquireEvaluationJob(request->holder(), request->numerics(), absl::Now()));
+    DCS_ASSIGN_OR_RETURN(std::optional<coordinator::EvaluationGrant> grant,
+                         runs_.store->AcquireEvaluationJobs(request->holder(),
+                                                            request->numerics(),
+                                                            request->max_jobs(), AliveActors(),
+                                                            absl::Now()));
     v1::AcquireEvaluationResponse header;
-    if (!job.has_value()) return std::vector{std::move(header)};
-    evaluation_leases_.Increment();
-    *header.mutable_job() = EvaluationJobToProto(job->key);
-    header.set_config(job->config);
-    header.set_episodes(job->episodes);
+    if (!grant.has_value()) return std::vector{std::move(header)};
+    evaluation_leases_.Increment(static_cast<double>(grant->jobs.size()));
+    for (const coordinator::EvaluationJobKey& job : grant->jobs) {
+      *header.add_jobs() = EvaluationJobToProto(job);
+    }
+    header.set_config(std::move(grant->config));
+    header.set_episodes(grant->episodes);
     *header.mutable_lease_duration() = DurationToProto(runs_.lease_duration);
-    return CutIntoMessages(std::move(header), job->weights,
+    return CutIntoMessages(std::move(header), grant->weights,
                            &v1::AcquireEvaluationResponse::mutable_weights);
   };
   absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> messages = acquire();
@@ -428,12 +432,19 @@ grpc::ServerUnaryReactor* CoordinatorService::ReportEvaluation(
     grpc::CallbackServerContext* context, const v1::ReportEvaluationRequest* request,
     v1::ReportEvaluationResponse* response) {
   auto report = [&]() -> absl::Status {
-    DCS_ASSIGN_OR_RETURN(const coordinator::EvaluationJobKey key,
-                         EvaluationJobFromProto(request->job()));
-    DCS_ASSIGN_OR_RETURN(const bool duplicate,
-                         runs_.store->ReportEvaluationJob(
-                             key, ContextReturnsFromProto(request->result())));
-    response->set_duplicate(duplicate);
+    if (request->results().empty()) {
+      return absl::InvalidArgumentError("the report holds no job's result");
+    }
+    std::vector<coordinator::JobResult> results;
+    for (const v1::JobResult& delivered : request->results()) {
+      DCS_ASSIGN_OR_RETURN(coordinator::EvaluationJobKey job,
+                           EvaluationJobFromProto(delivered.job()));
+      results.push_back({.job = std::move(job),
+                         .result = ContextReturnsFromProto(delivered.result())});
+    }
+    DCS_ASSIGN_OR_RETURN(const std::vector<bool> duplicate,
+                         runs_.store->ReportEvaluationJobs(results));
+    for (const bool delivered_before : duplicate) response->add_duplicate(delivered_before);
     return absl::OkStatus();
   };
   return Finish(context, report());

@@ -53,34 +53,34 @@ void EvaluationWorker::Stop() {
 
 void EvaluationWorker::Work() {
   while (!stopping_.HasBeenNotified()) {
-    if (!RunOneJob()) stopping_.WaitForNotificationWithTimeout(options_.poll_interval);
+    if (!RunJobs()) stopping_.WaitForNotificationWithTimeout(options_.poll_interval);
   }
 }
 
-absl::Status EvaluationWorker::Prepare(const v1::AcquireEvaluationResponse& job,
-                                       absl::string_view weights) {
-  if (prepared_.run_id == job.job().run_id() &&
-      prepared_.policy_version == job.job().policy_version()) {
+absl::Status EvaluationWorker::Prepare(const v1::AcquireEvaluationResponse& grant,
+                                       const v1::EvaluationJob& job, absl::string_view weights) {
+  if (prepared_.run_id == job.run_id() && prepared_.policy_version == job.policy_version()) {
     return absl::OkStatus();
   }
   prepared_ = {};
-  DCS_ASSIGN_OR_RETURN(run::RunSpec spec, run::ParseRunSpecYaml(job.config(), job.job().run_id()));
+  DCS_ASSIGN_OR_RETURN(run::RunSpec spec, run::ParseRunSpecYaml(grant.config(), job.run_id()));
   DCS_ASSIGN_OR_RETURN(prepared_.policy, PolicyFromBytes(weights));
   DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(prepared_.plan, run::PlanRun(spec, Env::Features()));
     return absl::OkStatus();
   }));
   prepared_.spec = std::move(spec);
-  prepared_.run_id = job.job().run_id();
-  prepared_.policy_version = job.job().policy_version();
+  prepared_.run_id = job.run_id();
+  prepared_.policy_version = job.policy_version();
   return absl::OkStatus();
 }
 
 absl::StatusOr<v1::ContextReturns> EvaluationWorker::Evaluate(
-    const v1::AcquireEvaluationResponse& job, absl::string_view weights) {
-  DCS_RETURN_IF_ERROR(Prepare(job, weights));
+    const v1::AcquireEvaluationResponse& grant, const v1::EvaluationJob& job,
+    absl::string_view weights) {
+  DCS_RETURN_IF_ERROR(Prepare(grant, job, weights));
   const run::RunPlan& plan = prepared_.plan;
-  const int context = job.job().context();
+  const int context = job.context();
   if (context < 0 || static_cast<size_t>(context) >= plan.evaluation_contexts.size()) {
     return absl::InvalidArgumentError(absl::StrCat("the run has ",
                                                    plan.evaluation_contexts.size(),
@@ -93,49 +93,55 @@ absl::StatusOr<v1::ContextReturns> EvaluationWorker::Evaluate(
         absl::MutexLock on_core(&core_);
         DCS_ASSIGN_OR_RETURN(result, actor::EvaluateContext<Env>(
                                          *prepared_.policy, plan.slot, plan.feature,
-                                         plan.evaluation_contexts[index], index, job.episodes(),
+                                         plan.evaluation_contexts[index], index, grant.episodes(),
                                          prepared_.spec.seed));
         return absl::OkStatus();
       }));
   return ContextReturnsToProto({.returns = std::move(result.returns), .seconds = result.seconds});
 }
 
-bool EvaluationWorker::RunOneJob() {
+bool EvaluationWorker::RunJobs() {
   v1::AcquireEvaluationRequest request;
   request.set_holder(options_.holder);
   request.set_numerics(options_.numerics);
+  request.set_max_jobs(options_.max_jobs);
   PieceJoiner<v1::AcquireEvaluationResponse> reply(
       &v1::AcquireEvaluationResponse::mutable_weights, "the evaluation's policy");
   const absl::Status acquired = CallServerStream(
       *coordinator_, &v1::CoordinatorService::Stub::AcquireEvaluation, request,
       options_.rpc_timeout, "coordinator",
       [&](v1::AcquireEvaluationResponse& message) { return reply.Add(std::move(message)); });
-  const v1::AcquireEvaluationResponse& job = reply.header();
-  if (!acquired.ok() || !job.has_job()) {
+  const v1::AcquireEvaluationResponse& grant = reply.header();
+  if (!acquired.ok() || grant.jobs().empty()) {
     if (!acquired.ok() && !IsTransient(acquired)) {
-      Log(LogLevel::kWarning, "cannot take an evaluation job", {{"error", acquired.ToString()}});
+      Log(LogLevel::kWarning, "cannot take evaluation jobs", {{"error", acquired.ToString()}});
     }
     return false;
   }
-  absl::StatusOr<v1::ContextReturns> result = Evaluate(job, reply.payload());
-  if (!result.ok()) {
-    Log(LogLevel::kError, "cannot run an evaluation job",
-        {{"job", JobName(job.job())}, {"error", result.status().ToString()}});
-    return true;  // the job lapses; nothing here can run it
-  }
   v1::ReportEvaluationRequest report;
-  *report.mutable_job() = job.job();
-  *report.mutable_result() = *std::move(result);
+  for (const v1::EvaluationJob& job : grant.jobs()) {
+    absl::StatusOr<v1::ContextReturns> result = Evaluate(grant, job, reply.payload());
+    if (!result.ok()) {
+      Log(LogLevel::kError, "cannot run an evaluation job",
+          {{"job", JobName(job)}, {"error", result.status().ToString()}});
+      return true;  // the jobs lapse; nothing here can run them
+    }
+    v1::JobResult& delivered = *report.add_results();
+    *delivered.mutable_job() = job;
+    *delivered.mutable_result() = *std::move(result);
+  }
   v1::ReportEvaluationResponse reported;
   const absl::Status status = CallWithRetries(
       *coordinator_, &v1::CoordinatorService::Stub::ReportEvaluation, report, reported,
       options_.rpc_timeout, "coordinator", kRetryBackoff,
       [&](const absl::Status&) { return !stopping_.HasBeenNotified(); });
   if (status.ok()) {
-    jobs_.Increment();
+    jobs_.Increment(report.results_size());
   } else {
-    Log(LogLevel::kWarning, "evaluation job not delivered",
-        {{"job", JobName(job.job())}, {"error", status.ToString()}});
+    Log(LogLevel::kWarning, "evaluation jobs not delivered",
+        {{"first_job", JobName(grant.jobs(0))},
+         {"jobs", std::to_string(grant.jobs_size())},
+         {"error", status.ToString()}});
   }
   return true;
 }

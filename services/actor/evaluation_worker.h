@@ -2,11 +2,11 @@
 #ifndef DCS_SERVICES_ACTOR_EVALUATION_WORKER_H_
 #define DCS_SERVICES_ACTOR_EVALUATION_WORKER_H_
 
-// An actor's evaluation jobs (DESIGN.md §3). A thread takes one job at a time from the
-// coordinator (AcquireEvaluation): one evaluation context of one policy version of a run. It
-// evaluates the context with that policy (actor::EvaluateContext, Eigen, as `dcs train` does)
-// and delivers the episodes' returns (ReportEvaluation, retried while the coordinator is
-// down). It evaluates holding the actor's core (the mutex its slots step under), so an actor
+// An actor's evaluation jobs (DESIGN.md §3). A thread takes jobs from the coordinator
+// (AcquireEvaluation): a few evaluation contexts of one policy version of a run, this actor's
+// share of them. It evaluates each context with that policy (actor::EvaluateContext, Eigen, as
+// `dcs train` does) and delivers their episodes' returns together (ReportEvaluation, retried
+// while the coordinator is down): a call per share rather than two per context. It evaluates holding the actor's core (the mutex its slots step under), so an actor
 // still uses one core: while its slots wait for their runs' updates, it evaluates.
 //
 // A job that cannot be run here (a config this build does not know, say) is logged and left
@@ -37,6 +37,7 @@ struct EvaluationWorkerOptions {
   std::string numerics;  // the numeric libraries' fingerprint
   absl::Duration poll_interval = absl::Milliseconds(200);  // when there is no job
   absl::Duration rpc_timeout = absl::Seconds(10);
+  int max_jobs = 8;  // taken at once: as many as this actor surely runs within a lease
 };
 
 class EvaluationWorker {
@@ -53,14 +54,16 @@ class EvaluationWorker {
 
  private:
   void Work();
-  // Takes a job, runs it and delivers it; false if there was none.
-  bool RunOneJob();
-  // The returns of the job `job` describes, with the policy `weights` (a serialised
+  // Takes jobs, runs them and delivers them; false if there were none.
+  bool RunJobs();
+  // The returns of `job`, one of `grant`'s, with the policy `weights` (a serialised
   // PolicyWeights).
-  absl::StatusOr<v1::ContextReturns> Evaluate(const v1::AcquireEvaluationResponse& job,
+  absl::StatusOr<v1::ContextReturns> Evaluate(const v1::AcquireEvaluationResponse& grant,
+                                              const v1::EvaluationJob& job,
                                               absl::string_view weights);
   // The run and policy of `job`, made once for the consecutive jobs of an evaluation.
-  absl::Status Prepare(const v1::AcquireEvaluationResponse& job, absl::string_view weights);
+  absl::Status Prepare(const v1::AcquireEvaluationResponse& grant, const v1::EvaluationJob& job,
+                       absl::string_view weights);
 
   // What the jobs of one evaluation share; the worker thread's only.
   struct Prepared {

@@ -299,12 +299,30 @@ EvaluationRequest Evaluation(int64_t policy_version, int contexts = 2) {
           .weights = std::string("w\0v", 3) + std::to_string(policy_version)};
 }
 
-std::optional<EvaluationJob> AcquireJob(RunStore& store, absl::Time now = kStart,
-                                        std::string numerics = "N") {
-  absl::StatusOr<std::optional<EvaluationJob>> job =
-      store.AcquireEvaluationJob("A", numerics, now);
-  EXPECT_TRUE(job.ok()) << job.status();
-  return job.ok() ? *job : std::nullopt;
+std::optional<EvaluationGrant> AcquireJobs(RunStore& store, int max_jobs, int actors,
+                                           absl::Time now = kStart, std::string numerics = "N") {
+  absl::StatusOr<std::optional<EvaluationGrant>> grant =
+      store.AcquireEvaluationJobs("A", numerics, max_jobs, actors, now);
+  EXPECT_TRUE(grant.ok()) << grant.status();
+  return grant.ok() ? *grant : std::nullopt;
+}
+
+// One job, as its only key; nullopt if none was granted.
+std::optional<EvaluationJobKey> AcquireJob(RunStore& store, absl::Time now = kStart,
+                                           std::string numerics = "N") {
+  std::optional<EvaluationGrant> grant = AcquireJobs(store, 1, 1, now, std::move(numerics));
+  if (!grant.has_value()) return std::nullopt;
+  EXPECT_EQ(grant->jobs.size(), 1u);
+  return grant->jobs.front();
+}
+
+absl::StatusOr<bool> Report(RunStore& store, const EvaluationJobKey& job,
+                            ContextReturns result) {
+  const JobResult delivered{.job = job, .result = std::move(result)};
+  absl::StatusOr<std::vector<bool>> duplicate = store.ReportEvaluationJobs({&delivered, 1});
+  if (!duplicate.ok()) return duplicate.status();
+  EXPECT_EQ(duplicate->size(), 1u);
+  return duplicate->front();
 }
 
 TEST_F(RunStoreTest, AnEvaluationIsOneJobPerContextForActorsAndIsCompleteOnceAllAreIn) {
@@ -313,25 +331,26 @@ TEST_F(RunStoreTest, AnEvaluationIsOneJobPerContextForActorsAndIsCompleteOnceAll
   ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1), kStart).ok());
   EXPECT_EQ(store->Counts()->free_evaluation_jobs, 2);
 
-  std::optional<EvaluationJob> first = AcquireJob(*store);
-  std::optional<EvaluationJob> second = AcquireJob(*store);
-  ASSERT_TRUE(first.has_value() && second.has_value());
+  std::optional<EvaluationGrant> grant = AcquireJobs(*store, 1, 1);
+  std::optional<EvaluationJobKey> second = AcquireJob(*store);
+  ASSERT_TRUE(grant.has_value() && second.has_value());
   EXPECT_FALSE(AcquireJob(*store).has_value());
-  EXPECT_EQ(first->key.context, 0);
-  EXPECT_EQ(second->key.context, 1);
-  EXPECT_EQ(first->weights, std::string("w\0v1", 4));  // bytes, NULs included
-  EXPECT_EQ(first->episodes, 3);
-  EXPECT_EQ(first->config, "env: cartpole\n");
+  const EvaluationJobKey first = grant->jobs.front();
+  EXPECT_EQ(first.context, 0);
+  EXPECT_EQ(second->context, 1);
+  EXPECT_EQ(grant->weights, std::string("w\0v1", 4));  // bytes, NULs included
+  EXPECT_EQ(grant->episodes, 3);
+  EXPECT_EQ(grant->config, "env: cartpole\n");
 
-  ASSERT_TRUE(store->ReportEvaluationJob(second->key, {{4.0, 5.0, 6.5}, 0.25}).ok());
+  ASSERT_TRUE(Report(*store, *second, {{4.0, 5.0, 6.5}, 0.25}).ok());
   absl::StatusOr<EvaluationProgress> partial = store->GetEvaluation("run-1", 1);
   ASSERT_TRUE(partial.ok());
   EXPECT_EQ(partial->done, 1);
   EXPECT_TRUE(partial->results.empty());
 
-  ASSERT_TRUE(store->ReportEvaluationJob(first->key, {{1.0, 2.0, 1.0 / 3.0}, 0.5}).ok());
+  ASSERT_TRUE(Report(*store, first, {{1.0, 2.0, 1.0 / 3.0}, 0.5}).ok());
   // A retry is acknowledged as one and changes nothing.
-  EXPECT_EQ(store->ReportEvaluationJob(first->key, {{9.0, 9.0, 9.0}, 0}).value_or(false), true);
+  EXPECT_EQ(Report(*store, first, {{9.0, 9.0, 9.0}, 0}).value_or(false), true);
   absl::StatusOr<EvaluationProgress> done = store->GetEvaluation("run-1", 1);
   ASSERT_TRUE(done.ok());
   ASSERT_EQ(done->results.size(), 2u);
@@ -340,6 +359,48 @@ TEST_F(RunStoreTest, AnEvaluationIsOneJobPerContextForActorsAndIsCompleteOnceAll
   EXPECT_THAT(done->results[1].returns, ElementsAre(4.0, 5.0, 6.5));
   EXPECT_EQ(store->Counts()->free_evaluation_jobs, 0);
   EXPECT_EQ(store->GetEvaluation("run-1", 2).status().code(), absl::StatusCode::kNotFound);
+}
+
+TEST_F(RunStoreTest, AnActorTakesItsShareOfAnEvaluationsFreeJobsInOneGrant) {
+  std::unique_ptr<RunStore> store = Open();
+  const LeaseKey learner = SubmitAndAcquire(*store).key;
+  ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/5), kStart).ok());
+  auto contexts = [](const std::optional<EvaluationGrant>& grant) {
+    std::vector<int> taken;
+    if (grant.has_value()) {
+      for (const EvaluationJobKey& job : grant->jobs) taken.push_back(job.context);
+    }
+    return taken;
+  };
+  // Two actors share five free jobs: three (rounded up), then one of the two left.
+  EXPECT_THAT(contexts(AcquireJobs(*store, /*max_jobs=*/8, /*actors=*/2)), ElementsAre(0, 1, 2));
+  EXPECT_THAT(contexts(AcquireJobs(*store, /*max_jobs=*/8, /*actors=*/2)), ElementsAre(3));
+  // One actor may take all that is left, but no more than it asks for.
+  ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(2, /*contexts=*/3), kStart).ok());
+  EXPECT_THAT(contexts(AcquireJobs(*store, /*max_jobs=*/8, /*actors=*/1)), ElementsAre(4));
+  EXPECT_THAT(contexts(AcquireJobs(*store, /*max_jobs=*/2, /*actors=*/1)), ElementsAre(0, 1));
+  EXPECT_EQ(store->Counts()->free_evaluation_jobs, 1);
+}
+
+TEST_F(RunStoreTest, AReportOfSeveralJobsIsStoredWholeOrNotAtAll) {
+  std::unique_ptr<RunStore> store = Open();
+  const LeaseKey learner = SubmitAndAcquire(*store).key;
+  ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/2), kStart).ok());
+  std::optional<EvaluationGrant> grant = AcquireJobs(*store, 2, 1);
+  ASSERT_TRUE(grant.has_value());
+  ASSERT_EQ(grant->jobs.size(), 2u);
+  std::vector<JobResult> results = {{grant->jobs[0], {{1, 2, 3}, 0}},
+                                    {grant->jobs[1], {{4, 5}, 0}}};
+  EXPECT_THAT(store->ReportEvaluationJobs(results).status().message(),
+              HasSubstr("context 1 of policy version 1 of run-1 has 3 episodes"));
+  EXPECT_EQ(store->GetEvaluation("run-1", 1)->done, 0);  // the good one was not kept either
+
+  results[1].result.returns.push_back(6);
+  absl::StatusOr<std::vector<bool>> duplicate = store->ReportEvaluationJobs(results);
+  ASSERT_TRUE(duplicate.ok()) << duplicate.status();
+  EXPECT_THAT(*duplicate, ElementsAre(false, false));
+  EXPECT_THAT(*store->ReportEvaluationJobs(results), ElementsAre(true, true));
+  EXPECT_EQ(store->GetEvaluation("run-1", 1)->done, 2);
 }
 
 TEST_F(RunStoreTest, SubmittingAnEvaluationAgainIsIdempotentAndNeedsTheLearnerLease) {
@@ -362,39 +423,38 @@ TEST_F(RunStoreTest, ALapsedJobGoesBackToTheQueueAndItsOldHolderIsRefusedOnceReg
   std::unique_ptr<RunStore> store = Open();
   const LeaseKey learner = SubmitAndAcquire(*store).key;
   ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/1), kStart).ok());
-  std::optional<EvaluationJob> old = AcquireJob(*store);
+  std::optional<EvaluationJobKey> old = AcquireJob(*store);
   ASSERT_TRUE(old.has_value());
   EXPECT_FALSE(AcquireJob(*store, kStart + kLease / 2).has_value());
 
   // The learner renews its own lease; the job's holder went silent.
   const absl::Time later = kStart + kLease + absl::Seconds(1);
   ASSERT_TRUE(store->RenewLease(learner, kStart + kLease / 2).ok());
-  std::optional<EvaluationJob> again = AcquireJob(*store, later);
+  std::optional<EvaluationJobKey> again = AcquireJob(*store, later);
   ASSERT_TRUE(again.has_value());
-  EXPECT_EQ(again->key.epoch, old->key.epoch + 1);
-  const absl::StatusOr<bool> refused = store->ReportEvaluationJob(old->key, {{1, 2, 3}, 0});
+  EXPECT_EQ(again->epoch, old->epoch + 1);
+  const absl::StatusOr<bool> refused = Report(*store, *old, {{1, 2, 3}, 0});
   EXPECT_EQ(refused.status().code(), absl::StatusCode::kFailedPrecondition);
   EXPECT_THAT(refused.status().message(), HasSubstr("moved"));
-  EXPECT_EQ(store->ReportEvaluationJob(again->key, {{1, 2, 3}, 0}).value_or(true), false);
+  EXPECT_EQ(Report(*store, *again, {{1, 2, 3}, 0}).value_or(true), false);
 }
 
 TEST_F(RunStoreTest, ABadResultIsRefusedAndTheJobStaysOpen) {
   std::unique_ptr<RunStore> store = Open();
   const LeaseKey learner = SubmitAndAcquire(*store).key;
   ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/1), kStart).ok());
-  std::optional<EvaluationJob> job = AcquireJob(*store);
+  std::optional<EvaluationJobKey> job = AcquireJob(*store);
   ASSERT_TRUE(job.has_value());
-  EXPECT_THAT(store->ReportEvaluationJob(job->key, {{1, 2}, 0}).status().message(),
+  EXPECT_THAT(Report(*store, *job, {{1, 2}, 0}).status().message(),
               HasSubstr("has 3 episodes; 2 returns were delivered"));
-  EXPECT_THAT(
-      store->ReportEvaluationJob(job->key, {{1, std::nan(""), 3}, 0}).status().message(),
-      HasSubstr("episode 1"));
-  EvaluationJobKey unknown = job->key;
+  EXPECT_THAT(Report(*store, *job, {{1, std::nan(""), 3}, 0}).status().message(),
+              HasSubstr("episode 1"));
+  EvaluationJobKey unknown = *job;
   unknown.context = 5;
-  EXPECT_EQ(store->ReportEvaluationJob(unknown, {{1, 2, 3}, 0}).status().code(),
+  EXPECT_EQ(Report(*store, unknown, {{1, 2, 3}, 0}).status().code(),
             absl::StatusCode::kNotFound);
   EXPECT_EQ(store->GetEvaluation("run-1", 1)->done, 0);
-  EXPECT_EQ(store->ReportEvaluationJob(job->key, {{1, 2, 3}, 0}).value_or(true), false);
+  EXPECT_EQ(Report(*store, *job, {{1, 2, 3}, 0}).value_or(true), false);
 }
 
 TEST_F(RunStoreTest, JobsGoOnlyToActorsOfTheRunsNumericsAndOnlyWhileItRuns) {
@@ -412,9 +472,9 @@ TEST_F(RunStoreTest, EvaluationsSurviveAReopen) {
     std::unique_ptr<RunStore> store = Open();
     const LeaseKey learner = SubmitAndAcquire(*store).key;
     ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/1), kStart).ok());
-    std::optional<EvaluationJob> job = AcquireJob(*store);
+    std::optional<EvaluationJobKey> job = AcquireJob(*store);
     ASSERT_TRUE(job.has_value());
-    ASSERT_TRUE(store->ReportEvaluationJob(job->key, {{1, 2, 3}, 0}).ok());
+    ASSERT_TRUE(Report(*store, *job, {{1, 2, 3}, 0}).ok());
   }
   std::unique_ptr<RunStore> store = Open(kStart + absl::Seconds(60));
   absl::StatusOr<EvaluationProgress> evaluation = store->GetEvaluation("run-1", 1);

@@ -661,12 +661,14 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
   acquire_job.set_holder("fake-actor");
   const Job acquired = AcquireJob(*coordinator, acquire_job);
   const v1::AcquireEvaluationResponse& job = acquired.job;
-  ASSERT_TRUE(job.has_job());
+  ASSERT_EQ(job.jobs_size(), 1);  // it asked for no more
   EXPECT_EQ(job.episodes(), 3);
   EXPECT_EQ(acquired.weights.num_actions(), 2);
   v1::ReportEvaluationRequest good;
-  *good.mutable_job() = job.job();
-  for (double value : {1.0, 2.0, 3.0}) good.mutable_result()->add_returns(value);
+  *good.add_results()->mutable_job() = job.jobs(0);
+  for (double value : {1.0, 2.0, 3.0}) {
+    good.mutable_results(0)->mutable_result()->add_returns(value);
+  }
 
   struct Case {
     const char* what;
@@ -675,17 +677,21 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
     const char* message;
   };
   const Case cases[] = {
-      {"unknown run", [](auto& r) { r.mutable_job()->set_run_id("run-99"); },
+      {"unknown run", [](auto& r) { r.mutable_results(0)->mutable_job()->set_run_id("run-99"); },
        absl::StatusCode::kNotFound, "context 0 of policy version 0 of run-99 does not exist"},
-      {"unknown context", [](auto& r) { r.mutable_job()->set_context(9); },
+      {"unknown context", [](auto& r) { r.mutable_results(0)->mutable_job()->set_context(9); },
        absl::StatusCode::kNotFound, "context 9"},
-      {"too few returns", [](auto& r) { r.mutable_result()->mutable_returns()->RemoveLast(); },
+      {"too few returns",
+       [](auto& r) { r.mutable_results(0)->mutable_result()->mutable_returns()->RemoveLast(); },
        absl::StatusCode::kInvalidArgument, "has 3 episodes; 2 returns were delivered"},
       {"NaN",
        [](auto& r) {
-         r.mutable_result()->set_returns(1, std::numeric_limits<double>::quiet_NaN());
+         r.mutable_results(0)->mutable_result()->set_returns(
+             1, std::numeric_limits<double>::quiet_NaN());
        },
        absl::StatusCode::kInvalidArgument, "the return of episode 1"},
+      {"no result", [](auto& r) { r.clear_results(); }, absl::StatusCode::kInvalidArgument,
+       "holds no job's result"},
   };
   for (const Case& bad : cases) {
     v1::ReportEvaluationRequest request = good;
@@ -697,22 +703,22 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
     EXPECT_THAT(status.message(), HasSubstr(bad.message)) << bad.what;
   }
   // The good result is taken, once.
-  EXPECT_FALSE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, good).duplicate());
-  EXPECT_TRUE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, good).duplicate());
+  EXPECT_FALSE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, good).duplicate(0));
+  EXPECT_TRUE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, good).duplicate(0));
 
   // A holder whose job lapsed and went to another is refused.
   const v1::AcquireEvaluationResponse lapsing = AcquireJob(*coordinator, acquire_job).job;
-  ASSERT_EQ(lapsing.job().context(), 1);
+  ASSERT_EQ(lapsing.jobs(0).context(), 1);
   absl::SleepFor(kLease * 0.6);
   v1::RenewLeaseRequest renew;  // the learner stays
   *renew.mutable_lease() = run.lease();
   CallCoordinator(*coordinator, &Stub::RenewLease, renew);
   absl::SleepFor(kLease * 0.6);
   const v1::AcquireEvaluationResponse again = AcquireJob(*coordinator, acquire_job).job;
-  ASSERT_EQ(again.job().context(), 1);
-  EXPECT_GT(again.job().epoch(), lapsing.job().epoch());
+  ASSERT_EQ(again.jobs(0).context(), 1);
+  EXPECT_GT(again.jobs(0).epoch(), lapsing.jobs(0).epoch());
   v1::ReportEvaluationRequest late = good;
-  *late.mutable_job() = lapsing.job();
+  *late.mutable_results(0)->mutable_job() = lapsing.jobs(0);
   v1::ReportEvaluationResponse refused;
   const absl::Status moved = services::CallUnary(*coordinator, &Stub::ReportEvaluation, late,
                                                  refused, kTimeout, "coordinator");
@@ -724,7 +730,7 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
   ASSERT_TRUE(metrics.ok()) << metrics.status();
   EXPECT_EQ(MetricValue(*metrics, "dcs_requests_rejected_total{reason=\"NOT_FOUND\"}"), 2);
   EXPECT_EQ(MetricValue(*metrics, "dcs_requests_rejected_total{reason=\"INVALID_ARGUMENT\"}"),
-            3);
+            4);
   EXPECT_EQ(
       MetricValue(*metrics, "dcs_requests_rejected_total{reason=\"FAILED_PRECONDITION\"}"), 1);
 }
