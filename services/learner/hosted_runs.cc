@@ -67,7 +67,10 @@ HostedRuns::~HostedRuns() { Stop(); }
 
 void HostedRuns::Stop() {
   if (stopping_.HasBeenNotified()) return;  // stopped already
-  stopping_.Notify();
+  {
+    absl::MutexLock lock(&mu_);  // wakes the manager, which waits on mu_
+    stopping_.Notify();
+  }
   if (manager_.joinable()) manager_.join();
   std::map<std::pair<std::string, int64_t>, std::shared_ptr<Run>> runs;
   {
@@ -115,10 +118,18 @@ absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Find(const std::st
 }
 
 void HostedRuns::Manage() {
-  while (!stopping_.WaitForNotificationWithTimeout(options_.poll_interval)) {
+  while (!stopping_.HasBeenNotified()) {
     JoinFinished(mu_, runs_);
     RenewLeases();
     AcquireRun();
+    // Until the next round, or until a run ends and makes room for the next one at once.
+    absl::MutexLock lock(&mu_);
+    auto woken = [this]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_) {
+      return stopping_.HasBeenNotified() ||
+             std::any_of(runs_.begin(), runs_.end(),
+                         [](const auto& entry) { return entry.second->done.load(); });
+    };
+    mu_.AwaitWithTimeout(absl::Condition(&woken), options_.poll_interval);
   }
 }
 
@@ -186,6 +197,7 @@ void HostedRuns::AcquireRun() {
   absl::MutexLock lock(&mu_);
   run->thread = std::thread([this, run] {
     Train(*run);
+    absl::MutexLock done_lock(&mu_);  // wakes the manager
     run->done = true;
   });
   runs_[{run->lease.run_id, run->lease.epoch}] = std::move(run);
