@@ -3,9 +3,11 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <algorithm>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
 #include "actor/evaluation.h"
 #include "common/status_macros.h"
 #include "env/env_registry.h"
@@ -16,6 +18,7 @@
 #include "services/pieces.h"
 #include "services/run_proto.h"
 #include "services/stream_call.h"
+#include "services/time_proto.h"
 #include "services/trajectory_proto.h"
 #include "services/unary_call.h"
 
@@ -104,7 +107,7 @@ bool EvaluationWorker::RunJobs() {
   v1::AcquireEvaluationRequest request;
   request.set_holder(options_.holder);
   request.set_numerics(options_.numerics);
-  request.set_max_jobs(options_.max_jobs);
+  request.set_max_jobs(jobs_wanted_);
   PieceJoiner<v1::AcquireEvaluationResponse> reply(
       &v1::AcquireEvaluationResponse::mutable_weights, "the evaluation's policy");
   const absl::Status acquired = CallServerStream(
@@ -118,6 +121,7 @@ bool EvaluationWorker::RunJobs() {
     }
     return false;
   }
+  const absl::Time start = absl::Now();
   v1::ReportEvaluationRequest report;
   for (const v1::EvaluationJob& job : grant.jobs()) {
     absl::StatusOr<v1::ContextReturns> result = Evaluate(grant, job, reply.payload());
@@ -130,6 +134,11 @@ bool EvaluationWorker::RunJobs() {
     *delivered.mutable_job() = job;
     *delivered.mutable_result() = *std::move(result);
   }
+  const absl::Duration per_job = (absl::Now() - start) / grant.jobs_size();
+  const absl::Duration lease = DurationFromProto(grant.lease_duration());
+  jobs_wanted_ = static_cast<int>(std::clamp(
+      absl::FDivDuration(lease / 2, std::max(per_job, absl::Nanoseconds(1))), 1.0,
+      static_cast<double>(options_.max_jobs)));
   v1::ReportEvaluationResponse reported;
   const absl::Status status = CallWithRetries(
       *coordinator_, &v1::CoordinatorService::Stub::ReportEvaluation, report, reported,

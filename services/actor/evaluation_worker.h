@@ -6,8 +6,12 @@
 // (AcquireEvaluation): a few evaluation contexts of one policy version of a run, this actor's
 // share of them. It evaluates each context with that policy (actor::EvaluateContext, Eigen, as
 // `dcs train` does) and delivers their episodes' returns together (ReportEvaluation, retried
-// while the coordinator is down): a call per share rather than two per context. It evaluates holding the actor's core (the mutex its slots step under), so an actor
-// still uses one core: while its slots wait for their runs' updates, it evaluates.
+// while the coordinator is down): a call per share rather than two per context. It evaluates
+// holding the actor's core (the mutex its slots step under), so an actor still uses one core:
+// while its slots wait for their runs' updates, it evaluates.
+//
+// A grant's jobs must be delivered within one lease (they are not renewed), so the worker asks
+// for as many as the last grant's pace fits in half a lease (at most max_jobs; one at first).
 //
 // A job that cannot be run here (a config this build does not know, say) is logged and left
 // to lapse. Thread-safe. The destructor stops the thread.
@@ -37,7 +41,7 @@ struct EvaluationWorkerOptions {
   std::string numerics;  // the numeric libraries' fingerprint
   absl::Duration poll_interval = absl::Milliseconds(200);  // when there is no job
   absl::Duration rpc_timeout = absl::Seconds(10);
-  int max_jobs = 8;  // taken at once: as many as this actor surely runs within a lease
+  int max_jobs = 8;  // taken at once, at most
 };
 
 class EvaluationWorker {
@@ -74,6 +78,7 @@ class EvaluationWorker {
     std::optional<actor::PolicyNetwork> policy;
   };
   Prepared prepared_;
+  int jobs_wanted_ = 1;  // in the next grant; the worker thread's
 
   const EvaluationWorkerOptions options_;
   const std::unique_ptr<v1::CoordinatorService::Stub> coordinator_;
