@@ -1,7 +1,9 @@
 // Copyright 2026 The DCS Authors.
 #include "services/coordinator_service.h"
 
+#include <algorithm>
 #include <utility>
+#include <vector>
 
 #include "absl/time/clock.h"
 #include "services/cluster_proto.h"
