@@ -560,16 +560,17 @@ absl::StatusOr<std::optional<EvaluationGrant>> RunStore::AcquireEvaluationJobs(
     free.bind(2, policy_version);
     std::vector<int> contexts;
     while (free.executeStep()) contexts.push_back(free.getColumn(0).getInt());
-    const size_t share = (contexts.size() + std::max(actors, 1) - 1) / std::max(actors, 1);
+    const size_t sharers = static_cast<size_t>(std::max(actors, 1));
+    const size_t share = (contexts.size() + sharers - 1) / sharers;
     contexts.resize(std::min({contexts.size(), share, static_cast<size_t>(std::max(max_jobs, 1))}));
     SQLite::Statement lease(*db_, "UPDATE evaluation_jobs SET epoch = epoch + 1, holder = ?, "
                                   "deadline = ? WHERE run = ? AND policy_version = ? AND "
                                   "context = ? RETURNING epoch");
-    for (const int context : contexts) {
-      lease.bind(1, std::string(holder));
-      lease.bind(2, Micros(now + options_.lease_duration));
-      lease.bind(3, number);
-      lease.bind(4, policy_version);
+    lease.bind(1, std::string(holder));
+    lease.bind(2, Micros(now + options_.lease_duration));
+    lease.bind(3, number);
+    lease.bind(4, policy_version);
+    for (const int context : contexts) {  // reset() keeps the bindings above
       lease.bind(5, context);
       lease.executeStep();
       grant.jobs.push_back({.run_id = RunId(number),

@@ -228,9 +228,9 @@ class RunStore {
 
   // Free jobs of the oldest evaluation with any, of a running run that an actor with
   // `numerics` may run, leased to `holder` until now + lease_duration: at most `max_jobs`, and
-  // at most this actor's share of them among `actors` actors (rounded up), so that one
-  // evaluation spreads over the cluster while each actor takes its part in one call. nullopt
-  // if there is none.
+  // at most this actor's share of them among `actors` actors (at least 1), rounded up, so that
+  // one evaluation spreads over the cluster while each actor takes its part in one call.
+  // nullopt if there is none.
   absl::StatusOr<std::optional<EvaluationGrant>> AcquireEvaluationJobs(absl::string_view holder,
                                                                        absl::string_view numerics,
                                                                        int max_jobs, int actors,

@@ -56,11 +56,10 @@ void CoordinatorService::CountRefusal(const absl::Status& status) {
 
 int CoordinatorService::AliveActors() const {
   const std::vector<coordinator::WorkerRecord> workers = registry_.List(absl::Now());
-  return std::max<int>(1, static_cast<int>(std::count_if(
-                              workers.begin(), workers.end(), [](const auto& worker) {
-                                return worker.info.role == coordinator::WorkerRole::kActor &&
-                                       worker.state == coordinator::WorkerState::kAlive;
-                              })));
+  return static_cast<int>(std::count_if(workers.begin(), workers.end(), [](const auto& worker) {
+    return worker.info.role == coordinator::WorkerRole::kActor &&
+           worker.state == coordinator::WorkerState::kAlive;
+  }));
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::Finish(grpc::CallbackServerContext* context,

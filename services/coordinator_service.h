@@ -105,7 +105,7 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
                                    const absl::Status& status);
   // Counts `status` under its reason unless it is OK.
   void CountRefusal(const absl::Status& status);
-  // The actors heartbeating now (at least 1), who share each evaluation's jobs.
+  // The actors heartbeating now, who share each evaluation's jobs.
   int AliveActors() const;
   // Stores a checkpoint a learner streamed (PutCheckpoint), with the evaluation log as of it.
   absl::Status StoreCheckpoint(const coordinator::LeaseKey& key,
