@@ -1,6 +1,6 @@
 # The two commands of README.md, and their parts. Each target does all set-up it needs.
-#   make demo   bootstrap, build, run the main job on the local default (scripts/demo): train
-#               one run of the paper's CartPole experiment, then start and stop a local cluster
+#   make demo   bootstrap, build, run the main job on the local default (scripts/demo): a small
+#               sweep of the paper's CartPole experiment on a local cluster, its table and figures
 #   make test   bootstrap, build, run every test with ctest
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)

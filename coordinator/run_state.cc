@@ -15,6 +15,7 @@ constexpr Move kMoves[] = {
     {RunState::kQueued, RunState::kRunning},     {RunState::kRunning, RunState::kQueued},
     {RunState::kRunning, RunState::kCompleted},  {RunState::kRunning, RunState::kFailed},
     {RunState::kQueued, RunState::kCancelled},   {RunState::kRunning, RunState::kCancelled},
+    {RunState::kFailed, RunState::kQueued},
 };
 
 }  // namespace
@@ -31,6 +32,22 @@ absl::Status CheckTransition(absl::string_view run_id, RunState from, RunState t
   return absl::FailedPreconditionError(absl::StrCat("run ", run_id, " is ",
                                                     NameOf(kRunStateNames, from), " and cannot ",
                                                     "become ", NameOf(kRunStateNames, to)));
+}
+
+SweepState SweepStateOf(std::span<const std::pair<RunState, int64_t>> runs_by_state,
+                        bool cancelled) {
+  int64_t total = 0;
+  auto count = [&](RunState wanted) {
+    int64_t n = 0;
+    for (const auto& [state, runs] : runs_by_state) n += state == wanted ? runs : 0;
+    return n;
+  };
+  for (const auto& [state, runs] : runs_by_state) total += runs;
+  const int64_t queued = count(RunState::kQueued);
+  if (total > 0 && queued == total) return SweepState::kQueued;
+  if (queued + count(RunState::kRunning) > 0) return SweepState::kRunning;
+  if (cancelled) return SweepState::kCancelled;
+  return count(RunState::kFailed) > 0 ? SweepState::kFailed : SweepState::kCompleted;
 }
 
 }  // namespace dcs::coordinator

@@ -10,8 +10,15 @@
 //     └───────────┘  its learner's lease lapsed: back to the queue, to resume from its last
 //                    checkpoint on whichever learner takes it next
 //   queued | running ──▶ cancelled
+//   failed ──▶ queued     a client retried it (`dcs retry`): it resumes from its last checkpoint
+//
+// A sweep's state is derived from its runs' (SweepStateOf), never stored.
 //
 // Thread-safe (constant data, pure functions).
+
+#include <cstdint>
+#include <span>
+#include <utility>
 
 #include "absl/status/status.h"
 #include "absl/strings/string_view.h"
@@ -27,12 +34,27 @@ inline constexpr EnumName<RunState> kRunStateNames[] = {
     {RunState::kCancelled, "cancelled"}};
 static_assert(InEnumOrder(kRunStateNames));
 
-// Completed, failed or cancelled: nothing moves it any more.
+// Completed, failed or cancelled: no worker moves it any more (only a client's retry of a
+// failed run does).
 bool IsTerminal(RunState state);
 
 // OK if a run may move from `from` to `to`; otherwise FAILED_PRECONDITION naming both (and the
 // run `run_id`).
 absl::Status CheckTransition(absl::string_view run_id, RunState from, RunState to);
+
+enum class SweepState { kQueued, kRunning, kCompleted, kFailed, kCancelled };
+
+inline constexpr EnumName<SweepState> kSweepStateNames[] = {
+    {SweepState::kQueued, "queued"},       {SweepState::kRunning, "running"},
+    {SweepState::kCompleted, "completed"}, {SweepState::kFailed, "failed"},
+    {SweepState::kCancelled, "cancelled"}};
+static_assert(InEnumOrder(kSweepStateNames));
+
+// A sweep of runs counted by state (`runs_by_state`): queued while every run is; running while
+// any is queued or running; then cancelled if the sweep was (`cancelled`), failed if any run
+// failed, else completed.
+SweepState SweepStateOf(std::span<const std::pair<RunState, int64_t>> runs_by_state,
+                        bool cancelled);
 
 }  // namespace dcs::coordinator
 

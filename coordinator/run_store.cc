@@ -14,97 +14,18 @@
 #include "absl/strings/str_join.h"
 #include "absl/strings/strip.h"
 #include "common/status_macros.h"
+#include "coordinator/store_rows.h"
 #include "coordinator/store_schema.h"
 
 namespace dcs::coordinator {
 namespace {
 
-constexpr char kRunIdPrefix[] = "run-";
-
-int64_t Micros(absl::Time time) { return absl::ToUnixMicros(time); }
-absl::Time FromMicros(int64_t micros) { return absl::FromUnixMicros(micros); }
-
-std::string RunId(int64_t number) { return absl::StrCat(kRunIdPrefix, number); }
-
-// The row number of "run-<n>"; NOT_FOUND for anything else.
-absl::StatusOr<int64_t> RunNumber(absl::string_view run_id) {
-  int64_t number = 0;
-  absl::string_view digits = run_id;
-  if (!absl::ConsumePrefix(&digits, kRunIdPrefix) || !absl::SimpleAtoi(digits, &number)) {
-    return absl::NotFoundError(absl::StrCat("no run '", run_id, "' (run ids look like run-1)"));
-  }
-  return number;
-}
+using namespace store_rows;  // NOLINT: the store's own rows
 
 std::string LeaseName(const LeaseKey& key) {
   return key.slot == kLearnerSlot ? absl::StrCat("the learner lease of ", key.run_id)
                                   : absl::StrCat("the lease of slot ", key.slot, " of ",
                                                  key.run_id);
-}
-
-constexpr char kRunColumns[] =
-    "number, request_id, config, seed, env, n_envs, total_timesteps, state, error, "
-    "learner_numerics, actor_numerics, "
-    "timesteps, policy_version, steps_per_second, recent_return, avg_combined, evaluation_step, "
-    "checkpoint, created_at, updated_at";
-
-RunRecord ReadRun(SQLite::Statement& row) {
-  RunRecord run;
-  run.id = RunId(row.getColumn(0).getInt64());
-  run.submission = {.request_id = row.getColumn(1).getString(),
-                    .config = row.getColumn(2).getString(),
-                    .seed = static_cast<uint64_t>(row.getColumn(3).getInt64()),
-                    .env = row.getColumn(4).getString(),
-                    .n_envs = row.getColumn(5).getInt(),
-                    .total_timesteps = row.getColumn(6).getInt64()};
-  run.state = FindByName(kRunStateNames, row.getColumn(7).getString()).value_or(RunState::kFailed);
-  run.error = row.getColumn(8).getString();
-  run.learner_numerics = row.getColumn(9).getString();
-  run.actor_numerics = row.getColumn(10).getString();
-  run.progress = {.timesteps = row.getColumn(11).getInt64(),
-                  .policy_version = row.getColumn(12).getInt64(),
-                  .steps_per_second = row.getColumn(13).getDouble(),
-                  .recent_return = row.getColumn(14).isNull()
-                                       ? std::numeric_limits<double>::quiet_NaN()
-                                       : row.getColumn(14).getDouble()};
-  if (!row.getColumn(15).isNull()) run.progress.avg_combined = row.getColumn(15).getDouble();
-  if (!row.getColumn(16).isNull()) run.progress.evaluation_step = row.getColumn(16).getInt64();
-  run.checkpoint = row.getColumn(17).getString();
-  run.created_at = FromMicros(row.getColumn(18).getInt64());
-  run.updated_at = FromMicros(row.getColumn(19).getInt64());
-  return run;
-}
-
-absl::StatusOr<RunRecord> FindRun(SQLite::Database& db, absl::string_view run_id) {
-  DCS_ASSIGN_OR_RETURN(const int64_t number, RunNumber(run_id));
-  SQLite::Statement query(db, absl::StrCat("SELECT ", kRunColumns, " FROM runs WHERE number = ?"));
-  query.bind(1, number);
-  if (!query.executeStep()) return absl::NotFoundError(absl::StrCat("no run ", run_id));
-  return ReadRun(query);
-}
-
-// Moves a run to `to` through the one transition table.
-absl::Status SetRunState(SQLite::Database& db, const RunRecord& run, RunState to,
-                         absl::string_view error, absl::Time now) {
-  DCS_RETURN_IF_ERROR(CheckTransition(run.id, run.state, to));
-  SQLite::Statement update(db, "UPDATE runs SET state = ?, error = ?, updated_at = ? "
-                               "WHERE number = ?");
-  update.bind(1, std::string(NameOf(kRunStateNames, to)));
-  update.bind(2, std::string(error));
-  update.bind(3, Micros(now));
-  update.bind(4, *RunNumber(run.id));
-  update.exec();
-  return absl::OkStatus();
-}
-
-// Frees leases of run `number`: every slot lease, and the learner lease too if `learner`.
-void FreeLeases(SQLite::Database& db, int64_t number, bool learner) {
-  SQLite::Statement update(db, learner ? "UPDATE leases SET holder = '', address = '', "
-                                         "deadline = 0 WHERE run = ?"
-                                       : "UPDATE leases SET holder = '', address = '', "
-                                         "deadline = 0 WHERE run = ? AND slot >= 0");
-  update.bind(1, number);
-  update.exec();
 }
 
 // OK if `key` names the lease as it is held now: same epoch, still held, run not ended.
@@ -165,13 +86,6 @@ absl::StatusOr<int> ExpireLapsed(SQLite::Database& db, absl::Time now) {
                              "WHERE done = 0 AND holder != '' AND deadline < ?");
   jobs.bind(1, Micros(now));
   return static_cast<int>(requeued.size()) + slots.exec() + jobs.exec();
-}
-
-// Drops the policies of run `number`'s evaluations: it ended, nothing evaluates them any more.
-void DropEvaluationWeights(SQLite::Database& db, int64_t number) {
-  SQLite::Statement update(db, "UPDATE evaluations SET weights = x'' WHERE run = ?");
-  update.bind(1, number);
-  update.exec();
 }
 
 std::string JobName(const EvaluationJobKey& key) {
@@ -279,24 +193,6 @@ RunStore::RunStore(std::unique_ptr<SQLite::Database> db, RunStoreOptions options
 
 RunStore::~RunStore() = default;
 
-template <typename Body>
-auto RunStore::Transaction(Body body) -> decltype(body()) {
-  absl::MutexLock lock(&mu_);
-  try {
-    db_->exec("BEGIN IMMEDIATE");
-    try {
-      auto result = body();
-      db_->exec(result.ok() ? "COMMIT" : "ROLLBACK");
-      return result;
-    } catch (...) {
-      db_->exec("ROLLBACK");
-      throw;
-    }
-  } catch (const SQLite::Exception& e) {
-    return absl::InternalError(absl::StrCat(db_->getFilename(), ": ", e.what()));
-  }
-}
-
 absl::StatusOr<std::unique_ptr<RunStore>> RunStore::Open(const std::string& path,
                                                          RunStoreOptions options,
                                                          absl::Time now) {
@@ -337,27 +233,7 @@ absl::StatusOr<RunRecord> RunStore::SubmitRun(const RunSubmission& submission, a
     existing.bind(1, submission.request_id);
     if (existing.executeStep()) return FindRun(*db_, RunId(existing.getColumn(0).getInt64()));
 
-    SQLite::Statement insert(*db_,
-                             "INSERT INTO runs (request_id, config, seed, env, n_envs, "
-                             "total_timesteps, state, created_at, updated_at) "
-                             "VALUES (?, ?, ?, ?, ?, ?, 'queued', ?, ?) RETURNING number");
-    insert.bind(1, submission.request_id);
-    insert.bind(2, submission.config);
-    insert.bind(3, static_cast<int64_t>(submission.seed));
-    insert.bind(4, submission.env);
-    insert.bind(5, submission.n_envs);
-    insert.bind(6, submission.total_timesteps);
-    insert.bind(7, Micros(now));
-    insert.bind(8, Micros(now));
-    insert.executeStep();
-    const int64_t number = insert.getColumn(0).getInt64();
-    insert.reset();
-    for (int slot = kLearnerSlot; slot < submission.n_envs; ++slot) {
-      SQLite::Statement lease(*db_, "INSERT INTO leases (run, slot) VALUES (?, ?)");
-      lease.bind(1, number);
-      lease.bind(2, slot);
-      lease.exec();
-    }
+    const int64_t number = InsertRun(*db_, submission, std::nullopt, std::nullopt, now);
     return FindRun(*db_, RunId(number));
   });
 }
@@ -368,20 +244,14 @@ absl::StatusOr<RunRecord> RunStore::GetRun(absl::string_view run_id) {
 
 absl::StatusOr<std::vector<RunRecord>> RunStore::ListRuns() {
   return Transaction([&]() -> absl::StatusOr<std::vector<RunRecord>> {
-    SQLite::Statement query(*db_, absl::StrCat("SELECT ", kRunColumns,
-                                               " FROM runs ORDER BY number"));
-    std::vector<RunRecord> runs;
-    while (query.executeStep()) runs.push_back(ReadRun(query));
-    return runs;
+    return FindRuns(*db_, "1");
   });
 }
 
 absl::StatusOr<RunRecord> RunStore::CancelRun(absl::string_view run_id, absl::Time now) {
   return Transaction([&]() -> absl::StatusOr<RunRecord> {
     DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(*db_, run_id));
-    DCS_RETURN_IF_ERROR(SetRunState(*db_, run, RunState::kCancelled, "cancelled by a client", now));
-    FreeLeases(*db_, *RunNumber(run_id), /*learner=*/true);
-    DropEvaluationWeights(*db_, *RunNumber(run_id));
+    DCS_RETURN_IF_ERROR(CancelRunRow(*db_, run, "cancelled by a client", now));
     return FindRun(*db_, run_id);
   });
 }
@@ -392,9 +262,12 @@ absl::StatusOr<std::optional<LearnerLease>> RunStore::AcquireRun(absl::string_vi
                                                                  absl::Time now) {
   return Transaction([&]() -> absl::StatusOr<std::optional<LearnerLease>> {
     DCS_RETURN_IF_ERROR(ExpireLapsed(*db_, now).status());
-    SQLite::Statement query(*db_, "SELECT number FROM runs WHERE state = 'queued' AND "
+    // Fair across sweeps: the fewest running runs of the same sweep first (a run alone has
+    // none), then the oldest.
+    SQLite::Statement query(*db_, "SELECT number FROM runs AS r WHERE state = 'queued' AND "
                                   "(learner_numerics = '' OR learner_numerics = ?) "
-                                  "ORDER BY number LIMIT 1");
+                                  "ORDER BY (SELECT count(*) FROM runs WHERE sweep = r.sweep "
+                                  "AND state = 'running'), number LIMIT 1");
     query.bind(1, std::string(numerics));
     if (!query.executeStep()) {
       query.reset();

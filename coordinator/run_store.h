@@ -79,6 +79,8 @@ struct RunRecord {
   std::string checkpoint;  // the latest checkpoint's name; empty before the first
   absl::Time created_at;
   absl::Time updated_at;
+  std::string sweep_id;      // the sweep it belongs to ("sweep-<n>"); empty for a run alone
+  std::optional<int> trial;  // its trial's index in that sweep
 };
 
 // Names a lease as its holder was granted it.
@@ -164,6 +166,42 @@ struct StoreCounts {
   int64_t free_evaluation_jobs = 0;  // evaluation jobs of running runs waiting for an actor
 };
 
+// One trial of a sweep: a condition in one observation mode (run/sweep_spec.h).
+struct TrialRecord {
+  std::string condition;
+  std::string family;   // "static", a schedule family, or "multi_stage"
+  std::string observe;  // none | initial | live
+};
+
+// A sweep as submitted: its trials and one run per trial and seed.
+struct SweepSubmission {
+  std::string request_id;  // client-chosen; a repeated id returns the sweep it created
+  std::string name;
+  std::string spec;        // the spec's text as submitted
+  int seeds = 0;           // runs per trial
+  std::vector<TrialRecord> trials;
+  struct Run {
+    int trial = 0;  // index into `trials`
+    RunSubmission run;
+  };
+  // Queued in this order (and so started in it, within the sweep's fair share): seed-major,
+  // so a sweep's early results cover every trial.
+  std::vector<Run> runs;
+};
+
+struct SweepRecord {
+  std::string id;  // "sweep-<n>"
+  std::string request_id;
+  std::string name;
+  std::string spec;
+  int seeds = 0;
+  std::vector<TrialRecord> trials;
+  SweepState state = SweepState::kQueued;  // derived from its runs (SweepStateOf)
+  std::vector<std::pair<RunState, int64_t>> runs_by_state;  // every state, zeros included
+  absl::Time created_at;
+  absl::Time updated_at;
+};
+
 struct RunStoreOptions {
   absl::Duration lease_duration = absl::Seconds(10);
 };
@@ -194,8 +232,28 @@ class RunStore {
   // it already ended.
   absl::StatusOr<RunRecord> CancelRun(absl::string_view run_id, absl::Time now);
 
-  // The oldest queued run a learner with `numerics` may take, leased to `holder` (listening at
-  // `address`) until now + lease_duration; the run becomes running. nullopt if there is none;
+  // Sweeps (coordinator/sweep_store.cc). Queues a sweep's runs, all of them or (on an error)
+  // none, or returns the sweep `submission.request_id` already created. INVALID_ARGUMENT for an
+  // empty request id, no trials, seeds < 1, a run naming no trial, or a run SubmitRun refuses.
+  absl::StatusOr<SweepRecord> SubmitSweep(const SweepSubmission& submission, absl::Time now);
+  // NOT_FOUND for an unknown id.
+  absl::StatusOr<SweepRecord> GetSweep(absl::string_view sweep_id);
+  // Every sweep, oldest first.
+  absl::StatusOr<std::vector<SweepRecord>> ListSweeps();
+  // The sweep's runs, oldest first. NOT_FOUND for an unknown sweep.
+  absl::StatusOr<std::vector<RunRecord>> ListSweepRuns(absl::string_view sweep_id);
+  // Cancels every queued or running run of the sweep. NOT_FOUND; FAILED_PRECONDITION if none
+  // of its runs was queued or running.
+  absl::StatusOr<SweepRecord> CancelSweep(absl::string_view sweep_id, absl::Time now);
+  // Queues the sweep's failed runs again (each resumes from its last checkpoint, as a run whose
+  // learner was lost does) and returns how many. NOT_FOUND; FAILED_PRECONDITION if none failed.
+  absl::StatusOr<std::pair<SweepRecord, int>> RetrySweep(absl::string_view sweep_id,
+                                                         absl::Time now);
+
+  // A queued run a learner with `numerics` may take, leased to `holder` (listening at
+  // `address`) until now + lease_duration; the run becomes running. Fair across sweeps: the
+  // run whose sweep has the fewest running runs (a run alone counts as a sweep of its own),
+  // the oldest among those; so a small sweep submitted after a big one is not starved. nullopt if there is none;
   // FAILED_PRECONDITION, naming both fingerprints, if the only queued runs compute with other
   // numerics.
   absl::StatusOr<std::optional<LearnerLease>> AcquireRun(absl::string_view holder,
@@ -272,8 +330,7 @@ class RunStore {
  private:
   RunStore(std::unique_ptr<SQLite::Database> db, RunStoreOptions options);
 
-  // Runs `body` in one BEGIN IMMEDIATE transaction, committing if it returns OK; SQLite errors
-  // (thrown by SQLiteCpp) become INTERNAL.
+  // Runs `body` in one transaction (defined in coordinator/store_rows.h).
   template <typename Body>
   auto Transaction(Body body) -> decltype(body());
 

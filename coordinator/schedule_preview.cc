@@ -136,34 +136,41 @@ std::string PreviewCsv(const std::vector<PreviewPanel>& panels,
   return csv;
 }
 
-Figure PreviewFigure(const std::vector<PreviewPanel>& panels,
-                     const std::vector<PreviewTrajectory>& trajectories,
-                     const PreviewOptions& options) {
-  Figure figure{.title = absl::StrCat("Schedule families: ", options.episodes, " episodes of ",
-                                      options.steps, " steps, normalised to [-1, 1] over [",
-                                      options.lo, ", ", options.hi, "]")};
+LineChart PreviewChart(const std::vector<PreviewPanel>& panels,
+                       const std::vector<PreviewTrajectory>& trajectories,
+                       const PreviewOptions& options, std::string name) {
+  LineChart chart{.name = std::move(name),
+                  .title = absl::StrCat("Schedule families: ", options.episodes,
+                                        " episodes of ", options.steps,
+                                        " steps, normalised to [-1, 1] over [", options.lo, ", ",
+                                        options.hi, "]"),
+                  .columns = 3,
+                  .panel_width = 420,
+                  .panel_height = 300};
+  const double steps = static_cast<double>(options.episodes) * options.steps;
   for (const PreviewPanel& preview : panels) {
-    Panel panel{.title = preview.title,
-                .x_label = "step",
-                .y_label = "normalised context",
-                .y_range = std::make_pair(-1.15, 1.15),
-                .x_range = std::make_pair(0.0, static_cast<double>(options.episodes *
-                                                                    options.steps))};
+    LinePanel panel{.title = preview.title,
+                    .x_label = "step",
+                    .y_label = "normalised context",
+                    .x_range = std::make_pair(0.0, steps),
+                    .y_range = std::make_pair(-1.2, 2.1),
+                    .y_markers = {-1, 0, 1},
+                    .y_tics = {{-1}, {-0.5}, {0}, {0.5}, {1}},
+                    .legend = LegendPlace::kTopLeft};
     for (int e = 1; e < options.episodes; ++e) {
-      panel.x_markers.push_back(static_cast<double>(e * options.steps));
+      panel.x_markers.push_back(static_cast<double>(e) * options.steps);
     }
-    panel.y_markers = {-1, 0, 1};
-    figure.panels.push_back(std::move(panel));
+    chart.panels.push_back(std::move(panel));
   }
   for (const PreviewTrajectory& trajectory : trajectories) {
-    Series series{.label = panels[trajectory.panel].curves[trajectory.curve].label};
+    ChartLine line{.label = panels[trajectory.panel].curves[trajectory.curve].label};
     for (size_t i = 0; i < trajectory.values.size(); ++i) {
-      series.x.push_back(static_cast<double>(i));
-      series.y.push_back(Normalized(trajectory.values[i], options));
+      line.x.push_back(static_cast<double>(i));
+      line.y.push_back(Normalized(trajectory.values[i], options));
     }
-    figure.panels[trajectory.panel].series.push_back(std::move(series));
+    chart.panels[trajectory.panel].lines.push_back(std::move(line));
   }
-  return figure;
+  return chart;
 }
 
 }  // namespace dcs::coordinator

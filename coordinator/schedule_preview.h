@@ -13,7 +13,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
-#include "coordinator/line_plot.h"
+#include "coordinator/line_chart.h"
 #include "env/schedule_config.h"
 
 namespace dcs::coordinator {
@@ -59,10 +59,12 @@ std::string PreviewCsv(const std::vector<PreviewPanel>& panels,
                        const std::vector<PreviewTrajectory>& trajectories,
                        const PreviewOptions& options);
 
-// The figure: dashed lines at episode boundaries, dotted at -1, 0 and +1.
-Figure PreviewFigure(const std::vector<PreviewPanel>& panels,
-                     const std::vector<PreviewTrajectory>& trajectories,
-                     const PreviewOptions& options);
+// The figure, named `name` (its files' stem; coordinator/line_chart.h): a panel per preview
+// panel, a line per curve of normalised values against the step; dashed lines at episode
+// boundaries, dotted at -1, 0 and +1, and room above +1 for the legend.
+LineChart PreviewChart(const std::vector<PreviewPanel>& panels,
+                       const std::vector<PreviewTrajectory>& trajectories,
+                       const PreviewOptions& options, std::string name);
 
 }  // namespace dcs::coordinator
 

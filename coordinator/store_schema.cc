@@ -3,6 +3,7 @@
 
 #include <SQLiteCpp/Database.h>
 
+#include <algorithm>
 #include <iterator>
 
 #include "absl/strings/str_cat.h"
@@ -94,6 +95,32 @@ CREATE TABLE evaluation_returns (
 CREATE INDEX leases_held ON leases(deadline) WHERE holder != '';
 CREATE INDEX evaluation_jobs_open ON evaluation_jobs(done, holder, deadline);
 )sql",
+    // 2 -> 3: sweeps, their trials (a condition in one observation mode, in the spec's order),
+    // and which trial of which sweep a run trains (none for a run submitted alone).
+    R"sql(
+CREATE TABLE sweeps (
+  number INTEGER PRIMARY KEY AUTOINCREMENT,
+  request_id TEXT NOT NULL UNIQUE,
+  name TEXT NOT NULL,
+  spec TEXT NOT NULL,
+  seeds INTEGER NOT NULL CHECK (seeds >= 1),
+  cancelled INTEGER NOT NULL DEFAULT 0,
+  created_at INTEGER NOT NULL,
+  updated_at INTEGER NOT NULL
+);
+CREATE TABLE trials (
+  sweep INTEGER NOT NULL REFERENCES sweeps(number),
+  trial INTEGER NOT NULL,
+  condition TEXT NOT NULL,
+  family TEXT NOT NULL,
+  observe TEXT NOT NULL,
+  PRIMARY KEY (sweep, trial)
+);
+ALTER TABLE runs ADD COLUMN sweep INTEGER REFERENCES sweeps(number);
+ALTER TABLE runs ADD COLUMN trial INTEGER;
+-- Fair queueing counts each sweep's running runs; a sweep's view lists its runs.
+CREATE INDEX runs_by_sweep ON runs(sweep, state);
+)sql",
 };
 
 int UserVersion(SQLite::Database& db) {
@@ -104,14 +131,14 @@ int UserVersion(SQLite::Database& db) {
 
 int CurrentSchemaVersion() { return static_cast<int>(std::size(kMigrations)); }
 
-absl::Status MigrateSchema(SQLite::Database& db) {
+absl::Status MigrateSchema(SQLite::Database& db, int target) {
   const int found = UserVersion(db);
   if (found > CurrentSchemaVersion()) {
     return absl::FailedPreconditionError(absl::StrCat(
         db.getFilename(), " has schema version ", found, "; this DCS knows versions up to ",
         CurrentSchemaVersion(), " (the database was written by a newer DCS)"));
   }
-  for (int version = found; version < CurrentSchemaVersion(); ++version) {
+  for (int version = found; version < std::min(target, CurrentSchemaVersion()); ++version) {
     db.exec("BEGIN IMMEDIATE");
     try {
       db.exec(kMigrations[version]);

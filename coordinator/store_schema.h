@@ -17,10 +17,10 @@ namespace dcs::coordinator {
 // The schema version this build writes.
 int CurrentSchemaVersion();
 
-// Brings `db` to CurrentSchemaVersion(), each migration in its own transaction.
-// FAILED_PRECONDITION for a database of a newer version. Throws SQLite::Exception on SQLite
-// errors (the caller, RunStore, maps them).
-absl::Status MigrateSchema(SQLite::Database& db);
+// Brings `db` to version `target` (tests build older databases with a lower one), each
+// migration in its own transaction. FAILED_PRECONDITION for a database of a newer version than
+// this build's. Throws SQLite::Exception on SQLite errors (the caller, RunStore, maps them).
+absl::Status MigrateSchema(SQLite::Database& db, int target = CurrentSchemaVersion());
 
 }  // namespace dcs::coordinator
 

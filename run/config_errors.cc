@@ -8,7 +8,8 @@ namespace dcs::run {
 absl::Status ConfigErrors::At(absl::string_view path, absl::string_view message) const {
   std::string text;
   if (!where_.empty()) absl::StrAppend(&text, where_, ": ");
-  absl::StrAppend(&text, path, ": ");
+  const bool mapped = shown_path_ != nullptr && *shown_path_;
+  absl::StrAppend(&text, mapped ? (*shown_path_)(path) : std::string(path), ": ");
   if (lines_ != nullptr) {
     if (auto it = lines_->find(std::string(path)); it != lines_->end()) {
       absl::StrAppend(&text, "line ", it->second, ": ");

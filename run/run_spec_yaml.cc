@@ -395,13 +395,17 @@ absl::Status Parser::Document(const YAML::Node& root, RunSpec& spec, bool& sched
 absl::StatusOr<RunSpec> ParseRunSpecYaml(absl::string_view text, absl::string_view where) {
   YamlReader reader{std::string(where)};
   DCS_ASSIGN_OR_RETURN(const YAML::Node root, reader.Load(text));
+  return ReadRunSpec(reader, root);
+}
+
+absl::StatusOr<RunSpec> ReadRunSpec(YamlReader& reader, const YAML::Node& root) {
   RunSpec spec;
   bool schedule_key = false;
   try {
     DCS_RETURN_IF_ERROR(Parser(reader).Document(root, spec, schedule_key));
   } catch (const YAML::Exception& e) {  // not expected: every access is checked first
-    return absl::InvalidArgumentError(absl::StrCat(where, ": line ", e.mark.line + 1, ", column ",
-                                                   e.mark.column + 1, ": ", e.msg));
+    return absl::InvalidArgumentError(absl::StrCat(reader.where(), ": line ", e.mark.line + 1,
+                                                   ", column ", e.mark.column + 1, ": ", e.msg));
   }
   DCS_RETURN_IF_ERROR(Validate(spec, reader.errors(), schedule_key));
   return spec;

@@ -48,10 +48,13 @@
 //
 // Thread-safe (pure functions).
 
+#include <yaml-cpp/yaml.h>
+
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "run/run_spec.h"
+#include "run/yaml_reader.h"
 
 namespace dcs::run {
 
@@ -64,6 +67,11 @@ namespace dcs::run {
 // `schedule` given together with `stages`, or `pool` with both `size` and `values`; and for
 // anything ValidateRunSpec refuses.
 absl::StatusOr<RunSpec> ParseRunSpecYaml(absl::string_view text, absl::string_view where);
+
+// The run config `root` (a document loaded by `reader`, or assembled from one's nodes, as a
+// sweep spec's trials are: run/sweep_spec_yaml.h), read and validated as ParseRunSpecYaml does,
+// with the same errors; `reader` names the document and shows the paths (run/yaml_reader.h).
+absl::StatusOr<RunSpec> ReadRunSpec(YamlReader& reader, const YAML::Node& root);
 
 // OK if `spec` is a run its environment can carry out, else INVALID_ARGUMENT naming the first
 // offending field by its YAML path and saying what is allowed:

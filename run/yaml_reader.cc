@@ -47,13 +47,18 @@ absl::StatusOr<YAML::Node> YamlReader::Load(absl::string_view text) const {
 absl::Status YamlReader::Error(absl::string_view path, const YAML::Node& node,
                                absl::string_view message) const {
   const YAML::Mark mark = node.Mark();
+  const std::string shown = Shown(path);
   return absl::InvalidArgumentError(
-      absl::StrCat(where_, ": ", path, path.empty() ? "" : ": ",
+      absl::StrCat(where_, ": ", shown, shown.empty() ? "" : ": ",
                    mark.is_null() ? "" : absl::StrCat("line ", mark.line + 1, ": "), message));
 }
 
 void YamlReader::Note(const std::string& path, const YAML::Node& node) {
   if (!node.Mark().is_null()) lines_[path] = node.Mark().line + 1;
+}
+
+std::string YamlReader::Shown(absl::string_view path) const {
+  return shown_path_ ? shown_path_(path) : std::string(path);
 }
 
 absl::Status YamlReader::ForEachKey(const YAML::Node& node, absl::string_view path,
@@ -70,7 +75,7 @@ absl::Status YamlReader::ForEachEntry(const YAML::Node& node, absl::string_view 
 absl::Status YamlReader::ForEachKeyOf(const YAML::Node& node, absl::string_view path,
                                       std::optional<absl::Span<const absl::string_view>> allowed,
                                       ReadEntry read) {
-  const std::string name = path.empty() ? "the document" : std::string(path);
+  const std::string name = path.empty() ? "the document" : Shown(path);
   if (!node.IsMap()) {
     return Error(path, node,
                  !allowed.has_value()
@@ -92,7 +97,7 @@ absl::Status YamlReader::ForEachKeyOf(const YAML::Node& node, absl::string_view 
         return Error(key_path, entry.first,
                      absl::StrCat("unknown key '", key, "' ",
                                   path.empty() ? std::string("at the top level")
-                                               : absl::StrCat("in ", path),
+                                               : absl::StrCat("in ", Shown(path)),
                                   " (allowed: ", absl::StrJoin(*allowed, ", "), ")"));
       }
     }

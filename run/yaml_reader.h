@@ -2,7 +2,7 @@
 #ifndef DCS_RUN_YAML_READER_H_
 #define DCS_RUN_YAML_READER_H_
 
-// Strict reading of DCS's YAML files (run configs and schedules; sweep specs and search spaces
+// Strict reading of DCS's YAML files (run configs, schedules and sweep specs; search spaces
 // next). Every value is read at its YAML path (`stages[1].schedule.period`), and every error
 // says where, as
 //
@@ -37,8 +37,14 @@ namespace dcs::run {
 
 class YamlReader {
  public:
-  // Reads values of the document named `where` in errors (a file path).
-  explicit YamlReader(std::string where) : where_(std::move(where)) {}
+  // Reads values of the document named `where` in errors (a file path). With `shown_path`,
+  // errors show each field's path through it (run/config_errors.h: a sweep spec's trial shows
+  // its fields where the spec wrote them); lines are those of the nodes read either way.
+  explicit YamlReader(std::string where, PathMap shown_path = nullptr)
+      : where_(std::move(where)), shown_path_(std::move(shown_path)) {}
+
+  // The name of the document in errors.
+  const std::string& where() const { return where_; }
 
   // The document in `text`. INVALID_ARGUMENT "<where>: line L, column C: <problem>" for
   // malformed YAML.
@@ -85,11 +91,13 @@ class YamlReader {
 
   // Errors at the fields read so far, for validation after reading. Borrows the reader's
   // lines: the reader must outlive it.
-  ConfigErrors errors() const { return ConfigErrors(where_, &lines_); }
+  ConfigErrors errors() const { return ConfigErrors(where_, &lines_, &shown_path_); }
 
  private:
   // Records that the field at `path` is `node`'s (for errors found later).
   void Note(const std::string& path, const YAML::Node& node);
+  // The path errors show for `path`.
+  std::string Shown(absl::string_view path) const;
   template <typename T>
   absl::StatusOr<T> Integer(const YAML::Node& node, absl::string_view path) const;
   absl::Status PlainScalar(const YAML::Node& node, absl::string_view path,
@@ -99,6 +107,7 @@ class YamlReader {
                             ReadEntry read);
 
   std::string where_;
+  PathMap shown_path_;
   std::map<std::string, int> lines_;
 };
 

@@ -17,13 +17,14 @@
 #include <string>
 #include <utility>
 #include <vector>
-#include "absl/strings/string_view.h"
 
 #include <CLI/CLI.hpp>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "absl/strings/string_view.h"
 #include "absl/time/time.h"
+#include "common/enum_names.h"
 
 namespace dcs::services {
 
@@ -43,6 +44,14 @@ template <typename T>
 CLI::Option* AddChoiceOption(CLI::App& app, const std::string& name, T* value,
                              const std::vector<std::pair<std::string, T>>& choices,
                              const std::string& description);
+
+// The choices of an enumeration's name table (common/enum_names.h), for AddChoiceOption.
+template <typename E, size_t N>
+std::vector<std::pair<std::string, E>> ChoicesOf(const EnumName<E> (&table)[N]) {
+  std::vector<std::pair<std::string, E>> choices;
+  for (const EnumName<E>& entry : table) choices.emplace_back(std::string(entry.name), entry.value);
+  return choices;
+}
 
 // Prints "<program>: error: <message>" as one line on stderr.
 void PrintError(absl::string_view program, absl::string_view message);

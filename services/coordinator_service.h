@@ -4,7 +4,8 @@
 
 // dcs.v1.CoordinatorService over the coordinator library: each method decodes the request,
 // calls the library, encodes the reply and converts the status. Workers' membership is in
-// coordinator_service.cc, runs and leases in coordinator_runs.cc. Thread-safe.
+// coordinator_service.cc, runs and leases in coordinator_runs.cc, sweeps in
+// coordinator_sweeps.cc. Thread-safe.
 // Borrows the registry and the store (must outlive the service); owns its metrics'
 // registration.
 
@@ -66,6 +67,25 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
                                       v1::CancelRunResponse* response) override;
   grpc::ServerWriteReactor<v1::RunFile>* GetRunFiles(
       grpc::CallbackServerContext* context, const v1::GetRunFilesRequest* request) override;
+
+  grpc::ServerUnaryReactor* SubmitSweep(grpc::CallbackServerContext* context,
+                                        const v1::SubmitSweepRequest* request,
+                                        v1::SubmitSweepResponse* response) override;
+  grpc::ServerUnaryReactor* GetSweep(grpc::CallbackServerContext* context,
+                                     const v1::GetSweepRequest* request,
+                                     v1::GetSweepResponse* response) override;
+  grpc::ServerUnaryReactor* ListSweeps(grpc::CallbackServerContext* context,
+                                       const v1::ListSweepsRequest* request,
+                                       v1::ListSweepsResponse* response) override;
+  grpc::ServerUnaryReactor* CancelSweep(grpc::CallbackServerContext* context,
+                                        const v1::CancelSweepRequest* request,
+                                        v1::CancelSweepResponse* response) override;
+  grpc::ServerUnaryReactor* RetrySweep(grpc::CallbackServerContext* context,
+                                       const v1::RetrySweepRequest* request,
+                                       v1::RetrySweepResponse* response) override;
+  grpc::ServerUnaryReactor* GetSweepResults(grpc::CallbackServerContext* context,
+                                            const v1::GetSweepResultsRequest* request,
+                                            v1::SweepResults* response) override;
   grpc::ServerUnaryReactor* AcquireRun(grpc::CallbackServerContext* context,
                                        const v1::AcquireRunRequest* request,
                                        v1::AcquireRunResponse* response) override;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "absl/strings/str_cat.h"
 #include "services/time_proto.h"
@@ -79,6 +80,46 @@ v1::Run RunToProto(const coordinator::RunRecord& run) {
   proto.set_actor_numerics(run.actor_numerics);
   *proto.mutable_create_time() = TimeToProto(run.created_at);
   *proto.mutable_update_time() = TimeToProto(run.updated_at);
+  proto.set_sweep_id(run.sweep_id);
+  if (run.trial.has_value()) proto.set_trial(*run.trial);
+  return proto;
+}
+
+v1::Sweep SweepToProto(const coordinator::SweepRecord& sweep) {
+  static constexpr std::pair<coordinator::SweepState, v1::SweepState> kSweepStates[] = {
+      {coordinator::SweepState::kQueued, v1::SWEEP_STATE_QUEUED},
+      {coordinator::SweepState::kRunning, v1::SWEEP_STATE_RUNNING},
+      {coordinator::SweepState::kCompleted, v1::SWEEP_STATE_COMPLETED},
+      {coordinator::SweepState::kFailed, v1::SWEEP_STATE_FAILED},
+      {coordinator::SweepState::kCancelled, v1::SWEEP_STATE_CANCELLED}};
+  v1::Sweep proto;
+  proto.set_sweep_id(sweep.id);
+  proto.set_name(sweep.name);
+  for (const auto& [state, wire] : kSweepStates) {
+    if (state == sweep.state) proto.set_state(wire);
+  }
+  proto.set_seeds(sweep.seeds);
+  for (const coordinator::TrialRecord& trial : sweep.trials) {
+    v1::Trial& out = *proto.add_trials();
+    out.set_condition(trial.condition);
+    out.set_family(trial.family);
+    out.set_observe(trial.observe);
+  }
+  int64_t total = 0;
+  for (const auto& [state, runs] : sweep.runs_by_state) {
+    total += runs;
+    const int32_t count = static_cast<int32_t>(runs);
+    switch (state) {
+      case coordinator::RunState::kQueued: proto.set_queued(count); break;
+      case coordinator::RunState::kRunning: proto.set_running(count); break;
+      case coordinator::RunState::kCompleted: proto.set_completed(count); break;
+      case coordinator::RunState::kFailed: proto.set_failed(count); break;
+      case coordinator::RunState::kCancelled: proto.set_cancelled(count); break;
+    }
+  }
+  proto.set_runs(static_cast<int32_t>(total));
+  *proto.mutable_create_time() = TimeToProto(sweep.created_at);
+  *proto.mutable_update_time() = TimeToProto(sweep.updated_at);
   return proto;
 }
 

@@ -2,7 +2,7 @@
 #ifndef DCS_SERVICES_RUN_PROTO_H_
 #define DCS_SERVICES_RUN_PROTO_H_
 
-// Conversions between the coordinator's run types (coordinator/run_store.h,
+// Conversions between the coordinator's run and sweep types (coordinator/run_store.h,
 // coordinator/run_files.h) and dcs.v1 messages. Thread-safe (pure functions).
 
 #include <vector>
@@ -14,6 +14,7 @@
 #include "coordinator/run_store.h"
 #include "dcs/v1/coordinator_service.pb.h"
 #include "dcs/v1/run.pb.h"
+#include "dcs/v1/sweep.pb.h"
 #include "run/run_checkpoint.h"
 #include "services/pieces.h"
 
@@ -24,6 +25,7 @@ v1::RunState RunStateToProto(coordinator::RunState state);
 absl::StatusOr<coordinator::RunState> RunStateFromProto(v1::RunState state);
 
 v1::Run RunToProto(const coordinator::RunRecord& run);
+v1::Sweep SweepToProto(const coordinator::SweepRecord& sweep);
 
 v1::Lease LeaseToProto(const coordinator::LeaseKey& key);
 // INVALID_ARGUMENT for a lease without a run id.

@@ -21,8 +21,14 @@ namespace {
 
 constexpr absl::Duration kPollInterval = absl::Milliseconds(20);
 
-// Runs in the forked child: only async-signal-safe calls until execv. On failure, writes
-// errno to `error_fd` (close-on-exec, so a successful exec closes it with nothing written).
+// What failed in the child before or at exec, with its errno, as the child reports it.
+struct ExecError {
+  int in_chdir = 0;  // 1: entering the working directory, 0: execv
+  int error = 0;
+};
+
+// Runs in the forked child: only async-signal-safe calls until execv. On failure, writes an
+// ExecError to `error_fd` (close-on-exec, so a successful exec closes it with nothing written).
 [[noreturn]] void ExecChild(const ChildProcessOptions& options, char* const* argv, int output_fd,
                             int error_fd, pid_t parent) {
   sigset_t none;
@@ -41,9 +47,14 @@ constexpr absl::Duration kPollInterval = absl::Milliseconds(20);
     dup2(output_fd, STDOUT_FILENO);
     dup2(output_fd, STDERR_FILENO);
   }
-  execv(options.path.c_str(), argv);
-  const int error = errno;
-  [[maybe_unused]] ssize_t written = write(error_fd, &error, sizeof(error));
+  ExecError failure;
+  if (!options.working_directory.empty() && chdir(options.working_directory.c_str()) != 0) {
+    failure = {.in_chdir = 1, .error = errno};
+  } else {
+    execv(options.path.c_str(), argv);
+    failure = {.in_chdir = 0, .error = errno};
+  }
+  [[maybe_unused]] ssize_t written = write(error_fd, &failure, sizeof(failure));
   _exit(127);
 }
 
@@ -81,18 +92,21 @@ absl::StatusOr<ChildProcess> ChildProcess::Start(const ChildProcessOptions& opti
     return absl::ResourceExhaustedError(absl::StrCat("fork: ", std::strerror(fork_errno)));
   }
 
-  int exec_errno = 0;
+  ExecError failure;
   ssize_t got;
   do {
-    got = ::read(error_pipe[0], &exec_errno, sizeof(exec_errno));
+    got = ::read(error_pipe[0], &failure, sizeof(failure));
   } while (got < 0 && errno == EINTR);
   ::close(error_pipe[0]);
-  if (got == sizeof(exec_errno)) {
+  if (got == sizeof(failure)) {
     ::waitpid(pid, nullptr, 0);
     const std::string message =
-        absl::StrCat("cannot run ", options.path, ": ", std::strerror(exec_errno));
-    return exec_errno == ENOENT ? absl::NotFoundError(message)
-                                : absl::PermissionDeniedError(message);
+        failure.in_chdir != 0
+            ? absl::StrCat("cannot run ", options.path, " in ", options.working_directory, ": ",
+                           std::strerror(failure.error))
+            : absl::StrCat("cannot run ", options.path, ": ", std::strerror(failure.error));
+    return failure.error == ENOENT ? absl::NotFoundError(message)
+                                   : absl::PermissionDeniedError(message);
   }
   return ChildProcess(pid);
 }

@@ -24,14 +24,15 @@ struct ChildProcessOptions {
   std::string path;               // the executable
   std::vector<std::string> args;  // without argv[0]
   std::string output_path;        // stdout and stderr are appended here; empty: inherited
+  std::string working_directory;  // the child's (a relative `path` starts there); empty: ours
   bool new_session = false;       // setsid(): detached from the terminal, outlives the parent
   bool stop_with_parent = true;   // SIGTERM when the parent dies (ignored with new_session)
 };
 
 class ChildProcess {
  public:
-  // NOT_FOUND or PERMISSION_DENIED (naming the path) if the executable cannot be run;
-  // the error of opening `output_path`.
+  // NOT_FOUND or PERMISSION_DENIED (naming the path) if the executable cannot be run or the
+  // working directory cannot be entered; the error of opening `output_path`.
   static absl::StatusOr<ChildProcess> Start(const ChildProcessOptions& options);
 
   ChildProcess(ChildProcess&& other) noexcept;

@@ -13,9 +13,9 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
+#include "common/text_table.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/local_cluster.h"
-#include "services/cli/text_table.h"
 #include "services/command_line.h"
 #include "services/exit_codes.h"
 #include "services/signals.h"

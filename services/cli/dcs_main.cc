@@ -16,9 +16,11 @@
 #include "services/cli/cli_command.h"
 #include "services/cli/cluster_commands.h"
 #include "services/cli/env_commands.h"
+#include "services/cli/report_commands.h"
 #include "services/cli/runs_commands.h"
 #include "services/cli/schedule_commands.h"
 #include "services/cli/summarize_command.h"
+#include "services/cli/sweep_commands.h"
 #include "services/cli/train_command.h"
 #include "services/cli/version_command.h"
 #include "services/command_line.h"
@@ -30,8 +32,9 @@ namespace {
 
 // Every command file of `dcs`, in the order `dcs --help` lists their commands.
 constexpr AddCommandsFunction kCommandFiles[] = {
-    AddClusterCommands, AddVersionCommand, AddEnvCommands,     AddScheduleCommands,
-    AddTrainCommand,    AddRunsCommands,   AddSummarizeCommand,
+    AddClusterCommands, AddVersionCommand, AddEnvCommands,    AddScheduleCommands,
+    AddTrainCommand,    AddRunsCommands,   AddSweepCommands,  AddReportCommands,
+    AddSummarizeCommand,
 };
 
 int Main(int argc, char** argv) {

@@ -16,12 +16,12 @@
 #include "common/round_trip.h"
 #include "common/status_macros.h"
 #include "common/status_util.h"
+#include "common/text_table.h"
 #include "env/baseline_policies.h"
 #include "env/cartpole.h"
 #include "env/env_registry.h"
 #include "env/raster.h"
 #include "services/cli/png_file.h"
-#include "services/cli/text_table.h"
 #include "services/command_line.h"
 #include "services/exit_codes.h"
 

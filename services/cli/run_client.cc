@@ -31,6 +31,12 @@ std::unique_ptr<v1::CoordinatorService::Stub> Coordinator(const std::string& add
   return v1::CoordinatorService::NewStub(OpenChannel(address));
 }
 
+// "RUN_STATE_COMPLETED" without `prefix`, in lower case: "completed".
+std::string EnumValueName(absl::string_view name, absl::string_view prefix) {
+  absl::ConsumePrefix(&name, prefix);
+  return absl::AsciiStrToLower(name);
+}
+
 std::string Peer(const std::string& address) { return absl::StrCat("coordinator ", address); }
 
 std::string NewRequestId() {
@@ -60,6 +66,82 @@ absl::StatusOr<v1::Run> SubmitRun(const std::string& address, const std::string&
   }
   DCS_RETURN_IF_ERROR(status);
   return response.run();
+}
+
+absl::StatusOr<v1::Sweep> SubmitSweep(const std::string& address, const std::string& spec,
+                                      const std::string& spec_name, const std::string& name,
+                                      bool validate_only, absl::Duration timeout) {
+  v1::SubmitSweepRequest request;
+  request.set_request_id(NewRequestId());
+  request.set_spec(spec);
+  request.set_spec_name(spec_name);
+  request.set_name(name);
+  request.set_validate_only(validate_only);
+  v1::SubmitSweepResponse response;
+  auto stub = Coordinator(address);
+  absl::Status status;
+  // The request id makes the retry safe if the first attempt was taken but not answered.
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    status = CallUnary(*stub, &v1::CoordinatorService::Stub::SubmitSweep, request, response,
+                       timeout, Peer(address));
+    if (!IsTransient(status)) break;
+  }
+  DCS_RETURN_IF_ERROR(status);
+  return response.sweep();
+}
+
+absl::StatusOr<v1::GetSweepResponse> GetSweep(const std::string& address,
+                                              const std::string& sweep_id,
+                                              absl::Duration timeout) {
+  v1::GetSweepRequest request;
+  request.set_sweep_id(sweep_id);
+  v1::GetSweepResponse response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address), &v1::CoordinatorService::Stub::GetSweep,
+                                request, response, timeout, Peer(address)));
+  return response;
+}
+
+absl::StatusOr<std::vector<v1::Sweep>> ListSweeps(const std::string& address,
+                                                  absl::Duration timeout) {
+  v1::ListSweepsResponse response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address),
+                                &v1::CoordinatorService::Stub::ListSweeps,
+                                v1::ListSweepsRequest(), response, timeout, Peer(address)));
+  return std::vector<v1::Sweep>(response.sweeps().begin(), response.sweeps().end());
+}
+
+absl::StatusOr<v1::Sweep> CancelSweep(const std::string& address, const std::string& sweep_id,
+                                      absl::Duration timeout) {
+  v1::CancelSweepRequest request;
+  request.set_sweep_id(sweep_id);
+  v1::CancelSweepResponse response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address),
+                                &v1::CoordinatorService::Stub::CancelSweep, request, response,
+                                timeout, Peer(address)));
+  return response.sweep();
+}
+
+absl::StatusOr<v1::RetrySweepResponse> RetrySweep(const std::string& address,
+                                                  const std::string& sweep_id,
+                                                  absl::Duration timeout) {
+  v1::RetrySweepRequest request;
+  request.set_sweep_id(sweep_id);
+  v1::RetrySweepResponse response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address), &v1::CoordinatorService::Stub::RetrySweep,
+                                request, response, timeout, Peer(address)));
+  return response;
+}
+
+absl::StatusOr<v1::SweepResults> GetSweepResults(const std::string& address,
+                                                 const std::string& sweep_id,
+                                                 absl::Duration timeout) {
+  v1::GetSweepResultsRequest request;
+  request.set_sweep_id(sweep_id);
+  v1::SweepResults response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address),
+                                &v1::CoordinatorService::Stub::GetSweepResults, request,
+                                response, timeout, Peer(address)));
+  return response;
 }
 
 absl::StatusOr<v1::Run> GetRun(const std::string& address, const std::string& run_id,
@@ -174,9 +256,11 @@ ProgressLine ProgressLineOf(const v1::RunProgress& progress) {
 }
 
 std::string RunStateName(v1::RunState state) {
-  absl::string_view name = v1::RunState_Name(state);
-  absl::ConsumePrefix(&name, "RUN_STATE_");
-  return absl::AsciiStrToLower(name);
+  return EnumValueName(v1::RunState_Name(state), "RUN_STATE_");
+}
+
+std::string SweepStateName(v1::SweepState state) {
+  return EnumValueName(v1::SweepState_Name(state), "SWEEP_STATE_");
 }
 
 }  // namespace dcs::services::cli

@@ -2,8 +2,8 @@
 #ifndef DCS_SERVICES_CLI_RUN_CLIENT_H_
 #define DCS_SERVICES_CLI_RUN_CLIENT_H_
 
-// The coordinator's runs, as the `dcs` client uses them: submit, follow, list, cancel,
-// download. Every call has a deadline (`timeout`); errors are annotated with the coordinator's
+// The coordinator's runs and sweeps, as the `dcs` client uses them: submit, follow, list,
+// cancel, download; and a sweep's results. Every call has a deadline (`timeout`); errors are annotated with the coordinator's
 // address. Thread-safe.
 
 #include <cstdint>
@@ -14,7 +14,9 @@
 
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
+#include "dcs/v1/coordinator_service.pb.h"
 #include "dcs/v1/run.pb.h"
+#include "dcs/v1/sweep.pb.h"
 #include "services/cli/training_report.h"
 
 namespace dcs::services::cli {
@@ -47,11 +49,34 @@ absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& 
 absl::Status DownloadRun(const std::string& address, const std::string& run_id,
                          const std::string& dir, absl::Duration timeout);
 
+// Queues the sweep of `spec` (named `spec_name` in errors; `name` when the spec gives none)
+// under a new random request id, resent as is if the call must be retried; with
+// `validate_only`, checks it and returns its trials and run count, storing nothing.
+// INVALID_ARGUMENT from the coordinator lists every problem of the spec with its path and line.
+absl::StatusOr<v1::Sweep> SubmitSweep(const std::string& address, const std::string& spec,
+                                      const std::string& spec_name, const std::string& name,
+                                      bool validate_only, absl::Duration timeout);
+// The sweep and its runs.
+absl::StatusOr<v1::GetSweepResponse> GetSweep(const std::string& address,
+                                              const std::string& sweep_id,
+                                              absl::Duration timeout);
+absl::StatusOr<std::vector<v1::Sweep>> ListSweeps(const std::string& address,
+                                                  absl::Duration timeout);
+absl::StatusOr<v1::Sweep> CancelSweep(const std::string& address, const std::string& sweep_id,
+                                      absl::Duration timeout);
+absl::StatusOr<v1::RetrySweepResponse> RetrySweep(const std::string& address,
+                                                  const std::string& sweep_id,
+                                                  absl::Duration timeout);
+absl::StatusOr<v1::SweepResults> GetSweepResults(const std::string& address,
+                                                 const std::string& sweep_id,
+                                                 absl::Duration timeout);
+
 // The progress line of a run (training_report.h).
 ProgressLine ProgressLineOf(const v1::RunProgress& progress);
 
-// "completed", "running", ...: the state as `dcs runs` shows it.
+// "completed", "running", ...: the state as `dcs runs` and `dcs sweeps` show it.
 std::string RunStateName(v1::RunState state);
+std::string SweepStateName(v1::SweepState state);
 
 }  // namespace dcs::services::cli
 

@@ -7,11 +7,11 @@
 #include <vector>
 
 #include "absl/strings/str_format.h"
+#include "common/text_table.h"
 #include "dcs/proto_json.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/run_client.h"
 #include "services/cli/run_follower.h"
-#include "services/cli/text_table.h"
 #include "services/exit_codes.h"
 
 namespace dcs::services::cli {

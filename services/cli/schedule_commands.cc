@@ -4,14 +4,18 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
+#include <system_error>
 
 #include "absl/strings/str_cat.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
-#include "coordinator/line_plot.h"
+#include "coordinator/gnuplot_figure.h"
+#include "coordinator/line_chart.h"
 #include "coordinator/schedule_preview.h"
 #include "run/schedule_yaml.h"
+#include "services/cli/figure_render.h"
 #include "services/exit_codes.h"
 
 namespace dcs::services::cli {
@@ -40,6 +44,52 @@ absl::StatusOr<std::vector<coordinator::PreviewPanel>> PreviewPanels(const std::
   return panels;
 }
 
+// The figure of `--svg FILE`: named after FILE's stem, its files beside FILE.
+absl::StatusOr<coordinator::GnuplotFigure> PreviewFigure(
+    const std::vector<coordinator::PreviewPanel>& panels,
+    const std::vector<coordinator::PreviewTrajectory>& trajectories, const PreviewFlags& flags) {
+  const std::filesystem::path svg(flags.svg);
+  absl::StatusOr<coordinator::GnuplotFigure> figure = coordinator::LineChartFigure(
+      coordinator::PreviewChart(panels, trajectories, flags.options, svg.stem().string()));
+  if (!figure.ok()) {
+    return absl::InvalidArgumentError(absl::StrCat("--svg ", flags.svg, ": ",
+                                                   figure.status().message()));
+  }
+  for (const coordinator::DataFile& data : figure->data) {
+    const std::filesystem::path path = svg.parent_path() / data.name;
+    std::error_code data_error, out_error;
+    const std::filesystem::path data_path = std::filesystem::weakly_canonical(path, data_error);
+    const std::filesystem::path out_path = std::filesystem::weakly_canonical(flags.out, out_error);
+    if (!data_error && !out_error && data_path == out_path) {
+      return absl::InvalidArgumentError(absl::StrCat(
+          "--svg ", flags.svg, " keeps the figure's data in ", path.string(),
+          ", which is the --out file; give the figure another name"));
+    }
+  }
+  return figure;
+}
+
+// Renders the figure with gnuplot beside `flags.svg` and moves the image to it.
+absl::Status RenderPreviewFigure(const coordinator::GnuplotFigure& figure,
+                                 const PreviewFlags& flags) {
+  const std::filesystem::path svg(flags.svg);
+  const std::string dir = svg.has_parent_path() ? svg.parent_path().string() : ".";
+  DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
+                       RenderFigure(figure, coordinator::FigureFormat::kSvg, dir));
+  if (std::filesystem::path(rendered.path).lexically_normal() != svg.lexically_normal()) {
+    std::error_code error;
+    std::filesystem::rename(rendered.path, svg, error);
+    if (error) {
+      return absl::PermissionDeniedError(absl::StrCat("cannot move ", rendered.path, " to ",
+                                                      flags.svg, ": ", error.message()));
+    }
+  }
+  std::cerr << "wrote the figure to " << flags.svg << " (gnuplot script "
+            << (svg.parent_path() / figure.ScriptFileName()).string() << ", data "
+            << (svg.parent_path() / figure.data.front().name).string() << ")" << std::endl;
+  return absl::OkStatus();
+}
+
 absl::Status Preview(PreviewFlags flags) {
   DCS_ASSIGN_OR_RETURN(const std::vector<double> range, ParseNumberList(flags.range, "--range"));
   if (range.size() != 2) {
@@ -51,16 +101,14 @@ absl::Status Preview(PreviewFlags flags) {
                        PreviewPanels(flags.spec));
   DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::PreviewTrajectory> trajectories,
                        coordinator::RunPreview(panels, flags.options));
+  std::optional<coordinator::GnuplotFigure> figure;
+  if (!flags.svg.empty()) {
+    DCS_ASSIGN_OR_RETURN(figure, PreviewFigure(panels, trajectories, flags));
+  }
   DCS_RETURN_IF_ERROR(WriteFileAtomically(
       flags.out, coordinator::PreviewCsv(panels, trajectories, flags.options)));
   std::cerr << "wrote " << trajectories.size() << " trajectories to " << flags.out << std::endl;
-  if (!flags.svg.empty()) {
-    DCS_ASSIGN_OR_RETURN(
-        const std::string svg,
-        coordinator::RenderSvg(coordinator::PreviewFigure(panels, trajectories, flags.options)));
-    DCS_RETURN_IF_ERROR(WriteFileAtomically(flags.svg, svg));
-    std::cerr << "wrote the figure to " << flags.svg << std::endl;
-  }
+  if (figure.has_value()) DCS_RETURN_IF_ERROR(RenderPreviewFigure(*figure, flags));
   return absl::OkStatus();
 }
 
@@ -71,7 +119,8 @@ std::vector<CliCommand> AddScheduleCommands(CLI::App& dcs, const GlobalFlags&) {
   schedule_group->require_subcommand(1);
   auto preview_flags = std::make_shared<PreviewFlags>();
   CLI::App* preview = schedule_group->add_subcommand(
-      "preview", "Write schedule trajectories over a few episodes as CSV (and an SVG figure)");
+      "preview",
+      "Write schedule trajectories over a few episodes as CSV (and a figure, drawn by gnuplot)");
   preview->add_option("--spec", preview_flags->spec,
                       "a YAML file of schedule configs, a family name, or 'all'")
       ->required();
@@ -90,7 +139,11 @@ std::vector<CliCommand> AddScheduleCommands(CLI::App& dcs, const GlobalFlags&) {
   preview->add_option("--seed", preview_flags->options.seed, "the preview's seed")
       ->capture_default_str();
   preview->add_option("--out", preview_flags->out, "the CSV file to write")->required();
-  preview->add_option("--svg", preview_flags->svg, "also draw the figure into this SVG file");
+  preview->add_option("--svg", preview_flags->svg,
+                      "also draw the figure into this SVG file with gnuplot; its script and data "
+                      "stay beside it as STEM.gp and STEM.csv (FILE's stem): restyle the "
+                      "script and run `gnuplot STEM.gp` there")
+      ->type_name("FILE");
 
   return {{preview, [preview_flags] {
              const absl::Status status = Preview(*preview_flags);

@@ -3,7 +3,8 @@
 #define DCS_SERVICES_CLI_SCHEDULE_COMMANDS_H_
 
 // `dcs schedule preview`: context trajectories of schedules over a few episodes, as CSV and as
-// the paper's appendix figure (coordinator/schedule_preview.h).
+// the paper's appendix figure (coordinator/schedule_preview.h), drawn by gnuplot
+// (services/cli/figure_render.h): `--svg FILE` writes FILE with STEM.gp and STEM.csv beside it.
 
 #include <vector>
 

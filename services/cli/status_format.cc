@@ -8,8 +8,8 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/strip.h"
+#include "common/text_table.h"
 #include "dcs/proto_json.h"
-#include "services/cli/text_table.h"
 #include "services/time_proto.h"
 
 namespace dcs::services::cli {

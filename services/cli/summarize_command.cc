@@ -7,9 +7,9 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "common/text_table.h"
 #include "coordinator/runs_summary.h"
 #include "dcs/proto_json.h"
-#include "services/cli/text_table.h"
 #include "services/exit_codes.h"
 
 namespace dcs::services::cli {

@@ -10,13 +10,13 @@
 
 #include "absl/strings/string_view.h"
 #include "common/status_macros.h"
+#include "common/text_table.h"
 #include "coordinator/library_versions.h"
 #include "env/env_registry.h"
 #include "env/library_versions.h"
 #include "learner/torch_runtime.h"
 #include "learner/training_run.h"
 #include "services/build_info.h"
-#include "services/cli/text_table.h"
 #include "services/cli/training_report.h"
 #include "services/exit_codes.h"
 

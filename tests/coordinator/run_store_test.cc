@@ -485,14 +485,14 @@ TEST_F(RunStoreTest, EvaluationsSurviveAReopen) {
 
 TEST_F(RunStoreTest, AVersionOneDatabaseIsMigrated) {
   {
-    std::unique_ptr<RunStore> store = Open();
-    SubmitAndAcquire(*store);
-  }
-  {
-    // What DCS wrote before evaluations were stored.
-    SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READWRITE);
-    db.exec("DROP TABLE evaluation_returns; DROP TABLE evaluation_jobs; DROP TABLE evaluations;"
-            "DROP INDEX leases_held; PRAGMA user_version = 1");
+    // What DCS wrote before evaluations and sweeps were stored: a run leased to a learner.
+    SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
+    ASSERT_TRUE(MigrateSchema(db, 1).ok());
+    db.exec("INSERT INTO runs (request_id, config, seed, env, n_envs, total_timesteps, state, "
+            "created_at, updated_at) VALUES ('request-1', 'env: cartpole', 7, 'cartpole', 2, "
+            "1000, 'running', 0, 0);"
+            "INSERT INTO leases (run, slot, epoch, holder, deadline) VALUES "
+            "(1, -1, 1, 'L', 9000000000000000), (1, 0, 0, '', 0), (1, 1, 0, '', 0)");
   }
   std::unique_ptr<RunStore> store = Open();
   ASSERT_NE(store, nullptr);

@@ -50,6 +50,7 @@
 #include "services/stream_call.h"
 #include "services/trajectory_proto.h"
 #include "services/unary_call.h"
+#include "tests/integration/cluster_processes.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
@@ -153,48 +154,10 @@ const RunOutcome& InOneProcess() {
   return *outcome;
 }
 
-// A cluster of real processes, each started, killed and restarted by the test.
-class Cluster {
+// The cluster of processes, and the runs the tests submit to it.
+class Cluster : public ClusterProcesses {
  public:
-  Cluster() : dir_(testing::MakeTempDir()), coordinator_port_(testing::PickFreePort()) {}
-
-  std::string coordinator_address() const {
-    return absl::StrCat("127.0.0.1:", coordinator_port_);
-  }
-
-  // The coordinator on its port and data directory (again, after Kill).
-  void StartCoordinator() {
-    Start("coordinator", "dcs-coordinator",
-          {absl::StrCat("--listen=", coordinator_address()), "--data-dir=" + dir_ + "/data",
-           absl::StrCat("--lease-duration=", absl::FormatDuration(kLease))});
-  }
-  void StartLearner(const std::string& name) {
-    Start(name, "dcs-learner", {"--coordinator=" + coordinator_address()});
-  }
-  void StartActor(const std::string& name, int max_slots) {
-    Start(name, "dcs-actor",
-          {"--coordinator=" + coordinator_address(), absl::StrCat("--max-slots=", max_slots)});
-  }
-
-  // Where process `name` serves gRPC and /metrics.
-  std::string address(const std::string& name) const {
-    return absl::StrCat("127.0.0.1:", ports_.at(name).grpc);
-  }
-  std::string metrics_url(const std::string& name) const {
-    return absl::StrCat("http://127.0.0.1:", ports_.at(name).metrics, "/metrics");
-  }
-
-  void Kill(const std::string& name) {
-    ASSERT_TRUE(processes_.count(name)) << name;
-    ASSERT_EQ(::kill(processes_.at(name).pid(), SIGKILL), 0);
-    processes_.at(name).Wait(absl::Seconds(10));
-    processes_.erase(name);
-  }
-
-  // Everything process `name` logged (across restarts).
-  std::string Log(const std::string& name) const {
-    return ReadFile(absl::StrCat(dir_, "/", name, ".log")).value_or("");
-  }
+  Cluster() : ClusterProcesses(kLease) {}
 
   // Submits the run of `config`; returns its id.
   std::string Submit(const char* config = kConfig) {
@@ -212,7 +175,7 @@ class Cluster {
       if (run.ok() && run->progress().timesteps() >= timesteps) return;
       absl::SleepFor(absl::Milliseconds(20));
     }
-    FAIL() << run_id << " did not reach step " << timesteps << "; logs in " << dir_;
+    FAIL() << run_id << " did not reach step " << timesteps << "; logs in " << dir();
   }
 
   // Waits for the run of `config` to end, downloads it, and reads what it left.
@@ -221,41 +184,15 @@ class Cluster {
     absl::StatusOr<v1::Run> run = services::cli::WatchRun(
         coordinator_address(), run_id, kTimeout, [](const v1::Run&) {},
         [deadline] { return absl::Now() > deadline; });
-    EXPECT_TRUE(run.ok()) << run.status() << "; logs in " << dir_;
+    EXPECT_TRUE(run.ok()) << run.status() << "; logs in " << dir();
     if (!run.ok()) return std::nullopt;
-    EXPECT_EQ(run->state(), v1::RUN_STATE_COMPLETED) << run->error() << "; logs in " << dir_;
-    const std::string out = dir_ + "/out/" + run_id;
+    EXPECT_EQ(run->state(), v1::RUN_STATE_COMPLETED) << run->error() << "; logs in " << dir();
+    const std::string out = dir() + "/out/" + run_id;
     absl::Status downloaded =
         services::cli::DownloadRun(coordinator_address(), run_id, out, kTimeout);
     EXPECT_TRUE(downloaded.ok()) << downloaded;
     return ReadOutcome(out, config);
   }
-
- private:
-  void Start(const std::string& name, const std::string& program, std::vector<std::string> args) {
-    const std::string port_file = absl::StrCat(dir_, "/", name, ".ports");
-    fs::remove(port_file);
-    args.push_back("--port-file=" + port_file);
-    args.push_back("--metrics-listen=127.0.0.1:0");
-    absl::StatusOr<ChildProcess> child = ChildProcess::Start(
-        {.path = BinaryPath(program),
-         .args = std::move(args),
-         .output_path = absl::StrCat(dir_, "/", name, ".log")});
-    ASSERT_TRUE(child.ok()) << child.status();
-    const absl::Time deadline = absl::Now() + absl::Seconds(30);
-    std::optional<services::BoundPorts> ports;
-    while (!(ports = services::ReadPortFile(port_file)).has_value()) {
-      ASSERT_LT(absl::Now(), deadline) << name << " did not start; see " << dir_;
-      absl::SleepFor(absl::Milliseconds(20));
-    }
-    ports_[name] = *ports;
-    processes_.emplace(name, *std::move(child));
-  }
-
-  const std::string dir_;
-  const int coordinator_port_;
-  std::map<std::string, ChildProcess> processes_;  // killed with the cluster
-  std::map<std::string, services::BoundPorts> ports_;
 };
 
 class DataPlaneTest : public ::testing::Test {

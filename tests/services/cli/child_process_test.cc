@@ -142,6 +142,30 @@ TEST(ChildProcessTest, UnopenableOutputPathIsAnError) {
   EXPECT_THAT(child.status().message(), HasSubstr("/nonexistent/dir/out.log"));
 }
 
+TEST(ChildProcessTest, RunsInTheWorkingDirectory) {
+  std::string pattern = ::testing::TempDir() + "child_process_test.XXXXXX";
+  ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+  const std::string dir = std::filesystem::canonical(pattern).string();
+  const std::string output = dir + "/pwd.log";
+  {
+    absl::StatusOr<ChildProcess> child = ChildProcess::Start({.path = "/bin/sh",
+                                                              .args = {"-c", "pwd"},
+                                                              .output_path = output,
+                                                              .working_directory = dir});
+    ASSERT_TRUE(child.ok()) << child.status();
+    ASSERT_TRUE(child->Wait(kLongTimeout).has_value());
+  }
+  EXPECT_EQ(dcs::ReadFile(output).value_or("<error>"), dir + "\n");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ChildProcessTest, MissingWorkingDirectoryIsNotFoundNamingIt) {
+  const absl::StatusOr<ChildProcess> child =
+      ChildProcess::Start({.path = "/bin/true", .working_directory = "/nonexistent/dir"});
+  EXPECT_EQ(child.status().code(), absl::StatusCode::kNotFound);
+  EXPECT_THAT(child.status().message(), HasSubstr("/nonexistent/dir"));
+}
+
 TEST(ChildProcessTest, WaitTimesOutForARunningChild) {
   ChildProcess child = MustStart("/bin/sleep", {"30"});
   EXPECT_EQ(child.Wait(absl::Milliseconds(50)), std::nullopt);

@@ -1,12 +1,12 @@
 // Copyright 2026 The DCS Authors.
-#include "services/cli/text_table.h"
+#include "common/text_table.h"
 
 #include <string>
 #include <vector>
 
 #include "gtest/gtest.h"
 
-namespace dcs::services::cli {
+namespace dcs {
 namespace {
 
 TEST(RenderTableTest, AlignsColumnsTwoSpacesApart) {
@@ -36,5 +36,18 @@ TEST(RenderTableTest, ShortRowsAndEmptyCells) {
 
 TEST(RenderTableTest, EmptyTableIsEmpty) { EXPECT_EQ(RenderTable({}), ""); }
 
+TEST(RenderTableTest, PadsLeftAndRightAlignedColumns) {
+  EXPECT_EQ(RenderTable({{"NAME", "N", "NOTE"}, {"long name", "1", "a"}, {"x", "123", ""}},
+                               {false, true, false}),
+            "NAME         N  NOTE\n"
+            "long name    1  a\n"
+            "x          123\n");
+}
+
+TEST(RenderTableTest, ShortRowsAndMissingAlignmentsAreLeftAligned) {
+  EXPECT_EQ(RenderTable({{"A", "B"}, {"ccc"}}, {}), "A    B\nccc\n");
+  EXPECT_EQ(RenderTable({}, {}), "");
+}
+
 }  // namespace
-}  // namespace dcs::services::cli
+}  // namespace dcs

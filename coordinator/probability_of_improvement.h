@@ -1,0 +1,36 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COORDINATOR_PROBABILITY_OF_IMPROVEMENT_H_
+#define DCS_COORDINATOR_PROBABILITY_OF_IMPROVEMENT_H_
+
+// rliable's probability of improvement (Agarwal et al., 2021) of one algorithm X over another Y
+// on one task: P(X > Y) + 0.5 P(X = Y) for a run of each drawn at random, counted over all
+// pairs of runs (the Mann-Whitney U statistic of X divided by |X| |Y|), and its percentile
+// bootstrap interval. Companion of coordinator/iqm.h. Thread-safe (pure functions).
+
+#include <cstdint>
+#include <span>
+
+#include "absl/status/statusor.h"
+#include "coordinator/iqm.h"
+
+namespace dcs::coordinator {
+
+// (#{x > y} + 0.5 #{x = y}) / (|x| |y|) over all pairs (x, y): 1 when every run of `x` beats
+// every run of `y`, 0.5 for identical samples. INVALID_ARGUMENT if either is empty or holds a
+// NaN.
+absl::StatusOr<double> ProbabilityOfImprovement(std::span<const double> x,
+                                                std::span<const double> y);
+
+// A percentile bootstrap interval for ProbabilityOfImprovement(x, y), as rliable's
+// StratifiedIndependentBootstrap draws it for one task: each repetition resamples `x` and then
+// `y` with replacement, independently, from StreamSeed(seed, "improvement"). `confidence` is
+// e.g. 0.95. INVALID_ARGUMENT as ProbabilityOfImprovement, or for confidence outside (0, 1) or
+// repetitions < 1.
+absl::StatusOr<ConfidenceInterval> BootstrapImprovementInterval(std::span<const double> x,
+                                                                std::span<const double> y,
+                                                                double confidence,
+                                                                int repetitions, uint64_t seed);
+
+}  // namespace dcs::coordinator
+
+#endif  // DCS_COORDINATOR_PROBABILITY_OF_IMPROVEMENT_H_

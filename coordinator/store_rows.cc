@@ -1,0 +1,163 @@
+// Copyright 2026 The DCS Authors.
+#include "coordinator/store_rows.h"
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "absl/strings/numbers.h"
+#include "absl/strings/strip.h"
+#include "common/enum_names.h"
+#include "common/status_macros.h"
+#include "coordinator/run_state.h"
+
+namespace dcs::coordinator::store_rows {
+namespace {
+
+constexpr char kRunIdPrefix[] = "run-";
+constexpr char kSweepIdPrefix[] = "sweep-";
+
+constexpr char kRunColumns[] =
+    "number, request_id, config, seed, env, n_envs, total_timesteps, state, error, "
+    "learner_numerics, actor_numerics, "
+    "timesteps, policy_version, steps_per_second, recent_return, avg_combined, evaluation_step, "
+    "checkpoint, created_at, updated_at, sweep, trial";
+
+RunRecord ReadRun(SQLite::Statement& row) {
+  RunRecord run;
+  run.id = RunId(row.getColumn(0).getInt64());
+  run.submission = {.request_id = row.getColumn(1).getString(),
+                    .config = row.getColumn(2).getString(),
+                    .seed = static_cast<uint64_t>(row.getColumn(3).getInt64()),
+                    .env = row.getColumn(4).getString(),
+                    .n_envs = row.getColumn(5).getInt(),
+                    .total_timesteps = row.getColumn(6).getInt64()};
+  run.state = FindByName(kRunStateNames, row.getColumn(7).getString()).value_or(RunState::kFailed);
+  run.error = row.getColumn(8).getString();
+  run.learner_numerics = row.getColumn(9).getString();
+  run.actor_numerics = row.getColumn(10).getString();
+  run.progress = {.timesteps = row.getColumn(11).getInt64(),
+                  .policy_version = row.getColumn(12).getInt64(),
+                  .steps_per_second = row.getColumn(13).getDouble(),
+                  .recent_return = row.getColumn(14).isNull()
+                                       ? std::numeric_limits<double>::quiet_NaN()
+                                       : row.getColumn(14).getDouble()};
+  if (!row.getColumn(15).isNull()) run.progress.avg_combined = row.getColumn(15).getDouble();
+  if (!row.getColumn(16).isNull()) run.progress.evaluation_step = row.getColumn(16).getInt64();
+  run.checkpoint = row.getColumn(17).getString();
+  run.created_at = FromMicros(row.getColumn(18).getInt64());
+  run.updated_at = FromMicros(row.getColumn(19).getInt64());
+  if (!row.getColumn(20).isNull()) run.sweep_id = SweepId(row.getColumn(20).getInt64());
+  if (!row.getColumn(21).isNull()) run.trial = row.getColumn(21).getInt();
+  return run;
+}
+
+}  // namespace
+
+std::string RunId(int64_t number) { return absl::StrCat(kRunIdPrefix, number); }
+
+absl::StatusOr<int64_t> RunNumber(absl::string_view run_id) {
+  int64_t number = 0;
+  absl::string_view digits = run_id;
+  if (!absl::ConsumePrefix(&digits, kRunIdPrefix) || !absl::SimpleAtoi(digits, &number)) {
+    return absl::NotFoundError(absl::StrCat("no run '", run_id, "' (run ids look like run-1)"));
+  }
+  return number;
+}
+
+std::string SweepId(int64_t number) { return absl::StrCat(kSweepIdPrefix, number); }
+
+absl::StatusOr<int64_t> SweepNumber(absl::string_view sweep_id) {
+  int64_t number = 0;
+  absl::string_view digits = sweep_id;
+  if (!absl::ConsumePrefix(&digits, kSweepIdPrefix) || !absl::SimpleAtoi(digits, &number)) {
+    return absl::NotFoundError(
+        absl::StrCat("no sweep '", sweep_id, "' (sweep ids look like sweep-1)"));
+  }
+  return number;
+}
+
+absl::StatusOr<RunRecord> FindRun(SQLite::Database& db, absl::string_view run_id) {
+  DCS_ASSIGN_OR_RETURN(const int64_t number, RunNumber(run_id));
+  SQLite::Statement query(db, absl::StrCat("SELECT ", kRunColumns, " FROM runs WHERE number = ?"));
+  query.bind(1, number);
+  if (!query.executeStep()) return absl::NotFoundError(absl::StrCat("no run ", run_id));
+  return ReadRun(query);
+}
+
+std::vector<RunRecord> FindRuns(SQLite::Database& db, absl::string_view where,
+                                std::optional<int64_t> bind) {
+  SQLite::Statement query(
+      db, absl::StrCat("SELECT ", kRunColumns, " FROM runs WHERE ", where, " ORDER BY number"));
+  if (bind.has_value()) query.bind(1, *bind);
+  std::vector<RunRecord> runs;
+  while (query.executeStep()) runs.push_back(ReadRun(query));
+  return runs;
+}
+
+int64_t InsertRun(SQLite::Database& db, const RunSubmission& submission,
+                  std::optional<int64_t> sweep, std::optional<int> trial, absl::Time now) {
+  SQLite::Statement insert(db,
+                           "INSERT INTO runs (request_id, config, seed, env, n_envs, "
+                           "total_timesteps, state, created_at, updated_at, sweep, trial) "
+                           "VALUES (?, ?, ?, ?, ?, ?, 'queued', ?, ?, ?, ?) RETURNING number");
+  insert.bind(1, submission.request_id);
+  insert.bind(2, submission.config);
+  insert.bind(3, static_cast<int64_t>(submission.seed));
+  insert.bind(4, submission.env);
+  insert.bind(5, submission.n_envs);
+  insert.bind(6, submission.total_timesteps);
+  insert.bind(7, Micros(now));
+  insert.bind(8, Micros(now));
+  if (sweep.has_value()) insert.bind(9, *sweep);
+  if (trial.has_value()) insert.bind(10, *trial);
+  insert.executeStep();
+  const int64_t number = insert.getColumn(0).getInt64();
+  insert.reset();
+  SQLite::Statement lease(db, "INSERT INTO leases (run, slot) VALUES (?, ?)");
+  for (int slot = kLearnerSlot; slot < submission.n_envs; ++slot) {
+    lease.bind(1, number);
+    lease.bind(2, slot);
+    lease.exec();
+    lease.reset();
+  }
+  return number;
+}
+
+absl::Status SetRunState(SQLite::Database& db, const RunRecord& run, RunState to,
+                         absl::string_view error, absl::Time now) {
+  DCS_RETURN_IF_ERROR(CheckTransition(run.id, run.state, to));
+  SQLite::Statement update(db, "UPDATE runs SET state = ?, error = ?, updated_at = ? "
+                               "WHERE number = ?");
+  update.bind(1, std::string(NameOf(kRunStateNames, to)));
+  update.bind(2, std::string(error));
+  update.bind(3, Micros(now));
+  update.bind(4, *RunNumber(run.id));
+  update.exec();
+  return absl::OkStatus();
+}
+
+void FreeLeases(SQLite::Database& db, int64_t number, bool learner) {
+  SQLite::Statement update(db, learner ? "UPDATE leases SET holder = '', address = '', "
+                                         "deadline = 0 WHERE run = ?"
+                                       : "UPDATE leases SET holder = '', address = '', "
+                                         "deadline = 0 WHERE run = ? AND slot >= 0");
+  update.bind(1, number);
+  update.exec();
+}
+
+void DropEvaluationWeights(SQLite::Database& db, int64_t number) {
+  SQLite::Statement update(db, "UPDATE evaluations SET weights = x'' WHERE run = ?");
+  update.bind(1, number);
+  update.exec();
+}
+
+absl::Status CancelRunRow(SQLite::Database& db, const RunRecord& run, absl::string_view reason,
+                          absl::Time now) {
+  DCS_RETURN_IF_ERROR(SetRunState(db, run, RunState::kCancelled, reason, now));
+  FreeLeases(db, *RunNumber(run.id), /*learner=*/true);
+  DropEvaluationWeights(db, *RunNumber(run.id));
+  return absl::OkStatus();
+}
+
+}  // namespace dcs::coordinator::store_rows

@@ -1,0 +1,91 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COORDINATOR_STORE_ROWS_H_
+#define DCS_COORDINATOR_STORE_ROWS_H_
+
+// The run store's rows as its implementation files share them (coordinator/run_store.cc for
+// runs and leases, coordinator/sweep_store.cc for sweeps): ids, times, reading and writing a
+// run's row, the one way a run's state changes, and RunStore's transaction. Internal to the
+// store: every function runs inside the caller's transaction, on the connection it is given.
+
+#include <SQLiteCpp/Database.h>
+#include <SQLiteCpp/Statement.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
+#include "absl/time/time.h"
+#include "coordinator/run_store.h"
+
+namespace dcs::coordinator::store_rows {
+
+// Times are stored as microseconds since the Unix epoch, UTC.
+inline int64_t Micros(absl::Time time) { return absl::ToUnixMicros(time); }
+inline absl::Time FromMicros(int64_t micros) { return absl::FromUnixMicros(micros); }
+
+// "run-<n>" for row n, and back; NOT_FOUND for anything that is not a run id.
+std::string RunId(int64_t number);
+absl::StatusOr<int64_t> RunNumber(absl::string_view run_id);
+// "sweep-<n>" for row n, and back; NOT_FOUND for anything that is not a sweep id.
+std::string SweepId(int64_t number);
+absl::StatusOr<int64_t> SweepNumber(absl::string_view sweep_id);
+
+// The run `run_id`. NOT_FOUND if there is none.
+absl::StatusOr<RunRecord> FindRun(SQLite::Database& db, absl::string_view run_id);
+// Every run matching `where` (an SQL condition on the runs table; with `bind`, its one
+// parameter), oldest first.
+std::vector<RunRecord> FindRuns(SQLite::Database& db, absl::string_view where,
+                                std::optional<int64_t> bind = std::nullopt);
+
+// Queues a new run (its row and its leases: the learner's and one per env slot), as part of
+// sweep `sweep` (trial `trial`) or of none. Returns its row number.
+int64_t InsertRun(SQLite::Database& db, const RunSubmission& submission,
+                  std::optional<int64_t> sweep, std::optional<int> trial, absl::Time now);
+
+// Moves a run to `to` through the one transition table (coordinator/run_state.h).
+absl::Status SetRunState(SQLite::Database& db, const RunRecord& run, RunState to,
+                         absl::string_view error, absl::Time now);
+
+// Frees leases of run `number`: every slot lease, and the learner lease too if `learner`.
+void FreeLeases(SQLite::Database& db, int64_t number, bool learner);
+
+// Drops the policies of run `number`'s evaluations: it ended, nothing evaluates them any more.
+void DropEvaluationWeights(SQLite::Database& db, int64_t number);
+
+// Cancels a queued or running run: its leases are freed and its policies dropped.
+// FAILED_PRECONDITION if it already ended.
+absl::Status CancelRunRow(SQLite::Database& db, const RunRecord& run, absl::string_view reason,
+                          absl::Time now);
+
+}  // namespace dcs::coordinator::store_rows
+
+namespace dcs::coordinator {
+
+// Runs `body` in one BEGIN IMMEDIATE transaction, committing if it returns OK; SQLite errors
+// (thrown by SQLiteCpp) become INTERNAL naming the database.
+template <typename Body>
+auto RunStore::Transaction(Body body) -> decltype(body()) {
+  absl::MutexLock lock(&mu_);
+  try {
+    db_->exec("BEGIN IMMEDIATE");
+    try {
+      auto result = body();
+      db_->exec(result.ok() ? "COMMIT" : "ROLLBACK");
+      return result;
+    } catch (...) {
+      db_->exec("ROLLBACK");
+      throw;
+    }
+  } catch (const SQLite::Exception& e) {
+    return absl::InternalError(absl::StrCat(db_->getFilename(), ": ", e.what()));
+  }
+}
+
+}  // namespace dcs::coordinator
+
+#endif  // DCS_COORDINATOR_STORE_ROWS_H_

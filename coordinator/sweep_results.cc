@@ -1,0 +1,52 @@
+// Copyright 2026 The DCS Authors.
+#include "coordinator/sweep_results.h"
+
+#include <algorithm>
+
+#include "absl/strings/str_cat.h"
+#include "coordinator/run_files.h"
+#include "run/evaluation_log.h"
+
+namespace dcs::coordinator {
+
+absl::StatusOr<v1::SweepResults> CollectSweepResults(const SweepRecord& sweep,
+                                                     const std::vector<RunRecord>& runs,
+                                                     absl::string_view data_dir) {
+  v1::SweepResults results;
+  results.set_sweep_id(sweep.id);
+  results.set_name(sweep.name);
+  results.set_seeds(sweep.seeds);
+  for (const TrialRecord& trial : sweep.trials) {
+    v1::TrialResults& out = *results.add_trials();
+    out.set_condition(trial.condition);
+    out.set_family(trial.family);
+    out.set_observe(trial.observe);
+  }
+  std::vector<const RunRecord*> completed;
+  for (const RunRecord& run : runs) {
+    if (run.state != RunState::kCompleted || !run.trial.has_value()) continue;
+    if (*run.trial < 0 || *run.trial >= results.trials_size()) continue;
+    completed.push_back(&run);
+  }
+  std::sort(completed.begin(), completed.end(), [](const RunRecord* a, const RunRecord* b) {
+    return a->submission.seed < b->submission.seed;
+  });
+  for (const RunRecord* run : completed) {
+    absl::StatusOr<v1::EvaluationLog> log =
+        run::ReadEvaluationLog(RunDirectory(data_dir, run->id));
+    if (!log.ok()) {
+      return absl::DataLossError(absl::StrCat("the evaluation log of ", run->id, " (",
+                                              sweep.id, ") is unreadable: ",
+                                              log.status().message()));
+    }
+    for (v1::Evaluation& evaluation : *log->mutable_evaluations()) {
+      for (v1::ContextEvaluation& context : *evaluation.mutable_contexts()) {
+        context.clear_returns();
+      }
+    }
+    *results.mutable_trials(*run->trial)->add_runs() = *std::move(log);
+  }
+  return results;
+}
+
+}  // namespace dcs::coordinator

@@ -1,0 +1,38 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COORDINATOR_SWEEP_SUBMISSION_H_
+#define DCS_COORDINATOR_SWEEP_SUBMISSION_H_
+
+// A sweep spec submitted remotely, checked whole before anything is stored: parsed and
+// validated (run/sweep_spec_yaml.h: every problem with its path and line), then each of its
+// runs checked as a run submitted alone is (coordinator/run_submission.h), so nothing is
+// queued that no learner could train. Thread-safe (pure functions).
+
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "coordinator/run_store.h"
+#include "run/run_directory.h"
+
+namespace dcs::coordinator {
+
+struct ExpandedSweep {
+  SweepSubmission submission;
+  // One per submission.runs entry, in the same order: the run's spec and config, to write its
+  // directory once it has an id.
+  std::vector<run::RunRequest> requests;
+};
+
+// The sweep of `spec_text` (named `spec_name` in errors), named by the spec or else
+// `default_name`, its runs' request ids derived from `request_id` (so a retried submission
+// names the same runs). Runs are queued seed-major: every trial's first seed, then every
+// trial's second, so early results cover the whole grid. INVALID_ARGUMENT as
+// ParseSweepSpecYaml, or as CheckSubmittedRun naming the trial.
+absl::StatusOr<ExpandedSweep> ExpandSweep(const std::string& spec_text,
+                                          const std::string& spec_name,
+                                          const std::string& default_name,
+                                          const std::string& request_id);
+
+}  // namespace dcs::coordinator
+
+#endif  // DCS_COORDINATOR_SWEEP_SUBMISSION_H_

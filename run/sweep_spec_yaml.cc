@@ -1,0 +1,719 @@
+// Copyright 2026 The DCS Authors.
+#include "run/sweep_spec_yaml.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "absl/strings/escaping.h"
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "common/enum_names.h"
+#include "env/schedule_config.h"
+#include "env/schedule_spec.h"
+#include "run/config_errors.h"
+#include "run/run_spec_yaml.h"
+#include "run/yaml_reader.h"
+#include "run/yaml_splice.h"
+
+// The trials' documents are spliced from the spec's nodes (run/yaml_splice.h): nodes are never
+// assigned, only constructed, inserted or emplaced.
+
+namespace dcs::run {
+namespace {
+
+constexpr int64_t kMaxRuns = 10'000;
+
+// The run config's keys that the top level gives as the base of every run; a condition may
+// override each.
+constexpr absl::string_view kBaseKeys[] = {"env",  "total_timesteps", "n_envs",
+                                           "context", "feature",      "training_range",
+                                           "pool", "evaluation",      "ppo"};
+// The base keys whose mappings merge key by key with a condition's.
+constexpr absl::string_view kMergedKeys[] = {"context", "evaluation", "ppo"};
+// The run config's keys a condition may give, and its grid vary.
+constexpr absl::string_view kConditionRunKeys[] = {
+    "schedule", "stages",         "env",  "total_timesteps", "n_envs",
+    "context",  "feature",        "training_range", "pool", "evaluation", "ppo"};
+
+constexpr absl::string_view kTopLevelKeys[] = {
+    "name",   "seeds",   "observe", "conditions", "env",        "total_timesteps",
+    "n_envs", "context", "feature", "training_range", "pool", "evaluation", "ppo"};
+constexpr absl::string_view kConditionKeys[] = {
+    "name",    "grid",   "observe", "schedule", "stages",         "env",  "total_timesteps",
+    "n_envs",  "context", "feature", "training_range", "pool", "evaluation", "ppo"};
+
+bool Contains(absl::Span<const absl::string_view> names, absl::string_view name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// What is wrong with `name` as a condition's or sweep's name ("may not ..."), or empty.
+std::string NameProblem(absl::string_view name) {
+  if (name.empty()) return "may not be empty";
+  for (char c : name) {
+    if (c == '/') return "may not hold '/' (names become file names)";
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      return "may not hold control characters (a newline, a tab, ...)";
+    }
+  }
+  return "";
+}
+
+// The name of a condition that gives none, from its run keys: "static", its schedule's
+// family, or its stages' families joined by '>'.
+std::string DerivedName(const YAML::Node& run_keys) {
+  auto family = [](const std::optional<YAML::Node>& schedule) -> std::string {
+    if (!schedule.has_value()) return "?";
+    const std::optional<YAML::Node> name = FindKey(*schedule, "family");
+    return name.has_value() && name->IsScalar() ? name->Scalar() : "?";
+  };
+  if (std::optional<YAML::Node> schedule = FindKey(run_keys, "schedule")) return family(schedule);
+  const std::optional<YAML::Node> stages = FindKey(run_keys, "stages");
+  if (!stages.has_value() || !stages->IsSequence() || stages->size() == 0) return "static";
+  std::vector<std::string> families;
+  for (const auto& stage : *stages) families.push_back(family(FindKey(stage, "schedule")));
+  return absl::StrJoin(families, ">");
+}
+
+// The trial family of a valid run: "static", "multi_stage", or its one schedule's family.
+std::string FamilyOf(const RunSpec& spec) {
+  if (spec.stages.empty()) return "static";
+  if (spec.stages.size() > 1) return "multi_stage";
+  absl::StatusOr<env::ScheduleSpec> schedule =
+      env::ParseScheduleSpec(spec.stages[0].schedule, spec.range_lo, spec.range_hi, 0);
+  return schedule.ok() ? std::string(env::ScheduleFamilyName(schedule->family()))
+                       : spec.stages[0].schedule.family;
+}
+
+// Where a trial's fields were written in the spec: a rule maps a path of the trial's run
+// config (`from`), and unless `exact` the paths below it, to a path of the spec (`to`). The
+// longest rule that applies wins; a path no rule covers is a base key's, written as it is.
+struct PathRule {
+  std::string from;
+  std::string to;
+  bool exact = false;
+};
+using PathRules = std::vector<PathRule>;
+
+std::string ShownPath(const PathRules& rules, absl::string_view path) {
+  const PathRule* best = nullptr;
+  for (const PathRule& rule : rules) {
+    const std::string& from = rule.from;
+    const bool covers =
+        path == from || (!rule.exact && absl::StartsWith(path, from) &&
+                         (path[from.size()] == '.' || path[from.size()] == '['));
+    if (covers && (best == nullptr || from.size() > best->from.size())) best = &rule;
+  }
+  if (best == nullptr) return std::string(path);
+  return absl::StrCat(best->to, path.substr(best->from.size()));
+}
+
+// An observation mode as the spec gave it.
+struct Mode {
+  env::ObserveMode mode;
+  YAML::Node node;   // the trial's config takes it, line and all
+  std::string path;  // `observe[1]`, `conditions[2].observe`
+};
+
+// One key of a condition's grid.
+struct GridKey {
+  std::string key;  // as written: "schedule.amplitude_frac"
+  std::vector<KeyPathStep> steps;
+  std::string path;  // in the spec: "conditions[1].grid.schedule.amplitude_frac"
+  YAML::Node values;  // a non-empty list
+  // The mappings its values create, as the condition lacks them ("schedule" for
+  // schedule.period in a condition without schedule).
+  std::vector<std::string> created;
+};
+
+// A condition as the spec wrote it.
+struct Condition {
+  std::string path;  // "conditions[1]"
+  YAML::Node node;
+  std::optional<std::string> name;      // given
+  std::optional<YAML::Node> name_node;  // where it was given
+  YAML::Node run_keys;  // a mapping: its run config's keys, as written
+  std::vector<GridKey> grid;
+  std::optional<std::vector<Mode>> modes;  // its own
+  int64_t count = 1;                       // conditions it expands into
+  bool ok = true;                          // no problem found in it
+};
+
+
+// Reads one sweep spec, collecting its problems rather than stopping at the first.
+class SweepParser {
+ public:
+  explicit SweepParser(absl::string_view where) : where_(where), reader_(std::string(where)) {}
+
+  absl::StatusOr<SweepSpec> Parse(absl::string_view text);
+
+ private:
+  // Calls `read(key, key_node, value, key_path)` for each entry of the mapping `node` at `path`;
+  // a key that is no name, or is repeated, is a problem and skipped. False if there was such a
+  // problem or `node` is not a mapping (`what` says what it should be).
+  template <typename Read>
+  bool Entries(const YAML::Node& node, const std::string& path, absl::string_view what,
+               Read read);
+  void Problem(const std::string& path, const YAML::Node& node, absl::string_view message);
+  void Problem(const absl::Status& status);
+  void UnknownKey(const std::string& key_path, const YAML::Node& key_node,
+                  absl::string_view where, absl::Span<const absl::string_view> allowed);
+
+  void TopLevel(const YAML::Node& root);
+  void Seeds(const YAML::Node& node, const std::string& path);
+  std::optional<std::vector<Mode>> Modes(const YAML::Node& node, const std::string& path);
+  void Conditions(const YAML::Node& node);
+  void ReadCondition(const YAML::Node& node, const std::string& path);
+  void ReadGrid(const YAML::Node& node, const std::string& path, Condition& condition);
+  int64_t SeedCount() const;
+  const std::vector<Mode>* ModesOf(const Condition& condition) const;
+  // Whether a condition's mapping at `key` merges with the base's.
+  bool MergesWithBase(absl::string_view key) const;
+  void CheckRuns();
+  // Expands `condition` into its trials, each validated.
+  void Expand(const Condition& condition);
+  void AddCondition(const Condition& condition, const YAML::Node& run_keys,
+                    const PathRules& rules, const std::string& name);
+  YAML::Node TrialDocument(const YAML::Node& run_keys, const Mode& mode);
+  absl::Status ToStatus() const;
+
+  std::string where_;
+  YamlReader reader_;
+  std::optional<YamlArena> arena_;  // of the spec's document
+  std::vector<std::string> problems_;  // each once, in the order found
+  std::set<std::string> seen_problems_;
+  int reported_ = 0;  // problems reported, repetitions included
+
+  // Read from the top level.
+  std::string name_;
+  bool has_seeds_ = false;
+  int64_t seed_count_ = 0;                      // seeds: N
+  std::optional<std::vector<uint64_t>> seeds_;  // seeds: [...]
+  bool has_modes_ = false;
+  std::optional<std::vector<Mode>> modes_;  // the sweep's, if valid
+  std::vector<std::pair<std::string, YAML::Node>> base_;
+  std::optional<YAML::Node> conditions_node_;
+  std::vector<Condition> conditions_;
+
+  // Built by expansion: the spec, and each condition's name with where it was given.
+  SweepSpec spec_;
+  std::map<std::string, std::pair<std::string, YAML::Node>> names_;
+};
+
+template <typename Read>
+bool SweepParser::Entries(const YAML::Node& node, const std::string& path, absl::string_view what,
+                          Read read) {
+  if (!node.IsMap()) {
+    Problem(path, node, absl::StrCat(path.empty() ? "the document" : path, " must be ", what));
+    return false;
+  }
+  bool clean = true;
+  std::set<std::string> seen;
+  for (const auto& entry : node) {
+    if (!entry.first.IsScalar()) {
+      Problem(path, entry.first, "a key must be a name, not a list or mapping");
+      clean = false;
+      continue;
+    }
+    const std::string key = entry.first.Scalar();
+    const std::string key_path = KeyPath(path, key);
+    if (!seen.insert(key).second) {
+      Problem(key_path, entry.first, absl::StrCat("key '", key, "' given twice"));
+      clean = false;
+      continue;
+    }
+    read(key, entry.first, entry.second, key_path);
+  }
+  return clean;
+}
+
+void SweepParser::Problem(const std::string& path, const YAML::Node& node,
+                          absl::string_view message) {
+  Problem(reader_.Error(path, node, message));
+}
+
+void SweepParser::Problem(const absl::Status& status) {
+  if (status.ok()) return;
+  ++reported_;
+  std::string message(status.message());
+  if (seen_problems_.insert(message).second) problems_.push_back(std::move(message));
+}
+
+void SweepParser::UnknownKey(const std::string& key_path, const YAML::Node& key_node,
+                             absl::string_view where,
+                             absl::Span<const absl::string_view> allowed) {
+  Problem(key_path, key_node,
+          absl::StrCat("unknown key '", key_node.Scalar(), "' ", where, " (allowed: ",
+                       absl::StrJoin(allowed, ", "), ")"));
+}
+
+void SweepParser::TopLevel(const YAML::Node& root) {
+  Entries(root, "", "a mapping: a sweep spec (run/sweep_spec_yaml.h)",
+          [&](const std::string& key, const YAML::Node& key_node, const YAML::Node& value,
+              const std::string& path) {
+            if (key == "name") {
+              absl::StatusOr<std::string> name = reader_.Word(value, path);
+              if (!name.ok()) return Problem(name.status());
+              if (std::string problem = NameProblem(*name); !problem.empty()) {
+                return Problem(path, value, absl::StrCat("a name ", problem));
+              }
+              name_ = *name;
+            } else if (key == "seeds") {
+              has_seeds_ = true;
+              Seeds(value, path);
+            } else if (key == "observe") {
+              has_modes_ = true;
+              if (std::optional<std::vector<Mode>> modes = Modes(value, path)) {
+                modes_.emplace(*std::move(modes));
+              }
+            } else if (key == "conditions") {
+              conditions_node_.emplace(value);
+            } else if (Contains(kBaseKeys, key)) {
+              base_.emplace_back(key, value);
+            } else if (key == "seed") {
+              Problem(path, key_node,
+                      "a sweep gives 'seeds' (N for seeds 0..N-1, or a list of seeds), not "
+                      "'seed': each run gets one of them");
+            } else if (key == "schedule" || key == "stages") {
+              Problem(path, key_node,
+                      absl::StrCat("'", key,
+                                   "' belongs to a condition, not the top level: conditions "
+                                   "differ in their schedules (conditions: [{",
+                                   key, ": ...}])"));
+            } else {
+              UnknownKey(path, key_node, "at the top level", kTopLevelKeys);
+            }
+          });
+}
+
+void SweepParser::Seeds(const YAML::Node& node, const std::string& path) {
+  if (node.IsSequence()) {
+    if (node.size() == 0) return Problem(path, node, "must list at least one seed");
+    std::vector<uint64_t> seeds;
+    std::map<uint64_t, std::string> seen;
+    for (size_t i = 0; i < node.size(); ++i) {
+      const std::string item_path = ItemPath(path, i);
+      absl::StatusOr<uint64_t> seed = reader_.Uint64(node[i], item_path);
+      if (!seed.ok()) {
+        Problem(seed.status());
+      } else if (auto [it, added] = seen.emplace(*seed, item_path); !added) {
+        Problem(item_path, node[i],
+                absl::StrCat("seed ", *seed, " is listed twice (also ", it->second, ")"));
+      } else {
+        seeds.push_back(*seed);
+      }
+    }
+    if (seeds.size() == node.size()) seeds_.emplace(std::move(seeds));
+    return;
+  }
+  if (!node.IsScalar()) {
+    return Problem(path, node,
+                   "must be a number of seeds N (seeds 0..N-1) or a list of distinct seeds");
+  }
+  absl::StatusOr<int64_t> count = reader_.Int64(node, path);
+  if (!count.ok()) return Problem(count.status());
+  if (*count < 1) return Problem(path, node, absl::StrCat("must be at least 1, got ", *count));
+  seed_count_ = *count;  // listed once CheckRuns has found it small enough
+}
+
+std::optional<std::vector<Mode>> SweepParser::Modes(const YAML::Node& node,
+                                                    const std::string& path) {
+  const std::string allowed = ListNames(env::kObserveModeNames);
+  std::vector<Mode> modes;
+  auto read = [&](const YAML::Node& item, const std::string& item_path) {
+    absl::StatusOr<std::string> word = reader_.Word(item, item_path);
+    if (!word.ok()) return Problem(word.status());
+    const std::optional<env::ObserveMode> mode = FindByName(env::kObserveModeNames, *word);
+    if (!mode.has_value()) {
+      return Problem(item_path, item, absl::StrCat("must be ", allowed, ", got '", *word, "'"));
+    }
+    for (const Mode& other : modes) {
+      if (other.mode == *mode) {
+        return Problem(item_path, item,
+                       absl::StrCat("mode ", *word, " is listed twice (also ", other.path, ")"));
+      }
+    }
+    modes.push_back({.mode = *mode, .node = item, .path = item_path});
+  };
+  size_t given = 1;
+  if (node.IsSequence()) {
+    given = node.size();
+    if (given == 0) {
+      Problem(path, node, absl::StrCat("must list at least one mode (", allowed, ")"));
+    }
+    for (size_t i = 0; i < node.size(); ++i) read(node[i], ItemPath(path, i));
+  } else if (node.IsScalar()) {
+    read(node, path);
+  } else {
+    Problem(path, node, absl::StrCat("must be a mode (", allowed, ") or a list of them"));
+    return std::nullopt;
+  }
+  if (given == 0 || modes.size() != given) return std::nullopt;
+  return modes;
+}
+
+void SweepParser::Conditions(const YAML::Node& node) {
+  if (!node.IsSequence()) {
+    return Problem("conditions", node,
+                   "must be a list of conditions (e.g. [{name: static}, {schedule: ...}])");
+  }
+  if (node.size() == 0) {
+    return Problem("conditions", node,
+                   "needs at least one condition: an empty grid makes no runs");
+  }
+  for (size_t i = 0; i < node.size(); ++i) ReadCondition(node[i], ItemPath("conditions", i));
+}
+
+void SweepParser::ReadCondition(const YAML::Node& node, const std::string& path) {
+  Condition condition{.path = path, .node = node, .run_keys = arena_->New(YAML::NodeType::Map)};
+  std::optional<std::pair<YAML::Node, std::string>> grid;
+  const bool clean = Entries(
+      node, path, "a condition: a mapping of name, schedule or stages, grid, observe, base keys",
+      [&](const std::string& key, const YAML::Node& key_node, const YAML::Node& value,
+          const std::string& key_path) {
+        if (key == "name") {
+          absl::StatusOr<std::string> name = reader_.Word(value, key_path);
+          condition.ok = condition.ok && name.ok();
+          if (!name.ok()) return Problem(name.status());
+          if (std::string problem = NameProblem(*name); !problem.empty()) {
+            condition.ok = false;
+            return Problem(key_path, value, absl::StrCat("a name ", problem));
+          }
+          condition.name = *name;
+          condition.name_node.emplace(value);
+        } else if (key == "grid") {
+          grid.emplace(value, key_path);
+        } else if (key == "observe") {
+          if (std::optional<std::vector<Mode>> modes = Modes(value, key_path)) {
+            condition.modes.emplace(*std::move(modes));
+          } else {
+            condition.ok = false;
+          }
+        } else if (Contains(kConditionRunKeys, key)) {
+          condition.run_keys.force_insert(key_node, value);
+        } else if (key == "seed") {
+          condition.ok = false;
+          Problem(key_path, key_node,
+                  "seeds are the sweep's ('seeds' at the top level): every condition runs "
+                  "with each of them");
+        } else {
+          condition.ok = false;
+          UnknownKey(key_path, key_node, absl::StrCat("in ", path), kConditionKeys);
+        }
+      });
+  condition.ok = condition.ok && clean;
+  if (grid.has_value()) ReadGrid(grid->first, grid->second, condition);
+  conditions_.push_back(std::move(condition));
+}
+
+// `a * b`, at most kCountCap.
+constexpr int64_t kCountCap = int64_t{1} << 50;
+int64_t Times(int64_t a, int64_t b) {
+  return (b != 0 && a > kCountCap / b) ? kCountCap : std::min(a * b, kCountCap);
+}
+
+void SweepParser::ReadGrid(const YAML::Node& node, const std::string& path,
+                           Condition& condition) {
+  // The condition's keys with each grid key's first value placed: where the next key goes.
+  std::optional<YAML::Node> placed;
+  placed.emplace(condition.run_keys);
+  const bool clean = Entries(
+      node, path, "a mapping of key paths to lists of values (e.g. {schedule.period: [100, 200]})",
+      [&](const std::string& key, const YAML::Node& key_node, const YAML::Node& values,
+          const std::string& key_path) {
+        const int reported = reported_;
+        std::optional<std::vector<KeyPathStep>> steps = ParseKeyPath(key);
+        if (!steps.has_value()) {
+          Problem(key_path, key_node,
+                  absl::StrCat("'", key,
+                               "' is not a key path: names joined by '.', list items as [i] "
+                               "(e.g. schedule.period, stages[1].steps)"));
+        } else if (!Contains(kConditionRunKeys, steps->front().key)) {
+          Problem(key_path, key_node,
+                  absl::StrCat("a grid varies keys of the condition's run config (",
+                               absl::StrJoin(kConditionRunKeys, ", "), "), not '",
+                               steps->front().key, "'"));
+        } else {
+          for (const GridKey& other : condition.grid) {
+            if (KeyPathsOverlap(*steps, other.steps)) {
+              Problem(key_path, key_node,
+                      absl::StrCat("overlaps grid key '", other.key,
+                                   "': values placed at both would overwrite one another"));
+            }
+          }
+        }
+        if (!values.IsSequence()) {
+          Problem(key_path, values, "must be a list of values (one condition each)");
+        } else if (values.size() == 0) {
+          Problem(key_path, values, "must list at least one value: an empty list makes no "
+                                    "conditions");
+        } else {
+          std::map<std::string, size_t> seen;
+          for (size_t i = 0; i < values.size(); ++i) {
+            auto [it, added] = seen.emplace(FlowText(values[i]), i);
+            if (!added) {
+              Problem(ItemPath(key_path, i), values[i],
+                      absl::StrCat("'", it->first, "' is listed twice (also ",
+                                   ItemPath(key_path, it->second),
+                                   "): it would make two conditions of one name"));
+            }
+          }
+        }
+        std::vector<std::string> created;
+        if (reported_ == reported) {
+          absl::StatusOr<YAML::Node> next = WithValueAt(*arena_, *placed, *steps, values[0], &created);
+          if (next.ok()) {
+            placed.emplace(*std::move(next));
+          } else {
+            Problem(key_path, key_node,
+                    absl::StrCat("cannot place its values in the condition: ",
+                                 next.status().message()));
+          }
+        }
+        if (reported_ != reported) {
+          condition.ok = false;
+          return;
+        }
+        condition.grid.push_back({.key = key,
+                                  .steps = *std::move(steps),
+                                  .path = key_path,
+                                  .values = values,
+                                  .created = std::move(created)});
+        condition.count = Times(condition.count, static_cast<int64_t>(values.size()));
+      });
+  if (node.IsMap() && node.size() == 0) {
+    Problem(path, node, "must map at least one key path to values (or be left out)");
+  }
+  condition.ok = condition.ok && clean && node.IsMap() && node.size() > 0;
+}
+
+int64_t SweepParser::SeedCount() const {
+  if (seeds_.has_value()) return static_cast<int64_t>(seeds_->size());
+  return seed_count_;
+}
+
+const std::vector<Mode>* SweepParser::ModesOf(const Condition& condition) const {
+  if (condition.modes.has_value()) return &*condition.modes;
+  return modes_.has_value() ? &*modes_ : nullptr;
+}
+
+void SweepParser::CheckRuns() {
+  int64_t trials = 0;
+  for (const Condition& condition : conditions_) {
+    const std::vector<Mode>* modes = ModesOf(condition);
+    trials = std::min(
+        kCountCap,
+        trials + Times(condition.count, modes != nullptr ? static_cast<int64_t>(modes->size()) : 1));
+  }
+  const int64_t seeds = std::max<int64_t>(SeedCount(), 1);
+  const int64_t runs = Times(trials, seeds);
+  if (runs <= kMaxRuns) return;
+  Problem("conditions", *conditions_node_,
+          absl::StrCat(trials, " trials x ", seeds, " seeds would make ",
+                       runs == kCountCap ? "more than " : "", runs,
+                       " runs; a sweep may make at most ", kMaxRuns));
+}
+
+bool SweepParser::MergesWithBase(absl::string_view key) const {
+  if (!Contains(kMergedKeys, key)) return false;
+  for (const auto& [base_key, value] : base_) {
+    if (base_key == key) return value.IsMap();
+  }
+  return false;
+}
+
+void SweepParser::Expand(const Condition& condition) {
+  // Where its own keys were written: a key it gives replaces the base's, so all below it is
+  // the condition's, except in a mapping merged with the base's, where only its keys are.
+  PathRules rules;
+  for (const auto& entry : condition.run_keys) {
+    const std::string key = entry.first.Scalar();
+    const std::string path = KeyPath(condition.path, key);
+    if (MergesWithBase(key) && entry.second.IsMap()) {
+      rules.push_back({.from = key, .to = path, .exact = true});
+      for (const auto& inner : entry.second) {
+        if (inner.first.IsScalar()) {
+          rules.push_back({.from = KeyPath(key, inner.first.Scalar()),
+                           .to = KeyPath(path, inner.first.Scalar())});
+        }
+      }
+    } else {
+      rules.push_back({.from = key, .to = path});
+    }
+  }
+  // A mapping a grid key creates is the grid key's (but a merged one only itself).
+  for (const GridKey& grid : condition.grid) {
+    for (const std::string& created : grid.created) {
+      rules.push_back({.from = created, .to = grid.path, .exact = MergesWithBase(created)});
+    }
+  }
+
+  // Each combination of its grid's values, the last key fastest.
+  std::vector<size_t> at(condition.grid.size(), 0);
+  while (true) {
+    std::optional<YAML::Node> run_keys;
+    run_keys.emplace(condition.run_keys);
+    PathRules expanded = rules;
+    std::string suffix;
+    for (size_t i = 0; i < condition.grid.size(); ++i) {
+      const GridKey& grid = condition.grid[i];
+      const YAML::Node value = grid.values[at[i]];
+      absl::StatusOr<YAML::Node> placed = WithValueAt(*arena_, *run_keys, grid.steps, value);
+      if (!placed.ok()) return Problem(grid.path, value, placed.status().message());
+      run_keys.emplace(*std::move(placed));
+      expanded.push_back({.from = grid.key, .to = ItemPath(grid.path, at[i])});
+      absl::StrAppend(&suffix, " ", grid.key.substr(grid.key.rfind('.') + 1), "=",
+                      FlowText(value));
+    }
+    const std::string name =
+        absl::StrCat(condition.name.value_or(DerivedName(*run_keys)), suffix);
+    AddCondition(condition, *run_keys, expanded, name);
+
+    size_t k = at.size();
+    while (k > 0 && ++at[k - 1] == condition.grid[k - 1].values.size()) at[--k] = 0;
+    if (k == 0) return;
+  }
+}
+
+void SweepParser::AddCondition(const Condition& condition, const YAML::Node& run_keys,
+                               const PathRules& rules, const std::string& name) {
+  const std::string name_path =
+      condition.name.has_value() ? KeyPath(condition.path, "name") : condition.path;
+  const YAML::Node name_node = condition.name_node.value_or(condition.node);
+  if (std::string problem = NameProblem(name); !problem.empty()) {
+    return Problem(name_path, name_node,
+                   absl::StrCat("its name '", absl::CHexEscape(name), "' ", problem));
+  }
+  if (auto [it, added] = names_.try_emplace(name, name_path, name_node); !added) {
+    const auto& [other_path, other_node] = it->second;
+    return Problem(
+        name_path, name_node,
+        absl::StrCat("duplicate condition name '", name, "' (also ", other_path,
+                     other_node.Mark().is_null()
+                         ? ""
+                         : absl::StrCat(", line ", other_node.Mark().line + 1),
+                     "): condition names must be unique",
+                     condition.name.has_value() ? "" : "; give one of them a name"));
+  }
+
+  const std::vector<Mode>* modes = ModesOf(condition);
+  if (modes == nullptr) return;  // the sweep's `observe` is wrong, and said so
+  for (const Mode& mode : *modes) {
+    const YAML::Node document = TrialDocument(run_keys, mode);
+    PathRules trial_rules = rules;
+    trial_rules.push_back({.from = "observe", .to = mode.path});
+    YamlReader reader(where_, [&trial_rules](absl::string_view path) {
+      return ShownPath(trial_rules, path);
+    });
+    absl::StatusOr<RunSpec> run = ReadRunSpec(reader, document);
+    if (!run.ok()) {
+      Problem(run.status());
+      continue;
+    }
+    spec_.trials.push_back({.condition = name,
+                            .family = FamilyOf(*run),
+                            .observe = mode.mode,
+                            .config = YamlText(document)});
+  }
+}
+
+YAML::Node SweepParser::TrialDocument(const YAML::Node& run_keys, const Mode& mode) {
+  YAML::Node document = arena_->New(YAML::NodeType::Map);
+  std::set<std::string> base_keys;
+  for (const auto& [key, value] : base_) {
+    base_keys.insert(key);
+    const std::optional<YAML::Node> over = FindKey(run_keys, key);
+    if (!over.has_value()) {
+      document.force_insert(key, value);
+    } else if (Contains(kMergedKeys, key) && value.IsMap() && over->IsMap()) {
+      document.force_insert(key, MergedMapping(*arena_, value, *over));
+    } else {
+      document.force_insert(key, *over);
+    }
+  }
+  for (const auto& entry : run_keys) {
+    if (!base_keys.contains(entry.first.Scalar())) {
+      document.force_insert(entry.first, entry.second);
+    }
+  }
+  document.force_insert("observe", mode.node);
+  return document;
+}
+
+absl::Status SweepParser::ToStatus() const {
+  if (problems_.size() == 1) return absl::InvalidArgumentError(problems_[0]);
+  std::string text = absl::StrCat(problems_.size(), " problems in ", where_, ":");
+  for (const std::string& problem : problems_) absl::StrAppend(&text, "\n  ", problem);
+  return absl::InvalidArgumentError(text);
+}
+
+absl::StatusOr<SweepSpec> SweepParser::Parse(absl::string_view text) {
+  absl::StatusOr<YAML::Node> root = reader_.Load(text);
+  if (!root.ok()) return root.status();
+  if (!root->IsMap()) {
+    return reader_.Error("", *root, "the document must be a sweep spec: a mapping with seeds, "
+                                    "conditions and the runs' base keys");
+  }
+  arena_.emplace(*root);
+  try {
+    TopLevel(*root);
+    if (!has_seeds_) {
+      Problem(reader_.errors().At(
+          "seeds", "missing: give the number of seeds N (seeds 0..N-1) or a list of seeds"));
+    }
+    if (!has_modes_) {
+      modes_.emplace();
+      modes_->push_back(
+          {.mode = env::ObserveMode::kNone, .node = YAML::Node("none"), .path = "observe"});
+    }
+    if (!conditions_node_.has_value()) {
+      Problem(reader_.errors().At(
+          "conditions", "missing: a sweep needs at least one condition (e.g. [{name: static}])"));
+    } else {
+      Conditions(*conditions_node_);
+      const int reported = reported_;
+      CheckRuns();
+      if (reported_ == reported) {
+        for (const Condition& condition : conditions_) {
+          if (condition.ok) Expand(condition);
+        }
+      }
+    }
+  } catch (const YAML::Exception& e) {  // not expected: every access is checked first
+    return absl::InvalidArgumentError(absl::StrCat(where_, ": line ", e.mark.line + 1,
+                                                   ", column ", e.mark.column + 1, ": ", e.msg));
+  }
+  if (!problems_.empty()) return ToStatus();
+
+  spec_.name = name_;
+  if (seeds_.has_value()) {
+    spec_.seeds = *seeds_;
+  } else {
+    for (int64_t seed = 0; seed < seed_count_; ++seed) {
+      spec_.seeds.push_back(static_cast<uint64_t>(seed));
+    }
+  }
+  for (const SweepTrial& trial : spec_.trials) {
+    if (trial.family == "static") {
+      spec_.baseline = trial.condition;
+      break;
+    }
+  }
+  return std::move(spec_);
+}
+
+}  // namespace
+
+absl::StatusOr<SweepSpec> ParseSweepSpecYaml(absl::string_view text, absl::string_view where) {
+  return SweepParser(where).Parse(text);
+}
+
+}  // namespace dcs::run

@@ -1,0 +1,84 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_RUN_SWEEP_SPEC_YAML_H_
+#define DCS_RUN_SWEEP_SPEC_YAML_H_
+
+// Sweep specs (run/sweep_spec.h) read from YAML, as `dcs submit` and configs/ write them,
+// and validated whole: every run the sweep would make is checked as a run config is
+// (run/run_spec_yaml.h) before anything is stored. An example:
+//
+//   name: quickstart          # optional (default: none; the client uses the file's name)
+//   seeds: 3                  # N: seeds 0..N-1; or a list of distinct seeds [0, 5, 7]
+//   observe: [none, live]     # each condition in each of these modes, in order; a single mode
+//                             # is a list of one; absent: [none]
+//   env: cartpole             # the base of every run: the run config's keys but seed,
+//   total_timesteps: 150000   # schedule, stages and observe (env, total_timesteps, n_envs,
+//   feature: length           # context, feature, training_range, pool, evaluation, ppo)
+//   training_range: [0.35, 0.75]
+//   pool: {size: 7}
+//   evaluation: {contexts: {id: [0.4, 0.5], ood_low: [0.1], ood_high: [1.0]}}
+//   ppo: {n_epochs: 10}
+//   conditions:
+//     - name: static          # neither schedule nor stages: the static baseline
+//     - schedule: {family: sinusoidal, period: 125}
+//       grid: {schedule.amplitude_frac: [0.25, 0.5]}   # one condition per value
+//     - name: curriculum
+//       stages:
+//         - {steps: 30000, schedule: {family: constant}}
+//         - {steps: 120000, schedule: {family: cosine_annealing, T_0: 250}}
+//     - name: pool15
+//       pool: {size: 15}      # a condition may override any base key (not seed)
+//       ppo: {n_epochs: 5}    # context, evaluation and ppo merge key by key with the base's
+//       observe: live         # its own modes, instead of the sweep's
+//
+// A condition holds `name`, `grid`, `observe`, `schedule` or `stages` (not both), and any base
+// key. A base key the condition gives replaces the base's whole (`pool` too), except the
+// mappings `context`, `evaluation` and `ppo`, whose keys the condition's replace one by one
+// (one level deep: a condition's `evaluation: {contexts: ...}` replaces all the contexts).
+//
+// `grid` maps key paths within the condition's run config (`schedule.period`, `pool.size`,
+// `n_envs`, `ppo.learning_rate`, `stages[1].schedule.T_0`) to non-empty lists of values; the
+// condition becomes one condition per combination, the first key varying slowest. A value goes
+// where the condition would have written it (so it merges as the condition's own keys do): the
+// mappings on its path are created if the condition lacks them; a list index needs the item in
+// the condition. Two grid keys may not overlap (`schedule` and `schedule.period`), nor a list
+// hold a value twice.
+//
+// Names: a condition's `name`, else "static" (no schedule), its schedule's family as written
+// ("sinusoidal"), or its stages' families joined by '>' ("constant>cosine_annealing"); then,
+// for each grid key in order, " <the key's last part>=<the value as written>"
+// ("sinusoidal amplitude_frac=0.25"). Names are unique in the sweep, not empty, and hold no '/'
+// and no control characters (they name files and table rows).
+//
+// The trials are the conditions in order, each in its modes in order; a sweep makes one run per
+// trial and seed, at most 10,000 runs, and needs at least one condition and one seed.
+//
+// Errors are one INVALID_ARGUMENT listing every problem found, each as a run config's error
+// reads, "<where>: <path>: line <n>: <message>" (run/config_errors.h), with the path and line
+// in the spec where the field was written: `conditions[2].stages[1].schedule.period` for a key
+// of a condition, `conditions[1].grid.schedule.amplitude_frac[1]` for a grid value,
+// `ppo.gamma` for a base key. One problem reads exactly so; several read
+//
+//   3 problems in sweep.yaml:
+//     sweep.yaml: conditions: line 12: ...
+//     ...
+//
+// Found: malformed YAML (alone: nothing else is read); the sweep's own keys (unknown keys,
+// `seed`, `schedule` or `stages` at the top level, seeds, modes, the grid, names, the number of
+// runs); and the first error of each trial's run config, once per distinct message (so a bad
+// base key is reported once, not once per trial).
+//
+// Thread-safe (pure functions).
+
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "run/sweep_spec.h"
+
+namespace dcs::run {
+
+// The sweep spec in `text`, expanded and validated; `where` names it in errors (its file path).
+// INVALID_ARGUMENT for every problem listed above, and as ParseRunSpecYaml for each trial.
+absl::StatusOr<SweepSpec> ParseSweepSpecYaml(absl::string_view text, absl::string_view where);
+
+}  // namespace dcs::run
+
+#endif  // DCS_RUN_SWEEP_SPEC_YAML_H_

@@ -1,0 +1,199 @@
+// Copyright 2026 The DCS Authors.
+#include "services/cli/sweep_commands.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+#include "common/atomic_file.h"
+#include "common/text_table.h"
+#include "dcs/proto_json.h"
+#include "services/cli/cluster_client.h"
+#include "services/cli/detach.h"
+#include "services/cli/run_client.h"
+#include "services/cli/sweep_view.h"
+#include "services/exit_codes.h"
+#include "services/unary_call.h"
+
+namespace dcs::services::cli {
+namespace {
+
+// Follows the sweep until it ends: on a terminal, the progress view redrawn in place every
+// second; otherwise its headline whenever it changes. Ctrl-C detaches (the sweep goes on).
+// Exit: 0 completed, 1 failed or cancelled, 130 detached.
+int WatchSweep(const GlobalFlags& flags, const std::string& sweep_id) {
+  const std::string address = CoordinatorAddress(flags);
+  const bool terminal = isatty(STDOUT_FILENO) == 1;
+  const DetachOnInterrupt detach;
+  std::string shown;
+  int shown_lines = 0;
+  std::optional<v1::GetSweepResponse> last;
+  absl::Status status;
+  while (!detach.requested()) {
+    absl::StatusOr<v1::GetSweepResponse> sweep = GetSweep(address, sweep_id, flags.timeout);
+    if (!sweep.ok()) {
+      if (!IsTransient(sweep.status())) {
+        status = sweep.status();
+        break;
+      }
+    } else {
+      const std::string view = terminal ? SweepProgressView(*sweep) : SweepHeadline(*sweep);
+      if (view != shown) {
+        // Back over the previous view and clear it, then draw the new one.
+        if (terminal && shown_lines > 0) std::cout << "\x1b[" << shown_lines << "F\x1b[J";
+        std::cout << view << (view.ends_with('\n') ? "" : "\n") << std::flush;
+        shown = view;
+        shown_lines = static_cast<int>(std::count(view.begin(), view.end(), '\n')) +
+                      (view.ends_with('\n') ? 0 : 1);
+      }
+      last = *std::move(sweep);
+      if (SweepEnded(last->sweep().state())) break;
+    }
+    absl::SleepFor(absl::Seconds(1));
+  }
+  if (!status.ok()) return FailCommand(status);
+  if (!last.has_value() || !SweepEnded(last->sweep().state())) {
+    std::cerr << "dcs: detached from " << sweep_id << " (it goes on); follow it with: dcs watch "
+              << sweep_id << std::endl;
+    return kExitInterrupted;
+  }
+  if (last->sweep().state() != v1::SWEEP_STATE_COMPLETED) {
+    std::cerr << "dcs: " << sweep_id << " " << SweepStateName(last->sweep().state())
+              << (last->sweep().failed() > 0 ? "; `dcs retry " + sweep_id + "` reruns its "
+                                                "failed runs"
+                                              : "")
+              << std::endl;
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
+struct SubmitFlags {
+  std::string spec;
+  bool watch = false;
+  bool dry_run = false;
+};
+
+int SubmitCommand(const GlobalFlags& flags, const SubmitFlags& submit) {
+  absl::StatusOr<std::string> text = ReadFile(submit.spec);
+  if (!text.ok()) return FailCommand(text.status());
+  const std::string stem = std::filesystem::path(submit.spec).stem().string();
+  absl::StatusOr<v1::Sweep> sweep = SubmitSweep(CoordinatorAddress(flags), *text, submit.spec,
+                                                stem, submit.dry_run, flags.timeout);
+  if (!sweep.ok()) return FailCommand(sweep.status());
+  if (flags.output == OutputFormat::kJson) {
+    std::cout << ProtoToJson(*sweep) << std::endl;
+  } else if (submit.dry_run) {
+    std::vector<std::vector<std::string>> rows = {{"CONDITION", "FAMILY", "MODE"}};
+    for (const v1::Trial& trial : sweep->trials()) {
+      rows.push_back({trial.condition(), trial.family(), trial.observe()});
+    }
+    std::cout << RenderTable(rows) << sweep->name() << ": " << sweep->trials_size()
+              << " trials x " << sweep->seeds() << " seeds = " << sweep->runs() << " runs"
+              << std::endl;
+  } else {
+    std::cout << sweep->sweep_id() << std::endl;
+  }
+  if (submit.dry_run) return kExitOk;
+  std::cerr << "dcs: submitted " << sweep->sweep_id() << " (" << sweep->name() << ", "
+            << sweep->runs() << " runs); follow it with: dcs watch " << sweep->sweep_id()
+            << std::endl;
+  return submit.watch ? WatchSweep(flags, sweep->sweep_id()) : kExitOk;
+}
+
+int ListSweepsCommand(const GlobalFlags& flags) {
+  absl::StatusOr<std::vector<v1::Sweep>> sweeps =
+      ListSweeps(CoordinatorAddress(flags), flags.timeout);
+  if (!sweeps.ok()) return FailCommand(sweeps.status());
+  if (flags.output == OutputFormat::kJson) {
+    v1::ListSweepsResponse response;
+    for (const v1::Sweep& sweep : *sweeps) *response.add_sweeps() = sweep;
+    std::cout << ProtoToJson(response) << std::endl;
+    return kExitOk;
+  }
+  std::vector<std::vector<std::string>> rows = {
+      {"SWEEP", "NAME", "STATE", "TRIALS", "SEEDS", "DONE", "RUNNING", "QUEUED", "FAILED"}};
+  for (const v1::Sweep& sweep : *sweeps) {
+    rows.push_back({sweep.sweep_id(), sweep.name(), SweepStateName(sweep.state()),
+                    absl::StrCat(sweep.trials_size()), absl::StrCat(sweep.seeds()),
+                    absl::StrCat(sweep.completed(), "/", sweep.runs()),
+                    absl::StrCat(sweep.running()), absl::StrCat(sweep.queued()),
+                    absl::StrCat(sweep.failed())});
+  }
+  std::cout << RenderTable(rows) << std::flush;
+  return kExitOk;
+}
+
+// Prints the sweep a cancel or retry left, as JSON or as "<id> <state>".
+int PrintSweepState(const GlobalFlags& flags, const v1::Sweep& sweep) {
+  if (flags.output == OutputFormat::kJson) {
+    std::cout << ProtoToJson(sweep) << std::endl;
+  } else {
+    std::cout << sweep.sweep_id() << " " << SweepStateName(sweep.state()) << std::endl;
+  }
+  return kExitOk;
+}
+
+int CancelSweepCommand(const GlobalFlags& flags, const std::string& sweep_id) {
+  absl::StatusOr<v1::Sweep> sweep = CancelSweep(CoordinatorAddress(flags), sweep_id,
+                                                flags.timeout);
+  if (!sweep.ok()) return FailCommand(sweep.status());
+  return PrintSweepState(flags, *sweep);
+}
+
+int RetrySweepCommand(const GlobalFlags& flags, const std::string& sweep_id) {
+  absl::StatusOr<v1::RetrySweepResponse> retried =
+      RetrySweep(CoordinatorAddress(flags), sweep_id, flags.timeout);
+  if (!retried.ok()) return FailCommand(retried.status());
+  std::cerr << "dcs: " << retried->retried() << " failed run(s) of " << sweep_id
+            << " queued again" << std::endl;
+  return PrintSweepState(flags, retried->sweep());
+}
+
+}  // namespace
+
+std::vector<CliCommand> AddSweepCommands(CLI::App& dcs, const GlobalFlags& flags) {
+  auto submit_flags = std::make_shared<SubmitFlags>();
+  auto sweep_id = std::make_shared<std::string>();
+
+  CLI::App* submit = dcs.add_subcommand(
+      "submit", "Submit a sweep (a grid of conditions x observation modes x seeds; see "
+                "configs/quickstart.yaml) and print its id");
+  submit->add_option("spec", submit_flags->spec, "the sweep spec (YAML)")->required();
+  submit->add_flag("--watch", submit_flags->watch,
+                   "then follow it to its end, as `dcs watch`, and exit with its outcome");
+  submit->add_flag("--dry-run", submit_flags->dry_run,
+                   "check the spec on the coordinator and list its trials; queue nothing");
+
+  CLI::App* sweeps = dcs.add_subcommand("sweeps", "List the cluster's sweeps with progress");
+
+  CLI::App* watch = dcs.add_subcommand(
+      "watch", "Follow a sweep live (Ctrl-C detaches): runs by state per trial, steps/s, ETA, "
+               "the best trial so far; exit 0 once it completed, 1 if it failed");
+  watch->add_option("sweep", *sweep_id, "the sweep's id, e.g. sweep-1")->required();
+
+  CLI::App* cancel = dcs.add_subcommand("cancel", "Stop a sweep's queued and running runs");
+  cancel->add_option("sweep", *sweep_id, "the sweep's id")->required();
+
+  CLI::App* retry = dcs.add_subcommand(
+      "retry", "Queue a sweep's failed runs again (each resumes from its last checkpoint)");
+  retry->add_option("sweep", *sweep_id, "the sweep's id")->required();
+
+  return {
+      {submit, [&flags, submit_flags] { return SubmitCommand(flags, *submit_flags); }},
+      {sweeps, [&flags] { return ListSweepsCommand(flags); }},
+      {watch, [&flags, sweep_id] { return WatchSweep(flags, *sweep_id); }},
+      {cancel, [&flags, sweep_id] { return CancelSweepCommand(flags, *sweep_id); }},
+      {retry, [&flags, sweep_id] { return RetrySweepCommand(flags, *sweep_id); }},
+  };
+}
+
+}  // namespace dcs::services::cli

@@ -1,0 +1,136 @@
+// Copyright 2026 The DCS Authors.
+//
+// CoordinatorService's sweeps: the run store's sweeps (coordinator/run_store.h), their
+// expansion from a spec (coordinator/sweep_submission.h) and their results
+// (coordinator/sweep_results.h) on the wire.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+#include "common/status_macros.h"
+#include "coordinator/run_files.h"
+#include "coordinator/sweep_results.h"
+#include "coordinator/sweep_submission.h"
+#include "services/coordinator_service.h"
+#include "services/log.h"
+#include "services/run_proto.h"
+
+namespace dcs::services {
+namespace {
+
+constexpr char kDefaultSpecName[] = "sweep.yaml";
+
+}  // namespace
+
+grpc::ServerUnaryReactor* CoordinatorService::SubmitSweep(grpc::CallbackServerContext* context,
+                                                          const v1::SubmitSweepRequest* request,
+                                                          v1::SubmitSweepResponse* response) {
+  auto submit = [&]() -> absl::Status {
+    if (request->request_id().empty() && !request->validate_only()) {
+      return absl::InvalidArgumentError("request_id is empty: a client names each submission");
+    }
+    const std::string spec_name =
+        request->spec_name().empty() ? kDefaultSpecName : request->spec_name();
+    DCS_ASSIGN_OR_RETURN(coordinator::ExpandedSweep sweep,
+                         coordinator::ExpandSweep(request->spec(), spec_name, request->name(),
+                                                  request->request_id()));
+    if (request->validate_only()) {
+      coordinator::SweepRecord preview{.name = sweep.submission.name,
+                                       .seeds = sweep.submission.seeds,
+                                       .trials = sweep.submission.trials};
+      preview.runs_by_state = {{coordinator::RunState::kQueued,
+                                static_cast<int64_t>(sweep.submission.runs.size())}};
+      *response->mutable_sweep() = SweepToProto(preview);
+      return absl::OkStatus();
+    }
+    DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord record,
+                         runs_.store->SubmitSweep(sweep.submission, absl::Now()));
+    // Each run's directory holds its config, as `dcs train` writes it (again, on a retry).
+    DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
+                         runs_.store->ListSweepRuns(record.id));
+    for (size_t i = 0; i < runs.size() && i < sweep.requests.size(); ++i) {
+      run::RunRequest& run = sweep.requests[i];
+      run.dir = coordinator::RunDirectory(runs_.data_dir, runs[i].id);
+      DCS_RETURN_IF_ERROR(run::CreateRunDirectory(run));
+    }
+    Log(LogLevel::kInfo, "sweep submitted",
+        {{"sweep_id", record.id}, {"name", record.name},
+         {"runs", std::to_string(runs.size())}});
+    *response->mutable_sweep() = SweepToProto(record);
+    return absl::OkStatus();
+  };
+  return Finish(context, submit());
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::GetSweep(grpc::CallbackServerContext* context,
+                                                       const v1::GetSweepRequest* request,
+                                                       v1::GetSweepResponse* response) {
+  auto get = [&]() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord sweep,
+                         runs_.store->GetSweep(request->sweep_id()));
+    DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
+                         runs_.store->ListSweepRuns(request->sweep_id()));
+    *response->mutable_sweep() = SweepToProto(sweep);
+    for (const coordinator::RunRecord& run : runs) *response->add_runs() = RunToProto(run);
+    return absl::OkStatus();
+  };
+  return Finish(context, get());
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::ListSweeps(
+    grpc::CallbackServerContext* context, const v1::ListSweepsRequest* /*request*/,
+    v1::ListSweepsResponse* response) {
+  absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = runs_.store->ListSweeps();
+  if (sweeps.ok()) {
+    for (const coordinator::SweepRecord& sweep : *sweeps) {
+      *response->add_sweeps() = SweepToProto(sweep);
+    }
+  }
+  return Finish(context, sweeps.status());
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::CancelSweep(grpc::CallbackServerContext* context,
+                                                          const v1::CancelSweepRequest* request,
+                                                          v1::CancelSweepResponse* response) {
+  absl::StatusOr<coordinator::SweepRecord> sweep =
+      runs_.store->CancelSweep(request->sweep_id(), absl::Now());
+  if (sweep.ok()) {
+    Log(LogLevel::kInfo, "sweep cancelled", {{"sweep_id", sweep->id}});
+    *response->mutable_sweep() = SweepToProto(*sweep);
+  }
+  return Finish(context, sweep.status());
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::RetrySweep(grpc::CallbackServerContext* context,
+                                                         const v1::RetrySweepRequest* request,
+                                                         v1::RetrySweepResponse* response) {
+  absl::StatusOr<std::pair<coordinator::SweepRecord, int>> retried =
+      runs_.store->RetrySweep(request->sweep_id(), absl::Now());
+  if (retried.ok()) {
+    Log(LogLevel::kInfo, "sweep retried",
+        {{"sweep_id", retried->first.id}, {"runs", std::to_string(retried->second)}});
+    *response->mutable_sweep() = SweepToProto(retried->first);
+    response->set_retried(retried->second);
+  }
+  return Finish(context, retried.status());
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::GetSweepResults(
+    grpc::CallbackServerContext* context, const v1::GetSweepResultsRequest* request,
+    v1::SweepResults* response) {
+  auto get = [&]() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord sweep,
+                         runs_.store->GetSweep(request->sweep_id()));
+    DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
+                         runs_.store->ListSweepRuns(request->sweep_id()));
+    DCS_ASSIGN_OR_RETURN(*response,
+                         coordinator::CollectSweepResults(sweep, runs, runs_.data_dir));
+    return absl::OkStatus();
+  };
+  return Finish(context, get());
+}
+
+}  // namespace dcs::services

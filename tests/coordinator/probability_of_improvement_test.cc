@@ -1,0 +1,91 @@
+// Copyright 2026 The DCS Authors.
+#include "coordinator/probability_of_improvement.h"
+
+#include <cmath>
+#include <vector>
+
+#include "common/random.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+
+namespace dcs::coordinator {
+namespace {
+
+TEST(ProbabilityOfImprovementTest, CountsWinsAndHalfTiesOverAllPairs) {
+  // {1, 2, 3} over {2, 2, 2}: 1 loses its 3 pairs, 2 ties its 3 (0.5 each), 3 wins its 3:
+  // (0 + 1.5 + 3) / 9 = 0.5.
+  const std::vector<double> x = {1, 2, 3};
+  const std::vector<double> y = {2, 2, 2};
+  EXPECT_DOUBLE_EQ(*ProbabilityOfImprovement(x, y), 0.5);
+  // {3, 4} over {1, 3, 5}: 3 > 1, 3 = 3, 3 < 5, 4 > 1, 4 > 3, 4 < 5: 3.5 / 6.
+  const std::vector<double> a = {3, 4};
+  const std::vector<double> b = {1, 3, 5};
+  EXPECT_DOUBLE_EQ(*ProbabilityOfImprovement(a, b), 3.5 / 6);
+  EXPECT_DOUBLE_EQ(*ProbabilityOfImprovement(b, a), 2.5 / 6);  // P(X>Y) + P(Y>X) + P(=) = 1
+  const std::vector<double> high = {5, 6};
+  const std::vector<double> low = {1, 2};
+  EXPECT_EQ(*ProbabilityOfImprovement(high, low), 1);
+  EXPECT_EQ(*ProbabilityOfImprovement(low, high), 0);
+  EXPECT_EQ(*ProbabilityOfImprovement(x, x), 0.5);
+}
+
+TEST(ProbabilityOfImprovementTest, RejectsEmptyAndNan) {
+  const std::vector<double> ok = {1, 2};
+  const std::vector<double> nan = {1, std::nan("")};
+  EXPECT_EQ(ProbabilityOfImprovement({}, ok).status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(ProbabilityOfImprovement(ok, nan).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(BootstrapImprovementInterval(ok, ok, 1.0, 10, 0).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(BootstrapImprovementInterval(ok, ok, 0.95, 0, 0).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(BootstrapImprovementInterval(ok, {}, 0.95, 10, 0).status().code(),
+            absl::StatusCode::kInvalidArgument);
+}
+
+TEST(BootstrapImprovementTest, OneRepetitionIsTheImprovementOfOneResampleOfEachSide) {
+  // The documented stream and order: X's runs, then Y's, from StreamSeed(seed, "improvement").
+  const std::vector<double> x = {1, 4, 6, 9};
+  const std::vector<double> y = {2, 5, 7};
+  Random random(StreamSeed(11, "improvement"));
+  std::vector<double> x_sample;
+  std::vector<double> y_sample;
+  for (size_t i = 0; i < x.size(); ++i) x_sample.push_back(x[random.Integers(0, 4)]);
+  for (size_t i = 0; i < y.size(); ++i) y_sample.push_back(y[random.Integers(0, 3)]);
+  const double expected = *ProbabilityOfImprovement(x_sample, y_sample);
+  const ConfidenceInterval interval = *BootstrapImprovementInterval(x, y, 0.95, 1, 11);
+  EXPECT_EQ(interval.lo, expected);
+  EXPECT_EQ(interval.hi, expected);
+}
+
+TEST(BootstrapImprovementTest, IntervalHoldsTheEstimateAndIsDeterministic) {
+  const std::vector<double> x = {3, 6, 9, 2, 5, 8, 1, 4, 7, 10};
+  const std::vector<double> y = {5, 1, 4, 2, 8, 9, 3, 7, 6, 0};
+  const double estimate = *ProbabilityOfImprovement(x, y);
+  const ConfidenceInterval interval = *BootstrapImprovementInterval(x, y, 0.95, 2000, 0);
+  EXPECT_LT(interval.lo, estimate);
+  EXPECT_GT(interval.hi, estimate);
+  EXPECT_GE(interval.lo, 0);
+  EXPECT_LE(interval.hi, 1);
+  const ConfidenceInterval again = *BootstrapImprovementInterval(x, y, 0.95, 2000, 0);
+  EXPECT_EQ(again.lo, interval.lo);
+  EXPECT_EQ(again.hi, interval.hi);
+  const ConfidenceInterval other = *BootstrapImprovementInterval(x, y, 0.95, 2000, 1);
+  EXPECT_TRUE(other.lo != interval.lo || other.hi != interval.hi);
+  // A narrower confidence gives a narrower interval from the same resamples.
+  const ConfidenceInterval narrow = *BootstrapImprovementInterval(x, y, 0.5, 2000, 0);
+  EXPECT_GE(narrow.lo, interval.lo);
+  EXPECT_LE(narrow.hi, interval.hi);
+  EXPECT_LT(narrow.hi - narrow.lo, interval.hi - interval.lo);
+}
+
+TEST(BootstrapImprovementTest, SeparatedSamplesGiveAPointInterval) {
+  const std::vector<double> high = {10, 11, 12};
+  const std::vector<double> low = {1, 2, 3};
+  const ConfidenceInterval interval = *BootstrapImprovementInterval(high, low, 0.95, 100, 0);
+  EXPECT_EQ(interval.lo, 1);
+  EXPECT_EQ(interval.hi, 1);
+}
+
+}  // namespace
+}  // namespace dcs::coordinator

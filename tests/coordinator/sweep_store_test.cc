@@ -1,0 +1,189 @@
+// Copyright 2026 The DCS Authors.
+//
+// RunStore's sweeps (coordinator/sweep_store.cc) on a real SQLite file.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "absl/time/time.h"
+#include "coordinator/run_state.h"
+#include "coordinator/run_store.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::coordinator {
+namespace {
+
+using ::testing::HasSubstr;
+
+const absl::Time kStart = absl::FromUnixSeconds(1'800'000'000);
+
+// A sweep of `trials` trials × `seeds` seeds, queued seed-major.
+SweepSubmission Sweep(std::string request_id, int trials, int seeds) {
+  SweepSubmission sweep{.request_id = request_id, .name = "grid", .spec = "conditions: []\n",
+                        .seeds = seeds};
+  for (int trial = 0; trial < trials; ++trial) {
+    sweep.trials.push_back({.condition = absl::StrCat("condition-", trial),
+                            .family = trial == 0 ? "static" : "sinusoidal",
+                            .observe = "none"});
+  }
+  for (int seed = 0; seed < seeds; ++seed) {
+    for (int trial = 0; trial < trials; ++trial) {
+      sweep.runs.push_back({.trial = trial,
+                            .run = {.request_id = absl::StrCat(request_id, "/", trial, "/", seed),
+                                    .config = "env: cartpole\n",
+                                    .seed = static_cast<uint64_t>(seed),
+                                    .env = "cartpole",
+                                    .n_envs = 1,
+                                    .total_timesteps = 1000}});
+    }
+  }
+  return sweep;
+}
+
+int64_t CountIn(const SweepRecord& sweep, RunState wanted) {
+  for (const auto& [state, runs] : sweep.runs_by_state) {
+    if (state == wanted) return runs;
+  }
+  return -1;
+}
+
+class SweepStoreTest : public testing::TempDirTest {
+ protected:
+  std::unique_ptr<RunStore> Open() {
+    absl::StatusOr<std::unique_ptr<RunStore>> store =
+        RunStore::Open(Path("coordinator.db"), {.lease_duration = absl::Seconds(10)}, kStart);
+    EXPECT_TRUE(store.ok()) << store.status();
+    return store.ok() ? *std::move(store) : nullptr;
+  }
+
+  // Leases the next run to a learner and returns its id.
+  static std::string Acquire(RunStore& store) {
+    absl::StatusOr<std::optional<LearnerLease>> lease =
+        store.AcquireRun("L", "127.0.0.1:5000", "N", kStart);
+    EXPECT_TRUE(lease.ok() && lease->has_value()) << lease.status();
+    return lease.ok() && lease->has_value() ? (*lease)->run.id : "";
+  }
+};
+
+TEST_F(SweepStoreTest, ASweepQueuesARunPerTrialAndSeedAndSurvivesReopening) {
+  {
+    std::unique_ptr<RunStore> store = Open();
+    absl::StatusOr<SweepRecord> sweep = store->SubmitSweep(Sweep("s", 3, 2), kStart);
+    ASSERT_TRUE(sweep.ok()) << sweep.status();
+    EXPECT_EQ(sweep->id, "sweep-1");
+    EXPECT_EQ(sweep->state, SweepState::kQueued);
+    EXPECT_EQ(CountIn(*sweep, RunState::kQueued), 6);
+    ASSERT_EQ(sweep->trials.size(), 3u);
+    EXPECT_EQ(sweep->trials[1].condition, "condition-1");
+    // The same request again creates nothing.
+    absl::StatusOr<SweepRecord> again = store->SubmitSweep(Sweep("s", 3, 2), kStart);
+    ASSERT_TRUE(again.ok());
+    EXPECT_EQ(again->id, "sweep-1");
+  }
+  std::unique_ptr<RunStore> store = Open();
+  absl::StatusOr<std::vector<RunRecord>> runs = store->ListSweepRuns("sweep-1");
+  ASSERT_TRUE(runs.ok()) << runs.status();
+  ASSERT_EQ(runs->size(), 6u);
+  EXPECT_EQ((*runs)[4].sweep_id, "sweep-1");
+  EXPECT_EQ((*runs)[4].trial, 1);
+  EXPECT_EQ((*runs)[4].submission.seed, 1u);
+  absl::StatusOr<std::vector<SweepRecord>> sweeps = store->ListSweeps();
+  ASSERT_TRUE(sweeps.ok());
+  EXPECT_EQ(sweeps->size(), 1u);
+  // A run submitted alone belongs to no sweep.
+  absl::StatusOr<RunRecord> alone =
+      store->SubmitRun({.request_id = "alone", .config = "env: cartpole\n", .n_envs = 1}, kStart);
+  ASSERT_TRUE(alone.ok());
+  EXPECT_EQ(alone->sweep_id, "");
+  EXPECT_EQ(alone->trial, std::nullopt);
+}
+
+TEST_F(SweepStoreTest, ABadRunLeavesNothingOfTheSweep) {
+  std::unique_ptr<RunStore> store = Open();
+  SweepSubmission sweep = Sweep("s", 2, 2);
+  sweep.runs.back().trial = 2;
+  EXPECT_THAT(store->SubmitSweep(sweep, kStart).status().message(), HasSubstr("names trial 2"));
+  sweep = Sweep("s", 2, 2);
+  sweep.runs[1].run.request_id = sweep.runs[0].run.request_id;  // the runs table refuses it
+  EXPECT_FALSE(store->SubmitSweep(sweep, kStart).ok());
+  absl::StatusOr<std::vector<SweepRecord>> sweeps = store->ListSweeps();
+  absl::StatusOr<std::vector<RunRecord>> runs = store->ListRuns();
+  ASSERT_TRUE(sweeps.ok() && runs.ok());
+  EXPECT_TRUE(sweeps->empty());
+  EXPECT_TRUE(runs->empty());
+}
+
+TEST_F(SweepStoreTest, ASmallSweepSubmittedAfterABigOneIsNotStarved) {
+  std::unique_ptr<RunStore> store = Open();
+  ASSERT_TRUE(store->SubmitSweep(Sweep("big", 10, 10), kStart).ok());
+  EXPECT_EQ(Acquire(*store), "run-1");
+  EXPECT_EQ(Acquire(*store), "run-2");
+  ASSERT_TRUE(store->SubmitSweep(Sweep("small", 1, 2), kStart).ok());  // runs 101 and 102
+  // The small sweep has no running run: its run goes first, then the two sweeps take turns.
+  EXPECT_EQ(Acquire(*store), "run-101");
+  EXPECT_EQ(Acquire(*store), "run-102");
+  EXPECT_EQ(Acquire(*store), "run-3");
+}
+
+TEST_F(SweepStoreTest, CancellingStopsEveryActiveRunAndRetryRequeuesOnlyFailedOnes) {
+  std::unique_ptr<RunStore> store = Open();
+  ASSERT_TRUE(store->SubmitSweep(Sweep("s", 2, 2), kStart).ok());
+  // run-1 fails, run-2 completes; run-3 and run-4 stay queued.
+  absl::StatusOr<std::optional<LearnerLease>> first = store->AcquireRun("L", "a", "N", kStart);
+  absl::StatusOr<std::optional<LearnerLease>> second = store->AcquireRun("L", "a", "N", kStart);
+  ASSERT_TRUE(first.ok() && first->has_value() && second.ok() && second->has_value());
+  ASSERT_TRUE(store->FinishRun((*first)->key, RunState::kFailed, "boom", kStart).ok());
+  ASSERT_TRUE(store->FinishRun((*second)->key, RunState::kCompleted, "", kStart).ok());
+  absl::StatusOr<SweepRecord> sweep = store->GetSweep("sweep-1");
+  ASSERT_TRUE(sweep.ok());
+  EXPECT_EQ(sweep->state, SweepState::kRunning);
+
+  absl::StatusOr<SweepRecord> cancelled = store->CancelSweep("sweep-1", kStart);
+  ASSERT_TRUE(cancelled.ok()) << cancelled.status();
+  EXPECT_EQ(cancelled->state, SweepState::kCancelled);
+  EXPECT_EQ(CountIn(*cancelled, RunState::kCancelled), 2);
+  EXPECT_EQ(store->CancelSweep("sweep-1", kStart).status().code(),
+            absl::StatusCode::kFailedPrecondition);
+
+  absl::StatusOr<std::pair<SweepRecord, int>> retried = store->RetrySweep("sweep-1", kStart);
+  ASSERT_TRUE(retried.ok()) << retried.status();
+  EXPECT_EQ(retried->second, 1);
+  absl::StatusOr<RunRecord> run = store->GetRun("run-1");
+  ASSERT_TRUE(run.ok());
+  EXPECT_EQ(run->state, RunState::kQueued);
+  EXPECT_EQ(run->error, "");
+  EXPECT_EQ(retried->first.state, SweepState::kRunning);
+  EXPECT_THAT(store->RetrySweep("sweep-1", kStart).status().message(),
+              HasSubstr("no failed run"));
+}
+
+TEST_F(SweepStoreTest, UnknownSweepsAreNotFound) {
+  std::unique_ptr<RunStore> store = Open();
+  EXPECT_EQ(store->GetSweep("sweep-9").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(store->GetSweep("run-1").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(store->ListSweepRuns("sweep-9").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(store->CancelSweep("sweep-9", kStart).status().code(), absl::StatusCode::kNotFound);
+}
+
+TEST(SweepStateTest, DerivesFromItsRuns) {
+  using S = RunState;
+  auto state = [](std::vector<std::pair<RunState, int64_t>> runs, bool cancelled) {
+    return SweepStateOf(runs, cancelled);
+  };
+  EXPECT_EQ(state({{S::kQueued, 4}}, false), SweepState::kQueued);
+  EXPECT_EQ(state({{S::kQueued, 3}, {S::kCompleted, 1}}, false), SweepState::kRunning);
+  EXPECT_EQ(state({{S::kRunning, 1}, {S::kFailed, 1}}, true), SweepState::kRunning);
+  EXPECT_EQ(state({{S::kCompleted, 3}, {S::kFailed, 1}}, false), SweepState::kFailed);
+  EXPECT_EQ(state({{S::kCompleted, 3}, {S::kCancelled, 1}}, true), SweepState::kCancelled);
+  EXPECT_EQ(state({{S::kCompleted, 4}}, false), SweepState::kCompleted);
+}
+
+}  // namespace
+}  // namespace dcs::coordinator

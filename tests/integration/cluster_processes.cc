@@ -1,0 +1,82 @@
+// Copyright 2026 The DCS Authors.
+#include "tests/integration/cluster_processes.h"
+
+#include <signal.h>
+
+#include <filesystem>
+#include <optional>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+#include "common/atomic_file.h"
+#include "gtest/gtest.h"
+#include "tests/integration/test_util.h"
+#include "tests/testing/net.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::integration {
+
+ClusterProcesses::ClusterProcesses(absl::Duration lease)
+    : dir_(testing::MakeTempDir()), lease_(lease), coordinator_port_(testing::PickFreePort()) {}
+
+std::string ClusterProcesses::coordinator_address() const {
+  return absl::StrCat("127.0.0.1:", coordinator_port_);
+}
+
+void ClusterProcesses::StartCoordinator() {
+  Start("coordinator", "dcs-coordinator",
+        {absl::StrCat("--listen=", coordinator_address()), "--data-dir=" + dir_ + "/data",
+         absl::StrCat("--lease-duration=", absl::FormatDuration(lease_))});
+}
+
+void ClusterProcesses::StartLearner(const std::string& name) {
+  Start(name, "dcs-learner", {"--coordinator=" + coordinator_address()});
+}
+
+void ClusterProcesses::StartActor(const std::string& name, int max_slots) {
+  Start(name, "dcs-actor",
+        {"--coordinator=" + coordinator_address(), absl::StrCat("--max-slots=", max_slots)});
+}
+
+std::string ClusterProcesses::address(const std::string& name) const {
+  return absl::StrCat("127.0.0.1:", ports_.at(name).grpc);
+}
+
+std::string ClusterProcesses::metrics_url(const std::string& name) const {
+  return absl::StrCat("http://127.0.0.1:", ports_.at(name).metrics, "/metrics");
+}
+
+void ClusterProcesses::Kill(const std::string& name) {
+  ASSERT_TRUE(processes_.count(name)) << name;
+  ASSERT_EQ(::kill(processes_.at(name).pid(), SIGKILL), 0);
+  processes_.at(name).Wait(absl::Seconds(10));
+  processes_.erase(name);
+}
+
+std::string ClusterProcesses::Log(const std::string& name) const {
+  return ReadFile(absl::StrCat(dir_, "/", name, ".log")).value_or("");
+}
+
+void ClusterProcesses::Start(const std::string& name, const std::string& program,
+                             std::vector<std::string> args) {
+  const std::string port_file = absl::StrCat(dir_, "/", name, ".ports");
+  std::filesystem::remove(port_file);
+  args.push_back("--port-file=" + port_file);
+  args.push_back("--metrics-listen=127.0.0.1:0");
+  absl::StatusOr<services::cli::ChildProcess> child = services::cli::ChildProcess::Start(
+      {.path = BinaryPath(program),
+       .args = std::move(args),
+       .output_path = absl::StrCat(dir_, "/", name, ".log")});
+  ASSERT_TRUE(child.ok()) << child.status();
+  const absl::Time deadline = absl::Now() + absl::Seconds(30);
+  std::optional<services::BoundPorts> ports;
+  while (!(ports = services::ReadPortFile(port_file)).has_value()) {
+    ASSERT_LT(absl::Now(), deadline) << name << " did not start; see " << dir_;
+    absl::SleepFor(absl::Milliseconds(20));
+  }
+  ports_[name] = *ports;
+  processes_.emplace(name, *std::move(child));
+}
+
+}  // namespace dcs::integration

@@ -1,0 +1,55 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_TESTS_INTEGRATION_CLUSTER_PROCESSES_H_
+#define DCS_TESTS_INTEGRATION_CLUSTER_PROCESSES_H_
+
+// A cluster of real DCS processes on loopback for integration tests: a coordinator on a fixed
+// port and data directory (so it can be killed and restarted on them), learners and actors,
+// each started, killed (SIGKILL) and restarted by the test, each logging to <dir>/<name>.log.
+// Every process still running is killed with the cluster. Confined to the test's thread.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "absl/time/time.h"
+#include "services/cli/child_process.h"
+#include "services/port_file.h"
+
+namespace dcs::integration {
+
+class ClusterProcesses {
+ public:
+  // Leases last `lease` (short, so faults are noticed quickly).
+  explicit ClusterProcesses(absl::Duration lease);
+
+  const std::string& dir() const { return dir_; }
+  std::string coordinator_address() const;
+
+  // The coordinator on its port and data directory (again, after Kill).
+  void StartCoordinator();
+  void StartLearner(const std::string& name);
+  void StartActor(const std::string& name, int max_slots);
+
+  // Where process `name` serves gRPC and /metrics.
+  std::string address(const std::string& name) const;
+  std::string metrics_url(const std::string& name) const;
+
+  // SIGKILL, and waits for it to die.
+  void Kill(const std::string& name);
+
+  // Everything process `name` logged (across restarts).
+  std::string Log(const std::string& name) const;
+
+ private:
+  void Start(const std::string& name, const std::string& program, std::vector<std::string> args);
+
+  const std::string dir_;
+  const absl::Duration lease_;
+  const int coordinator_port_;
+  std::map<std::string, services::cli::ChildProcess> processes_;
+  std::map<std::string, services::BoundPorts> ports_;
+};
+
+}  // namespace dcs::integration
+
+#endif  // DCS_TESTS_INTEGRATION_CLUSTER_PROCESSES_H_

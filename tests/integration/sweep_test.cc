@@ -1,0 +1,168 @@
+// Copyright 2026 The DCS Authors.
+//
+// Sweeps end to end, with real processes on loopback and the `dcs` client: a sweep submitted
+// with `dcs submit` runs to completion, `dcs report` tabulates it and `dcs plot` draws it (its
+// index.html looked at in headless Chromium, as `make demo`'s is); a sweep whose coordinator is
+// killed (SIGKILL) mid-way and restarted on its data directory gives the same report; a bad
+// spec is refused whole, every problem named, and nothing of it is stored.
+
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+#include "common/atomic_file.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "services/cli/run_client.h"
+#include "tests/integration/browser.h"
+#include "tests/integration/cluster_processes.h"
+#include "tests/integration/test_util.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::integration {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr absl::Duration kLease = absl::Seconds(1);
+constexpr absl::Duration kTimeout = absl::Seconds(5);
+
+// Two conditions (static, a sinusoid) in two modes, two seeds: 8 short runs.
+constexpr char kSpec[] = R"(name: small
+seeds: 2
+observe: [none, live]
+env: cartpole
+total_timesteps: 1536
+feature: length
+training_range: [0.35, 0.75]
+pool: {size: 3}
+evaluation: {freq: 512, episodes: 2, contexts: {id: [0.5], ood_low: [0.1], ood_high: [1.0]}}
+ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
+conditions:
+  - name: static
+  - schedule: {family: sinusoidal, period: 40}
+    grid: {schedule.amplitude_frac: [0.5]}
+)";
+
+// Two problems in two places: a negative amplitude and an unknown family.
+constexpr char kBadSpec[] = R"(seeds: 2
+env: cartpole
+evaluation: {freq: 512, episodes: 2, contexts: {id: [0.5]}}
+conditions:
+  - name: static
+  - schedule: {family: sinusoidal, amplitude_frac: -0.5, period: 40}
+  - schedule: {family: teleport}
+)";
+
+// `dcs ARGS... --addr ADDRESS`.
+RunResult Dcs(std::vector<std::string> args, const std::string& address,
+              absl::Duration timeout = absl::Minutes(1)) {
+  args.push_back("--addr=" + address);
+  return RunProgram(BinaryPath("dcs"), args, timeout);
+}
+
+std::string WriteSpec(const std::string& text) {
+  const std::string path = testing::MakeTempDir() + "/small.yaml";
+  EXPECT_TRUE(WriteFileAtomically(path, text).ok());
+  return path;
+}
+
+// A coordinator, a learner and two actors.
+void StartCluster(ClusterProcesses& cluster) {
+  cluster.StartCoordinator();
+  cluster.StartLearner("learner");
+  cluster.StartActor("actor-1", 4);
+  cluster.StartActor("actor-2", 4);
+}
+
+// Waits until sweep `sweep_id` has at least `completed` completed runs, or has ended.
+void WaitForCompleted(const ClusterProcesses& cluster, const std::string& sweep_id,
+                      int completed) {
+  const absl::Time deadline = absl::Now() + absl::Minutes(4);
+  while (absl::Now() < deadline) {
+    absl::StatusOr<v1::GetSweepResponse> sweep =
+        services::cli::GetSweep(cluster.coordinator_address(), sweep_id, kTimeout);
+    if (sweep.ok() && (sweep->sweep().completed() >= completed ||
+                       sweep->sweep().state() == v1::SWEEP_STATE_COMPLETED)) {
+      return;
+    }
+    absl::SleepFor(absl::Milliseconds(100));
+  }
+  FAIL() << sweep_id << " did not complete " << completed << " runs; logs in " << cluster.dir();
+}
+
+// Every format's report of a finished sweep, best and last, as the client prints it.
+std::string Reports(const ClusterProcesses& cluster, const std::string& sweep_id) {
+  std::string reports;
+  for (const char* checkpoint : {"last", "best"}) {
+    for (const char* format : {"json", "table"}) {
+      const RunResult report = Dcs({"report", sweep_id, "--checkpoint", checkpoint, "--format",
+                                    format},
+                                   cluster.coordinator_address());
+      EXPECT_EQ(report.exit_code, 0) << report.output;
+      absl::StrAppend(&reports, report.output);
+    }
+  }
+  return reports;
+}
+
+TEST(SweepTest, ASweepSurvivesItsCoordinatorsDeathAndReportsTheSame) {
+  const std::string spec = WriteSpec(kSpec);
+
+  // Undisturbed: `dcs submit --watch` follows it to its end.
+  ClusterProcesses calm(kLease);
+  StartCluster(calm);
+  const RunResult submitted =
+      Dcs({"submit", spec, "--watch"}, calm.coordinator_address(), absl::Minutes(5));
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output << "; logs in " << calm.dir();
+  EXPECT_THAT(submitted.output, HasSubstr("sweep-1 small: completed, 8/8 runs done"));
+  const std::string undisturbed = Reports(calm, "sweep-1");
+  EXPECT_THAT(undisturbed, HasSubstr("static"));
+  EXPECT_THAT(undisturbed, HasSubstr("sinusoidal amplitude_frac=0.5"));
+  const std::string figures = calm.dir() + "/figures";
+  const RunResult plotted = Dcs({"plot", "sweep-1", "--out", figures}, calm.coordinator_address());
+  ASSERT_EQ(plotted.exit_code, 0) << plotted.output;
+  EXPECT_THAT(plotted.output, HasSubstr(figures + "/index.html"));
+  const std::vector<std::string> images = LoadedImages(figures + "/index.html");
+  EXPECT_EQ(images.size(), 4u);  // learning curves, context returns, heatmap, profiles
+  for (const std::string& image : images) EXPECT_THAT(image, HasSubstr(" loaded ")) << image;
+
+  // The coordinator killed once two runs are done, restarted on its data directory.
+  ClusterProcesses faulty(kLease);
+  StartCluster(faulty);
+  const RunResult queued = Dcs({"submit", spec}, faulty.coordinator_address());
+  ASSERT_EQ(queued.exit_code, 0) << queued.output;
+  EXPECT_THAT(queued.output, HasSubstr("sweep-1"));
+  WaitForCompleted(faulty, "sweep-1", 2);
+  faulty.Kill("coordinator");
+  absl::SleepFor(2 * kLease);
+  faulty.StartCoordinator();
+  const RunResult watched =
+      Dcs({"watch", "sweep-1"}, faulty.coordinator_address(), absl::Minutes(5));
+  ASSERT_EQ(watched.exit_code, 0) << watched.output << "; logs in " << faulty.dir();
+  EXPECT_EQ(Reports(faulty, "sweep-1"), undisturbed);
+}
+
+TEST(SweepTest, ABadSpecIsRefusedWholeWithEveryProblemAndNothingIsStored) {
+  ClusterProcesses cluster(kLease);
+  cluster.StartCoordinator();
+  const RunResult refused = Dcs({"submit", WriteSpec(kBadSpec)}, cluster.coordinator_address());
+  EXPECT_EQ(refused.exit_code, 65) << refused.output;  // EX_DATAERR
+  EXPECT_THAT(refused.output, HasSubstr("INVALID_ARGUMENT"));
+  EXPECT_THAT(refused.output, HasSubstr("2 problems"));
+  EXPECT_THAT(refused.output, HasSubstr("conditions[1].schedule.amplitude_frac: line 6"));
+  EXPECT_THAT(refused.output, HasSubstr("conditions[2].schedule: line 7"));
+  EXPECT_THAT(refused.output, HasSubstr("teleport"));
+
+  absl::StatusOr<std::vector<v1::Sweep>> sweeps =
+      services::cli::ListSweeps(cluster.coordinator_address(), kTimeout);
+  absl::StatusOr<std::vector<v1::Run>> runs =
+      services::cli::ListRuns(cluster.coordinator_address(), kTimeout);
+  ASSERT_TRUE(sweeps.ok() && runs.ok());
+  EXPECT_TRUE(sweeps->empty());
+  EXPECT_TRUE(runs->empty());
+}
+
+}  // namespace
+}  // namespace dcs::integration
