@@ -12,141 +12,61 @@
 #include <utility>
 #include <vector>
 
-#include "absl/strings/escaping.h"
-#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "common/enum_names.h"
-#include "env/schedule_config.h"
-#include "env/schedule_spec.h"
 #include "run/config_errors.h"
-#include "run/run_spec_yaml.h"
+#include "run/sweep_expansion.h"
 #include "run/yaml_reader.h"
 #include "run/yaml_splice.h"
 
-// The trials' documents are spliced from the spec's nodes (run/yaml_splice.h): nodes are never
-// assigned, only constructed, inserted or emplaced.
+// Nodes are never assigned, only constructed, inserted or emplaced (run/yaml_splice.h).
 
 namespace dcs::run {
 namespace {
 
+using internal::NameProblem;
+using internal::SpecCondition;
+using internal::SpecGridKey;
+using internal::SpecMode;
+
 constexpr int64_t kMaxRuns = 10'000;
 
-// The run config's keys that the top level gives as the base of every run; a condition may
+// The run config's keys the top level gives as the base of every run; a condition may
 // override each.
-constexpr absl::string_view kBaseKeys[] = {"env",  "total_timesteps", "n_envs",
-                                           "context", "feature",      "training_range",
-                                           "pool", "evaluation",      "ppo"};
-// The base keys whose mappings merge key by key with a condition's.
-constexpr absl::string_view kMergedKeys[] = {"context", "evaluation", "ppo"};
+constexpr absl::string_view kBaseKeys[] = {"env",     "total_timesteps", "n_envs",
+                                           "context", "feature",         "training_range",
+                                           "pool",    "evaluation",      "ppo"};
 // The run config's keys a condition may give, and its grid vary.
 constexpr absl::string_view kConditionRunKeys[] = {
-    "schedule", "stages",         "env",  "total_timesteps", "n_envs",
-    "context",  "feature",        "training_range", "pool", "evaluation", "ppo"};
-
+    "schedule", "stages",         "env",  "total_timesteps", "n_envs", "context",
+    "feature",  "training_range", "pool", "evaluation",      "ppo"};
+// The keys allowed, as error messages list them.
 constexpr absl::string_view kTopLevelKeys[] = {
-    "name",   "seeds",   "observe", "conditions", "env",        "total_timesteps",
-    "n_envs", "context", "feature", "training_range", "pool", "evaluation", "ppo"};
+    "name",    "seeds",   "observe",        "conditions", "env",        "total_timesteps",
+    "n_envs",  "context", "feature",        "training_range", "pool",   "evaluation",
+    "ppo"};
 constexpr absl::string_view kConditionKeys[] = {
-    "name",    "grid",   "observe", "schedule", "stages",         "env",  "total_timesteps",
-    "n_envs",  "context", "feature", "training_range", "pool", "evaluation", "ppo"};
+    "name",    "grid",    "observe", "schedule",       "stages", "env",        "total_timesteps",
+    "n_envs",  "context", "feature", "training_range", "pool",   "evaluation", "ppo"};
 
 bool Contains(absl::Span<const absl::string_view> names, absl::string_view name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-// What is wrong with `name` as a condition's or sweep's name ("may not ..."), or empty.
-std::string NameProblem(absl::string_view name) {
-  if (name.empty()) return "may not be empty";
-  for (char c : name) {
-    if (c == '/') return "may not hold '/' (names become file names)";
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-      return "may not hold control characters (a newline, a tab, ...)";
-    }
-  }
-  return "";
+// `a * b`, at most kCountCap (counts of trials and runs, refused long before).
+constexpr int64_t kCountCap = int64_t{1} << 50;
+int64_t Times(int64_t a, int64_t b) {
+  return (b != 0 && a > kCountCap / b) ? kCountCap : std::min(a * b, kCountCap);
 }
 
-// The name of a condition that gives none, from its run keys: "static", its schedule's
-// family, or its stages' families joined by '>'.
-std::string DerivedName(const YAML::Node& run_keys) {
-  auto family = [](const std::optional<YAML::Node>& schedule) -> std::string {
-    if (!schedule.has_value()) return "?";
-    const std::optional<YAML::Node> name = FindKey(*schedule, "family");
-    return name.has_value() && name->IsScalar() ? name->Scalar() : "?";
-  };
-  if (std::optional<YAML::Node> schedule = FindKey(run_keys, "schedule")) return family(schedule);
-  const std::optional<YAML::Node> stages = FindKey(run_keys, "stages");
-  if (!stages.has_value() || !stages->IsSequence() || stages->size() == 0) return "static";
-  std::vector<std::string> families;
-  for (const auto& stage : *stages) families.push_back(family(FindKey(stage, "schedule")));
-  return absl::StrJoin(families, ">");
-}
-
-// The trial family of a valid run: "static", "multi_stage", or its one schedule's family.
-std::string FamilyOf(const RunSpec& spec) {
-  if (spec.stages.empty()) return "static";
-  if (spec.stages.size() > 1) return "multi_stage";
-  absl::StatusOr<env::ScheduleSpec> schedule =
-      env::ParseScheduleSpec(spec.stages[0].schedule, spec.range_lo, spec.range_hi, 0);
-  return schedule.ok() ? std::string(env::ScheduleFamilyName(schedule->family()))
-                       : spec.stages[0].schedule.family;
-}
-
-// Where a trial's fields were written in the spec: a rule maps a path of the trial's run
-// config (`from`), and unless `exact` the paths below it, to a path of the spec (`to`). The
-// longest rule that applies wins; a path no rule covers is a base key's, written as it is.
-struct PathRule {
-  std::string from;
-  std::string to;
-  bool exact = false;
-};
-using PathRules = std::vector<PathRule>;
-
-std::string ShownPath(const PathRules& rules, absl::string_view path) {
-  const PathRule* best = nullptr;
-  for (const PathRule& rule : rules) {
-    const std::string& from = rule.from;
-    const bool covers =
-        path == from || (!rule.exact && absl::StartsWith(path, from) &&
-                         (path[from.size()] == '.' || path[from.size()] == '['));
-    if (covers && (best == nullptr || from.size() > best->from.size())) best = &rule;
-  }
-  if (best == nullptr) return std::string(path);
-  return absl::StrCat(best->to, path.substr(best->from.size()));
-}
-
-// An observation mode as the spec gave it.
-struct Mode {
-  env::ObserveMode mode;
-  YAML::Node node;   // the trial's config takes it, line and all
-  std::string path;  // `observe[1]`, `conditions[2].observe`
-};
-
-// One key of a condition's grid.
-struct GridKey {
-  std::string key;  // as written: "schedule.amplitude_frac"
-  std::vector<KeyPathStep> steps;
-  std::string path;  // in the spec: "conditions[1].grid.schedule.amplitude_frac"
-  YAML::Node values;  // a non-empty list
-  // The mappings its values create, as the condition lacks them ("schedule" for
-  // schedule.period in a condition without schedule).
-  std::vector<std::string> created;
-};
-
-// A condition as the spec wrote it.
+// A condition as read.
 struct Condition {
-  std::string path;  // "conditions[1]"
-  YAML::Node node;
-  std::optional<std::string> name;      // given
-  std::optional<YAML::Node> name_node;  // where it was given
-  YAML::Node run_keys;  // a mapping: its run config's keys, as written
-  std::vector<GridKey> grid;
-  std::optional<std::vector<Mode>> modes;  // its own
-  int64_t count = 1;                       // conditions it expands into
-  bool ok = true;                          // no problem found in it
+  SpecCondition spec;
+  std::optional<std::vector<SpecMode>> modes;  // its own
+  int64_t count = 1;                           // combinations of its grid's values
+  bool ok = true;                              // no problem found in it
 };
-
 
 // Reads one sweep spec, collecting its problems rather than stopping at the first.
 class SweepParser {
@@ -169,20 +89,14 @@ class SweepParser {
 
   void TopLevel(const YAML::Node& root);
   void Seeds(const YAML::Node& node, const std::string& path);
-  std::optional<std::vector<Mode>> Modes(const YAML::Node& node, const std::string& path);
+  std::optional<std::vector<SpecMode>> Modes(const YAML::Node& node, const std::string& path);
   void Conditions(const YAML::Node& node);
   void ReadCondition(const YAML::Node& node, const std::string& path);
   void ReadGrid(const YAML::Node& node, const std::string& path, Condition& condition);
   int64_t SeedCount() const;
-  const std::vector<Mode>* ModesOf(const Condition& condition) const;
-  // Whether a condition's mapping at `key` merges with the base's.
-  bool MergesWithBase(absl::string_view key) const;
+  // The modes `condition` runs in: its own, else the sweep's; null if those are wrong.
+  const std::vector<SpecMode>* ModesOf(const Condition& condition) const;
   void CheckRuns();
-  // Expands `condition` into its trials, each validated.
-  void Expand(const Condition& condition);
-  void AddCondition(const Condition& condition, const YAML::Node& run_keys,
-                    const PathRules& rules, const std::string& name);
-  YAML::Node TrialDocument(const YAML::Node& run_keys, const Mode& mode);
   absl::Status ToStatus() const;
 
   std::string where_;
@@ -198,14 +112,10 @@ class SweepParser {
   int64_t seed_count_ = 0;                      // seeds: N
   std::optional<std::vector<uint64_t>> seeds_;  // seeds: [...]
   bool has_modes_ = false;
-  std::optional<std::vector<Mode>> modes_;  // the sweep's, if valid
-  std::vector<std::pair<std::string, YAML::Node>> base_;
+  std::optional<std::vector<SpecMode>> modes_;  // the sweep's, if valid
+  internal::SpecBase base_;
   std::optional<YAML::Node> conditions_node_;
   std::vector<Condition> conditions_;
-
-  // Built by expansion: the spec, and each condition's name with where it was given.
-  SweepSpec spec_;
-  std::map<std::string, std::pair<std::string, YAML::Node>> names_;
 };
 
 template <typename Read>
@@ -256,7 +166,7 @@ void SweepParser::UnknownKey(const std::string& key_path, const YAML::Node& key_
 }
 
 void SweepParser::TopLevel(const YAML::Node& root) {
-  Entries(root, "", "a mapping: a sweep spec (run/sweep_spec_yaml.h)",
+  Entries(root, "", "a mapping",
           [&](const std::string& key, const YAML::Node& key_node, const YAML::Node& value,
               const std::string& path) {
             if (key == "name") {
@@ -271,7 +181,7 @@ void SweepParser::TopLevel(const YAML::Node& root) {
               Seeds(value, path);
             } else if (key == "observe") {
               has_modes_ = true;
-              if (std::optional<std::vector<Mode>> modes = Modes(value, path)) {
+              if (std::optional<std::vector<SpecMode>> modes = Modes(value, path)) {
                 modes_.emplace(*std::move(modes));
               }
             } else if (key == "conditions") {
@@ -324,10 +234,10 @@ void SweepParser::Seeds(const YAML::Node& node, const std::string& path) {
   seed_count_ = *count;  // listed once CheckRuns has found it small enough
 }
 
-std::optional<std::vector<Mode>> SweepParser::Modes(const YAML::Node& node,
-                                                    const std::string& path) {
+std::optional<std::vector<SpecMode>> SweepParser::Modes(const YAML::Node& node,
+                                                        const std::string& path) {
   const std::string allowed = ListNames(env::kObserveModeNames);
-  std::vector<Mode> modes;
+  std::vector<SpecMode> modes;
   auto read = [&](const YAML::Node& item, const std::string& item_path) {
     absl::StatusOr<std::string> word = reader_.Word(item, item_path);
     if (!word.ok()) return Problem(word.status());
@@ -335,7 +245,7 @@ std::optional<std::vector<Mode>> SweepParser::Modes(const YAML::Node& node,
     if (!mode.has_value()) {
       return Problem(item_path, item, absl::StrCat("must be ", allowed, ", got '", *word, "'"));
     }
-    for (const Mode& other : modes) {
+    for (const SpecMode& other : modes) {
       if (other.mode == *mode) {
         return Problem(item_path, item,
                        absl::StrCat("mode ", *word, " is listed twice (also ", other.path, ")"));
@@ -373,7 +283,8 @@ void SweepParser::Conditions(const YAML::Node& node) {
 }
 
 void SweepParser::ReadCondition(const YAML::Node& node, const std::string& path) {
-  Condition condition{.path = path, .node = node, .run_keys = arena_->New(YAML::NodeType::Map)};
+  Condition condition{
+      .spec = {.path = path, .node = node, .run_keys = arena_->New(YAML::NodeType::Map)}};
   std::optional<std::pair<YAML::Node, std::string>> grid;
   const bool clean = Entries(
       node, path, "a condition: a mapping of name, schedule or stages, grid, observe, base keys",
@@ -387,18 +298,18 @@ void SweepParser::ReadCondition(const YAML::Node& node, const std::string& path)
             condition.ok = false;
             return Problem(key_path, value, absl::StrCat("a name ", problem));
           }
-          condition.name = *name;
-          condition.name_node.emplace(value);
+          condition.spec.name = *name;
+          condition.spec.name_node.emplace(value);
         } else if (key == "grid") {
           grid.emplace(value, key_path);
         } else if (key == "observe") {
-          if (std::optional<std::vector<Mode>> modes = Modes(value, key_path)) {
+          if (std::optional<std::vector<SpecMode>> modes = Modes(value, key_path)) {
             condition.modes.emplace(*std::move(modes));
           } else {
             condition.ok = false;
           }
         } else if (Contains(kConditionRunKeys, key)) {
-          condition.run_keys.force_insert(key_node, value);
+          condition.spec.run_keys.force_insert(key_node, value);
         } else if (key == "seed") {
           condition.ok = false;
           Problem(key_path, key_node,
@@ -414,17 +325,11 @@ void SweepParser::ReadCondition(const YAML::Node& node, const std::string& path)
   conditions_.push_back(std::move(condition));
 }
 
-// `a * b`, at most kCountCap.
-constexpr int64_t kCountCap = int64_t{1} << 50;
-int64_t Times(int64_t a, int64_t b) {
-  return (b != 0 && a > kCountCap / b) ? kCountCap : std::min(a * b, kCountCap);
-}
-
 void SweepParser::ReadGrid(const YAML::Node& node, const std::string& path,
                            Condition& condition) {
   // The condition's keys with each grid key's first value placed: where the next key goes.
   std::optional<YAML::Node> placed;
-  placed.emplace(condition.run_keys);
+  placed.emplace(condition.spec.run_keys);
   const bool clean = Entries(
       node, path, "a mapping of key paths to lists of values (e.g. {schedule.period: [100, 200]})",
       [&](const std::string& key, const YAML::Node& key_node, const YAML::Node& values,
@@ -442,7 +347,7 @@ void SweepParser::ReadGrid(const YAML::Node& node, const std::string& path,
                                absl::StrJoin(kConditionRunKeys, ", "), "), not '",
                                steps->front().key, "'"));
         } else {
-          for (const GridKey& other : condition.grid) {
+          for (const SpecGridKey& other : condition.spec.grid) {
             if (KeyPathsOverlap(*steps, other.steps)) {
               Problem(key_path, key_node,
                       absl::StrCat("overlaps grid key '", other.key,
@@ -469,7 +374,8 @@ void SweepParser::ReadGrid(const YAML::Node& node, const std::string& path,
         }
         std::vector<std::string> created;
         if (reported_ == reported) {
-          absl::StatusOr<YAML::Node> next = WithValueAt(*arena_, *placed, *steps, values[0], &created);
+          absl::StatusOr<YAML::Node> next =
+              WithValueAt(*arena_, *placed, *steps, values[0], &created);
           if (next.ok()) {
             placed.emplace(*std::move(next));
           } else {
@@ -482,11 +388,11 @@ void SweepParser::ReadGrid(const YAML::Node& node, const std::string& path,
           condition.ok = false;
           return;
         }
-        condition.grid.push_back({.key = key,
-                                  .steps = *std::move(steps),
-                                  .path = key_path,
-                                  .values = values,
-                                  .created = std::move(created)});
+        condition.spec.grid.push_back({.key = key,
+                                       .steps = *std::move(steps),
+                                       .path = key_path,
+                                       .values = values,
+                                       .created = std::move(created)});
         condition.count = Times(condition.count, static_cast<int64_t>(values.size()));
       });
   if (node.IsMap() && node.size() == 0) {
@@ -500,7 +406,7 @@ int64_t SweepParser::SeedCount() const {
   return seed_count_;
 }
 
-const std::vector<Mode>* SweepParser::ModesOf(const Condition& condition) const {
+const std::vector<SpecMode>* SweepParser::ModesOf(const Condition& condition) const {
   if (condition.modes.has_value()) return &*condition.modes;
   return modes_.has_value() ? &*modes_ : nullptr;
 }
@@ -508,10 +414,9 @@ const std::vector<Mode>* SweepParser::ModesOf(const Condition& condition) const 
 void SweepParser::CheckRuns() {
   int64_t trials = 0;
   for (const Condition& condition : conditions_) {
-    const std::vector<Mode>* modes = ModesOf(condition);
-    trials = std::min(
-        kCountCap,
-        trials + Times(condition.count, modes != nullptr ? static_cast<int64_t>(modes->size()) : 1));
+    const std::vector<SpecMode>* modes = ModesOf(condition);
+    const int64_t mode_count = modes != nullptr ? static_cast<int64_t>(modes->size()) : 1;
+    trials = std::min(kCountCap, trials + Times(condition.count, mode_count));
   }
   const int64_t seeds = std::max<int64_t>(SeedCount(), 1);
   const int64_t runs = Times(trials, seeds);
@@ -520,132 +425,6 @@ void SweepParser::CheckRuns() {
           absl::StrCat(trials, " trials x ", seeds, " seeds would make ",
                        runs == kCountCap ? "more than " : "", runs,
                        " runs; a sweep may make at most ", kMaxRuns));
-}
-
-bool SweepParser::MergesWithBase(absl::string_view key) const {
-  if (!Contains(kMergedKeys, key)) return false;
-  for (const auto& [base_key, value] : base_) {
-    if (base_key == key) return value.IsMap();
-  }
-  return false;
-}
-
-void SweepParser::Expand(const Condition& condition) {
-  // Where its own keys were written: a key it gives replaces the base's, so all below it is
-  // the condition's, except in a mapping merged with the base's, where only its keys are.
-  PathRules rules;
-  for (const auto& entry : condition.run_keys) {
-    const std::string key = entry.first.Scalar();
-    const std::string path = KeyPath(condition.path, key);
-    if (MergesWithBase(key) && entry.second.IsMap()) {
-      rules.push_back({.from = key, .to = path, .exact = true});
-      for (const auto& inner : entry.second) {
-        if (inner.first.IsScalar()) {
-          rules.push_back({.from = KeyPath(key, inner.first.Scalar()),
-                           .to = KeyPath(path, inner.first.Scalar())});
-        }
-      }
-    } else {
-      rules.push_back({.from = key, .to = path});
-    }
-  }
-  // A mapping a grid key creates is the grid key's (but a merged one only itself).
-  for (const GridKey& grid : condition.grid) {
-    for (const std::string& created : grid.created) {
-      rules.push_back({.from = created, .to = grid.path, .exact = MergesWithBase(created)});
-    }
-  }
-
-  // Each combination of its grid's values, the last key fastest.
-  std::vector<size_t> at(condition.grid.size(), 0);
-  while (true) {
-    std::optional<YAML::Node> run_keys;
-    run_keys.emplace(condition.run_keys);
-    PathRules expanded = rules;
-    std::string suffix;
-    for (size_t i = 0; i < condition.grid.size(); ++i) {
-      const GridKey& grid = condition.grid[i];
-      const YAML::Node value = grid.values[at[i]];
-      absl::StatusOr<YAML::Node> placed = WithValueAt(*arena_, *run_keys, grid.steps, value);
-      if (!placed.ok()) return Problem(grid.path, value, placed.status().message());
-      run_keys.emplace(*std::move(placed));
-      expanded.push_back({.from = grid.key, .to = ItemPath(grid.path, at[i])});
-      absl::StrAppend(&suffix, " ", grid.key.substr(grid.key.rfind('.') + 1), "=",
-                      FlowText(value));
-    }
-    const std::string name =
-        absl::StrCat(condition.name.value_or(DerivedName(*run_keys)), suffix);
-    AddCondition(condition, *run_keys, expanded, name);
-
-    size_t k = at.size();
-    while (k > 0 && ++at[k - 1] == condition.grid[k - 1].values.size()) at[--k] = 0;
-    if (k == 0) return;
-  }
-}
-
-void SweepParser::AddCondition(const Condition& condition, const YAML::Node& run_keys,
-                               const PathRules& rules, const std::string& name) {
-  const std::string name_path =
-      condition.name.has_value() ? KeyPath(condition.path, "name") : condition.path;
-  const YAML::Node name_node = condition.name_node.value_or(condition.node);
-  if (std::string problem = NameProblem(name); !problem.empty()) {
-    return Problem(name_path, name_node,
-                   absl::StrCat("its name '", absl::CHexEscape(name), "' ", problem));
-  }
-  if (auto [it, added] = names_.try_emplace(name, name_path, name_node); !added) {
-    const auto& [other_path, other_node] = it->second;
-    return Problem(
-        name_path, name_node,
-        absl::StrCat("duplicate condition name '", name, "' (also ", other_path,
-                     other_node.Mark().is_null()
-                         ? ""
-                         : absl::StrCat(", line ", other_node.Mark().line + 1),
-                     "): condition names must be unique",
-                     condition.name.has_value() ? "" : "; give one of them a name"));
-  }
-
-  const std::vector<Mode>* modes = ModesOf(condition);
-  if (modes == nullptr) return;  // the sweep's `observe` is wrong, and said so
-  for (const Mode& mode : *modes) {
-    const YAML::Node document = TrialDocument(run_keys, mode);
-    PathRules trial_rules = rules;
-    trial_rules.push_back({.from = "observe", .to = mode.path});
-    YamlReader reader(where_, [&trial_rules](absl::string_view path) {
-      return ShownPath(trial_rules, path);
-    });
-    absl::StatusOr<RunSpec> run = ReadRunSpec(reader, document);
-    if (!run.ok()) {
-      Problem(run.status());
-      continue;
-    }
-    spec_.trials.push_back({.condition = name,
-                            .family = FamilyOf(*run),
-                            .observe = mode.mode,
-                            .config = YamlText(document)});
-  }
-}
-
-YAML::Node SweepParser::TrialDocument(const YAML::Node& run_keys, const Mode& mode) {
-  YAML::Node document = arena_->New(YAML::NodeType::Map);
-  std::set<std::string> base_keys;
-  for (const auto& [key, value] : base_) {
-    base_keys.insert(key);
-    const std::optional<YAML::Node> over = FindKey(run_keys, key);
-    if (!over.has_value()) {
-      document.force_insert(key, value);
-    } else if (Contains(kMergedKeys, key) && value.IsMap() && over->IsMap()) {
-      document.force_insert(key, MergedMapping(*arena_, value, *over));
-    } else {
-      document.force_insert(key, *over);
-    }
-  }
-  for (const auto& entry : run_keys) {
-    if (!base_keys.contains(entry.first.Scalar())) {
-      document.force_insert(entry.first, entry.second);
-    }
-  }
-  document.force_insert("observe", mode.node);
-  return document;
 }
 
 absl::Status SweepParser::ToStatus() const {
@@ -663,6 +442,7 @@ absl::StatusOr<SweepSpec> SweepParser::Parse(absl::string_view text) {
                                     "conditions and the runs' base keys");
   }
   arena_.emplace(*root);
+  SweepSpec spec;
   try {
     TopLevel(*root);
     if (!has_seeds_) {
@@ -682,9 +462,18 @@ absl::StatusOr<SweepSpec> SweepParser::Parse(absl::string_view text) {
       const int reported = reported_;
       CheckRuns();
       if (reported_ == reported) {
+        internal::SweepExpansion expansion(where_, base_, *arena_);
         for (const Condition& condition : conditions_) {
-          if (condition.ok) Expand(condition);
+          if (!condition.ok) continue;
+          const std::vector<SpecMode>* modes = ModesOf(condition);
+          for (const absl::Status& problem :
+               expansion.Expand(condition.spec, modes != nullptr
+                                                    ? absl::Span<const SpecMode>(*modes)
+                                                    : absl::Span<const SpecMode>())) {
+            Problem(problem);
+          }
         }
+        spec.trials = std::move(expansion.trials());
       }
     }
   } catch (const YAML::Exception& e) {  // not expected: every access is checked first
@@ -693,21 +482,21 @@ absl::StatusOr<SweepSpec> SweepParser::Parse(absl::string_view text) {
   }
   if (!problems_.empty()) return ToStatus();
 
-  spec_.name = name_;
+  spec.name = name_;
   if (seeds_.has_value()) {
-    spec_.seeds = *seeds_;
+    spec.seeds = *seeds_;
   } else {
     for (int64_t seed = 0; seed < seed_count_; ++seed) {
-      spec_.seeds.push_back(static_cast<uint64_t>(seed));
+      spec.seeds.push_back(static_cast<uint64_t>(seed));
     }
   }
-  for (const SweepTrial& trial : spec_.trials) {
+  for (const SweepTrial& trial : spec.trials) {
     if (trial.family == "static") {
-      spec_.baseline = trial.condition;
+      spec.baseline = trial.condition;
       break;
     }
   }
-  return std::move(spec_);
+  return spec;
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 // (run/run_spec_yaml.h) before anything is stored. An example:
 //
 //   name: quickstart          # optional (default: none; the client uses the file's name)
-//   seeds: 3                  # N: seeds 0..N-1; or a list of distinct seeds [0, 5, 7]
+//   seeds: 3                  # required. N: seeds 0..N-1; or a list of distinct seeds [0, 5, 7]
 //   observe: [none, live]     # each condition in each of these modes, in order; a single mode
 //                             # is a list of one; absent: [none]
 //   env: cartpole             # the base of every run: the run config's keys but seed,
@@ -41,7 +41,8 @@
 // where the condition would have written it (so it merges as the condition's own keys do): the
 // mappings on its path are created if the condition lacks them; a list index needs the item in
 // the condition. Two grid keys may not overlap (`schedule` and `schedule.period`), nor a list
-// hold a value twice.
+// hold a value twice. A key with an index is written in a block mapping or quoted
+// (`grid: {"stages[1].steps": [10, 20]}`): in a flow mapping '[' would start a list.
 //
 // Names: a condition's `name`, else "static" (no schedule), its schedule's family as written
 // ("sinusoidal"), or its stages' families joined by '>' ("constant>cosine_annealing"); then,
@@ -50,12 +51,16 @@
 // and no control characters (they name files and table rows).
 //
 // The trials are the conditions in order, each in its modes in order; a sweep makes one run per
-// trial and seed, at most 10,000 runs, and needs at least one condition and one seed.
+// trial and seed, at most 10,000 runs, and needs at least one condition and one seed. A trial's
+// family is "static" (no schedule), its one schedule's family as env::ScheduleFamilyName spells
+// it (`constant` is "identity"), or "multi_stage" (two or more stages); the first static
+// condition is the sweep's baseline.
 //
 // Errors are one INVALID_ARGUMENT listing every problem found, each as a run config's error
 // reads, "<where>: <path>: line <n>: <message>" (run/config_errors.h), with the path and line
 // in the spec where the field was written: `conditions[2].stages[1].schedule.period` for a key
-// of a condition, `conditions[1].grid.schedule.amplitude_frac[1]` for a grid value,
+// of a condition, `conditions[1].grid.schedule.amplitude_frac[1]` for a grid value (and
+// `conditions[1].grid.schedule.period`, with no line, for a mapping the grid key created),
 // `ppo.gamma` for a base key. One problem reads exactly so; several read
 //
 //   3 problems in sweep.yaml:

@@ -27,7 +27,7 @@ namespace dcs::services::cli {
 namespace {
 
 // Follows the sweep until it ends: on a terminal, the progress view redrawn in place every
-// second; otherwise its headline whenever it changes. Ctrl-C detaches (the sweep goes on).
+// second; otherwise its headline whenever a run starts or ends. Ctrl-C detaches (the sweep goes on).
 // Exit: 0 completed, 1 failed or cancelled, 130 detached.
 int WatchSweep(const GlobalFlags& flags, const std::string& sweep_id) {
   const std::string address = CoordinatorAddress(flags);
@@ -46,11 +46,18 @@ int WatchSweep(const GlobalFlags& flags, const std::string& sweep_id) {
       }
     } else {
       const std::string view = terminal ? SweepProgressView(*sweep) : SweepHeadline(*sweep);
-      if (view != shown) {
+      // A terminal's view is redrawn whenever it changes; plain lines only when a run moved.
+      const v1::Sweep& counts = sweep->sweep();
+      const std::string key =
+          terminal ? view
+                   : absl::StrCat(counts.state(), " ", counts.completed(), " ", counts.running(),
+                                  " ", counts.queued(), " ", counts.failed(), " ",
+                                  counts.cancelled());
+      if (key != shown) {
         // Back over the previous view and clear it, then draw the new one.
         if (terminal && shown_lines > 0) std::cout << "\x1b[" << shown_lines << "F\x1b[J";
         std::cout << view << (view.ends_with('\n') ? "" : "\n") << std::flush;
-        shown = view;
+        shown = key;
         shown_lines = static_cast<int>(std::count(view.begin(), view.end(), '\n')) +
                       (view.ends_with('\n') ? 0 : 1);
       }

@@ -171,7 +171,8 @@ TEST(SweepSpecYamlTest, GridReachesListItemsAndKeysTheConditionLacks) {
       stages[1].schedule.T_0: [100, 250]
       ppo.n_epochs: [5]
     observe: live
-  - {name: small, grid: {"stages[0].steps": [5]}, stages: [{steps: 10, schedule: {family: constant}}], pool: {size: 2}}
+  - {name: small, grid: {"stages[0].steps": [5]}, pool: {size: 2},
+     stages: [{steps: 10, schedule: {family: constant}}]}
 )"));
   EXPECT_THAT(Trials(spec),
               ElementsAre("constant>cosine_annealing T_0=100 n_epochs=5 | multi_stage | live",
@@ -259,8 +260,8 @@ TEST(SweepSpecYamlTest, SeedsAreACountOrAList) {
 }
 
 TEST(SweepSpecYamlTest, TheTrialConfigReadsAsTheRunConfigItStandsFor) {
-  const SweepSpec spec = Parse(Spec(R"(  - schedule: {family: sinusoidal, amplitude_frac: 0.25, period: 125}
-    ppo: {n_epochs: 5}
+  const SweepSpec spec = Parse(Spec(R"(  - ppo: {n_epochs: 5}
+    schedule: {family: sinusoidal, amplitude_frac: 0.25, period: 125}
 )"));
   ASSERT_EQ(spec.trials.size(), 2u);
   const SweepTrial& trial = spec.trials[1];

@@ -7,6 +7,7 @@
 #include <variant>
 #include <vector>
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
@@ -150,6 +151,31 @@ TEST(YamlReaderTest, ErrorsFoundLaterCarryTheLinesOfTheFieldsRead) {
   EXPECT_EQ(errors.At("seed", "unread").message(), "run.yaml: seed: unread");
   EXPECT_EQ(ConfigErrors().At("ppo.gamma", "must be in [0, 1]").message(),
             "ppo.gamma: must be in [0, 1]");
+}
+
+TEST(YamlReaderTest, ErrorsShowPathsThroughThePathMapWithTheLinesOfTheNodesRead) {
+  // As a sweep spec shows a trial's `ppo` keys where its condition wrote them.
+  YamlReader reader("sweep.yaml", [](absl::string_view path) {
+    return absl::StartsWith(path, "ppo") ? absl::StrCat("conditions[2].", path)
+                                         : std::string(path);
+  });
+  absl::StatusOr<YAML::Node> root = reader.Load("a: 1\nppo: {gama: 0.9, gamma: 2}\n");
+  ASSERT_TRUE(root.ok());
+  const absl::Status unknown = reader.ForEachKey(
+      (*root)["ppo"], "ppo", {"gamma"},
+      [](const std::string&, const YAML::Node&, const std::string&) { return absl::OkStatus(); });
+  EXPECT_EQ(unknown.message(),
+            "sweep.yaml: conditions[2].ppo.gama: line 2: unknown key 'gama' in "
+            "conditions[2].ppo (allowed: gamma)");
+  ASSERT_TRUE(reader
+                  .ForEachEntry((*root)["ppo"], "ppo",
+                                [](const std::string&, const YAML::Node&, const std::string&) {
+                                  return absl::OkStatus();
+                                })
+                  .ok());
+  EXPECT_EQ(reader.errors().At("ppo.gamma", "must be in [0, 1], got 2").message(),
+            "sweep.yaml: conditions[2].ppo.gamma: line 2: must be in [0, 1], got 2");
+  EXPECT_EQ(reader.Error("a", (*root)["a"], "bad").message(), "sweep.yaml: a: line 1: bad");
 }
 
 TEST(YamlReaderTest, MalformedYamlNamesLineAndColumn) {
