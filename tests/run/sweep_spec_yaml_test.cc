@@ -518,7 +518,7 @@ TEST(SweepSpecYamlTest, ABaseProblemIsReportedOnceAsARunConfigsWouldBe) {
 TEST(SweepSpecYamlTest, EveryConfigWithConditionsParses) {
   const std::filesystem::path dir = std::filesystem::path(DCS_SOURCE_DIR) / "configs";
   int parsed = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
     const std::filesystem::path& path = entry.path();
     if (path.extension() != ".yaml") continue;
     const std::string text = ReadFile(path);
