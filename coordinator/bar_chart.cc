@@ -35,13 +35,8 @@ absl::Status CheckSeries(const BarSeries& series, size_t categories, const std::
 }
 
 absl::Status CheckChart(const BarChart& chart) {
-  DCS_RETURN_IF_ERROR(CheckFigureName(chart.name));
-  if (chart.panels.empty() || chart.columns < 1 || chart.panel_width < 160 ||
-      chart.panel_height < 120) {
-    return absl::InvalidArgumentError(absl::StrCat(
-        "bar chart '", chart.name,
-        "' needs a panel, columns >= 1 and panels of at least 160 x 120 pixels"));
-  }
+  DCS_RETURN_IF_ERROR(CheckPanelGrid("bar chart", chart.name, chart.panels.size(),
+                                     chart.columns, chart.panel_width, chart.panel_height));
   for (size_t p = 0; p < chart.panels.size(); ++p) {
     const BarPanel& panel = chart.panels[p];
     for (size_t s = 0; s < panel.series.size(); ++s) {

@@ -10,6 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
+#include "common/status_macros.h"
 
 namespace dcs::coordinator {
 namespace {
@@ -37,6 +38,17 @@ absl::Status CheckFigureName(absl::string_view name) {
   if (ok) return absl::OkStatus();
   return absl::InvalidArgumentError(absl::StrCat(
       "figure name '", name, "' is not a file stem (1 to 100 of A-Z a-z 0-9 _ . -)"));
+}
+
+absl::Status CheckPanelGrid(absl::string_view kind, absl::string_view name, size_t panels,
+                            int columns, int panel_width, int panel_height) {
+  DCS_RETURN_IF_ERROR(CheckFigureName(name));
+  if (panels == 0 || columns < 1 || panel_width < 160 || panel_height < 120) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(kind, " '", name,
+                     "' needs a panel, columns >= 1 and panels of at least 160 x 120 pixels"));
+  }
+  return absl::OkStatus();
 }
 
 std::string SeriesColor(int index) { return kPalette[index % std::size(kPalette)]; }

@@ -52,6 +52,11 @@ struct GnuplotFigure {
 // [A-Za-z0-9_.-], not starting with '.' or '-'.
 absl::Status CheckFigureName(absl::string_view name);
 
+// CheckFigureName, then INVALID_ARGUMENT naming the chart (`kind` '<name>') unless it has a
+// panel, at least one column of them, and panels of at least 160 x 120 pixels.
+absl::Status CheckPanelGrid(absl::string_view kind, absl::string_view name, size_t panels,
+                            int columns, int panel_width, int panel_height);
+
 // Okabe-Ito, the colour-blind-safe palette ("#rrggbb"): series i of a chart has colour
 // SeriesColor(i), cycling after eight (blue, vermillion, green, orange, purple, sky blue,
 // black, yellow). REQUIRES: index >= 0.

@@ -62,11 +62,9 @@ absl::StatusOr<IqmSummary> SummarizeIqm(std::span<const double> values) {
                     .q3 = QuantileOfSorted(sorted, 0.75)};
 }
 
-absl::StatusOr<ConfidenceInterval> BootstrapIqmInterval(
-    const std::vector<std::vector<double>>& strata, double confidence, int repetitions,
-    uint64_t seed) {
-  if (strata.empty()) return absl::InvalidArgumentError("no strata to bootstrap");
-  for (const std::vector<double>& stratum : strata) DCS_RETURN_IF_ERROR(CheckValues(stratum));
+absl::StatusOr<ConfidenceInterval> PercentileBootstrap(
+    double confidence, int repetitions, uint64_t seed, absl::string_view stream,
+    absl::FunctionRef<double(Random& random)> estimate) {
   if (!(confidence > 0 && confidence < 1)) {
     return absl::InvalidArgumentError(
         absl::StrCat("confidence must be in (0, 1), got ", confidence));
@@ -75,23 +73,33 @@ absl::StatusOr<ConfidenceInterval> BootstrapIqmInterval(
     return absl::InvalidArgumentError(
         absl::StrCat("bootstrap repetitions must be at least 1, got ", repetitions));
   }
-  Random random(StreamSeed(seed, "bootstrap"));
+  Random random(StreamSeed(seed, stream));
   std::vector<double> estimates;
   estimates.reserve(repetitions);
-  std::vector<double> sample;
-  for (int r = 0; r < repetitions; ++r) {
-    sample.clear();
-    for (const std::vector<double>& stratum : strata) {
-      const auto size = static_cast<int64_t>(stratum.size());
-      for (int64_t i = 0; i < size; ++i) sample.push_back(stratum[random.Integers(0, size)]);
-    }
-    std::sort(sample.begin(), sample.end());
-    estimates.push_back(TrimmedMeanOfSorted(sample));
-  }
+  for (int r = 0; r < repetitions; ++r) estimates.push_back(estimate(random));
   std::sort(estimates.begin(), estimates.end());
   const double tail = (1 - confidence) / 2;
   return ConfidenceInterval{.lo = QuantileOfSorted(estimates, tail),
                             .hi = QuantileOfSorted(estimates, 1 - tail)};
+}
+
+void AppendResample(std::span<const double> from, Random& random, std::vector<double>& to) {
+  const auto size = static_cast<int64_t>(from.size());
+  for (int64_t i = 0; i < size; ++i) to.push_back(from[random.Integers(0, size)]);
+}
+
+absl::StatusOr<ConfidenceInterval> BootstrapIqmInterval(
+    const std::vector<std::vector<double>>& strata, double confidence, int repetitions,
+    uint64_t seed) {
+  if (strata.empty()) return absl::InvalidArgumentError("no strata to bootstrap");
+  for (const std::vector<double>& stratum : strata) DCS_RETURN_IF_ERROR(CheckValues(stratum));
+  std::vector<double> sample;
+  return PercentileBootstrap(confidence, repetitions, seed, "bootstrap", [&](Random& random) {
+    sample.clear();
+    for (const std::vector<double>& stratum : strata) AppendResample(stratum, random, sample);
+    std::sort(sample.begin(), sample.end());
+    return TrimmedMeanOfSorted(sample);
+  });
 }
 
 }  // namespace dcs::coordinator

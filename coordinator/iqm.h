@@ -10,7 +10,10 @@
 #include <span>
 #include <vector>
 
+#include "absl/functional/function_ref.h"
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "common/random.h"
 
 namespace dcs::coordinator {
 
@@ -36,6 +39,17 @@ struct ConfidenceInterval {
   double lo = 0;
   double hi = 0;
 };
+
+// A percentile bootstrap interval (the confidence's two tails of `repetitions` estimates, by
+// Quantile's rule): each estimate is `estimate(random)`, computed on a resample the estimator
+// draws from `random` (e.g. with AppendResample), which is seeded by StreamSeed(seed, stream).
+// INVALID_ARGUMENT for confidence outside (0, 1) or repetitions < 1.
+absl::StatusOr<ConfidenceInterval> PercentileBootstrap(
+    double confidence, int repetitions, uint64_t seed, absl::string_view stream,
+    absl::FunctionRef<double(Random& random)> estimate);
+
+// Appends a resample of `from` (as many values, drawn with replacement) to `to`.
+void AppendResample(std::span<const double> from, Random& random, std::vector<double>& to);
 
 // A percentile bootstrap interval for the IQM of all values together, resampling with
 // replacement within each stratum (rliable's StratifiedBootstrap: a stratum is a task, its

@@ -53,13 +53,8 @@ absl::Status CheckLine(const ChartLine& line, const std::string& where) {
 }
 
 absl::Status CheckChart(const LineChart& chart) {
-  DCS_RETURN_IF_ERROR(CheckFigureName(chart.name));
-  if (chart.panels.empty() || chart.columns < 1 || chart.panel_width < 160 ||
-      chart.panel_height < 120) {
-    return absl::InvalidArgumentError(absl::StrCat(
-        "line chart '", chart.name,
-        "' needs a panel, columns >= 1 and panels of at least 160 x 120 pixels"));
-  }
+  DCS_RETURN_IF_ERROR(CheckPanelGrid("line chart", chart.name, chart.panels.size(),
+                                     chart.columns, chart.panel_width, chart.panel_height));
   for (size_t p = 0; p < chart.panels.size(); ++p) {
     const LinePanel& panel = chart.panels[p];
     const std::string where = absl::StrCat("line chart '", chart.name, "', panel ", p);
