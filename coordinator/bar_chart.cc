@@ -201,24 +201,16 @@ std::string PanelScript(const BarPanel& panel, size_t p) {
 
 absl::StatusOr<GnuplotFigure> BarChartFigure(const BarChart& chart) {
   DCS_RETURN_IF_ERROR(CheckChart(chart));
-  const PanelGrid grid =
-      LayOutPanels(static_cast<int>(chart.panels.size()), chart.columns, chart.panel_width,
-                   chart.panel_height, !chart.title.empty());
-  GnuplotFigure figure{.name = chart.name, .title = chart.title};
-  const std::string data_name = absl::StrCat(chart.name, ".csv");
-  figure.data.push_back({.name = data_name, .csv = Csv(chart)});
-  figure.script = ScriptPreamble(figure, grid.width, grid.height);
-  absl::StrAppend(&figure.script, "data = ", GnuplotString(data_name), "\n",
-                  "# The value of column `c` on the row of series `s` in panel `p`, else NaN.\n",
-                  "sel(p, s, c) = (column('panel') == p && column('series') == s) ? column(c) "
-                  ": NaN\n",
-                  "set grid noxtics ytics\nset xtics scale 0\n\n",
-                  MultiplotCommand(grid, chart.title));
+  std::vector<std::string> panels;
   for (size_t p = 0; p < chart.panels.size(); ++p) {
-    absl::StrAppend(&figure.script, PanelScript(chart.panels[p], p));
+    panels.push_back(PanelScript(chart.panels[p], p));
   }
-  absl::StrAppend(&figure.script, "unset multiplot\n");
-  return figure;
+  return MultiplotFigure(
+      chart.name, chart.title, Csv(chart), chart.columns, chart.panel_width, chart.panel_height,
+      "# The value of column `c` on the row of series `s` in panel `p`, else NaN.\n"
+      "sel(p, s, c) = (column('panel') == p && column('series') == s) ? column(c) : NaN\n"
+      "set grid noxtics ytics\nset xtics scale 0\n\n",
+      panels);
 }
 
 }  // namespace dcs::coordinator

@@ -156,4 +156,21 @@ std::string MultiplotCommand(const PanelGrid& grid, absl::string_view title) {
   return out;
 }
 
+GnuplotFigure MultiplotFigure(absl::string_view name, absl::string_view title, std::string csv,
+                              int columns, int panel_width, int panel_height,
+                              absl::string_view setup,
+                              const std::vector<std::string>& panel_scripts) {
+  const PanelGrid grid = LayOutPanels(static_cast<int>(panel_scripts.size()), columns,
+                                      panel_width, panel_height, !title.empty());
+  GnuplotFigure figure{.name = std::string(name), .title = std::string(title)};
+  const std::string data_name = absl::StrCat(name, ".csv");
+  figure.data.push_back({.name = data_name, .csv = std::move(csv)});
+  figure.script = ScriptPreamble(figure, grid.width, grid.height);
+  absl::StrAppend(&figure.script, "data = ", GnuplotString(data_name), "\n", setup,
+                  MultiplotCommand(grid, title));
+  for (const std::string& panel : panel_scripts) absl::StrAppend(&figure.script, panel);
+  absl::StrAppend(&figure.script, "unset multiplot\n");
+  return figure;
+}
+
 }  // namespace dcs::coordinator

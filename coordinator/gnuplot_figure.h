@@ -104,6 +104,14 @@ PanelGrid LayOutPanels(int panels, int columns, int panel_width, int panel_heigh
 // `set multiplot layout ROWS,COLUMNS [title ...]`, ending in a blank line.
 std::string MultiplotCommand(const PanelGrid& grid, absl::string_view title);
 
+// A figure of panels in a multiplot grid (LayOutPanels) whose data is one CSV file,
+// `<name>.csv`: the script is the preamble, `data = '<name>.csv'`, `setup` (what every panel
+// shares: functions, settings), the multiplot command, then each panel's script in order.
+GnuplotFigure MultiplotFigure(absl::string_view name, absl::string_view title, std::string csv,
+                              int columns, int panel_width, int panel_height,
+                              absl::string_view setup,
+                              const std::vector<std::string>& panel_scripts);
+
 }  // namespace dcs::coordinator
 
 #endif  // DCS_COORDINATOR_GNUPLOT_FIGURE_H_

@@ -253,9 +253,9 @@ class RunStore {
   // A queued run a learner with `numerics` may take, leased to `holder` (listening at
   // `address`) until now + lease_duration; the run becomes running. Fair across sweeps: the
   // run whose sweep has the fewest running runs (a run alone counts as a sweep of its own),
-  // the oldest among those; so a small sweep submitted after a big one is not starved. nullopt if there is none;
-  // FAILED_PRECONDITION, naming both fingerprints, if the only queued runs compute with other
-  // numerics.
+  // the oldest among those; so a small sweep submitted after a big one is not starved.
+  // nullopt if there is none; FAILED_PRECONDITION, naming both fingerprints, if the only queued
+  // runs compute with other numerics.
   absl::StatusOr<std::optional<LearnerLease>> AcquireRun(absl::string_view holder,
                                                          absl::string_view address,
                                                          absl::string_view numerics,

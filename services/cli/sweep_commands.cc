@@ -27,8 +27,8 @@ namespace dcs::services::cli {
 namespace {
 
 // Follows the sweep until it ends: on a terminal, the progress view redrawn in place every
-// second; otherwise its headline whenever a run starts or ends. Ctrl-C detaches (the sweep goes on).
-// Exit: 0 completed, 1 failed or cancelled, 130 detached.
+// second; otherwise its headline whenever a run starts or ends. Ctrl-C detaches (the sweep goes
+// on). Exit: 0 completed, 1 failed or cancelled, 130 detached.
 int WatchSweep(const GlobalFlags& flags, const std::string& sweep_id) {
   const std::string address = CoordinatorAddress(flags);
   const bool terminal = isatty(STDOUT_FILENO) == 1;
