@@ -4,14 +4,34 @@
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
+#include "common/status_macros.h"
 #include "coordinator/run_files.h"
 #include "run/evaluation_log.h"
 
 namespace dcs::coordinator {
 
+absl::StatusOr<v1::EvaluationLog> CompletedRunLogs::Get(const RunRecord& run) {
+  {
+    absl::MutexLock lock(&mu_);
+    if (auto it = logs_.find(run.id); it != logs_.end()) return it->second;
+  }
+  absl::StatusOr<v1::EvaluationLog> log = run::ReadEvaluationLog(RunDirectory(data_dir_, run.id));
+  if (!log.ok()) {
+    return absl::DataLossError(absl::StrCat("the evaluation log of ", run.id,
+                                            " is unreadable: ", log.status().message()));
+  }
+  for (v1::Evaluation& evaluation : *log->mutable_evaluations()) {
+    for (v1::ContextEvaluation& context : *evaluation.mutable_contexts()) {
+      context.clear_returns();
+    }
+  }
+  absl::MutexLock lock(&mu_);
+  return logs_.try_emplace(run.id, *std::move(log)).first->second;
+}
+
 absl::StatusOr<v1::SweepResults> CollectSweepResults(const SweepRecord& sweep,
                                                      const std::vector<RunRecord>& runs,
-                                                     absl::string_view data_dir) {
+                                                     CompletedRunLogs& logs) {
   v1::SweepResults results;
   results.set_sweep_id(sweep.id);
   results.set_name(sweep.name);
@@ -32,19 +52,7 @@ absl::StatusOr<v1::SweepResults> CollectSweepResults(const SweepRecord& sweep,
     return a->submission.seed < b->submission.seed;
   });
   for (const RunRecord* run : completed) {
-    absl::StatusOr<v1::EvaluationLog> log =
-        run::ReadEvaluationLog(RunDirectory(data_dir, run->id));
-    if (!log.ok()) {
-      return absl::DataLossError(absl::StrCat("the evaluation log of ", run->id, " (",
-                                              sweep.id, ") is unreadable: ",
-                                              log.status().message()));
-    }
-    for (v1::Evaluation& evaluation : *log->mutable_evaluations()) {
-      for (v1::ContextEvaluation& context : *evaluation.mutable_contexts()) {
-        context.clear_returns();
-      }
-    }
-    *results.mutable_trials(*run->trial)->add_runs() = *std::move(log);
+    DCS_ASSIGN_OR_RETURN(*results.mutable_trials(*run->trial)->add_runs(), logs.Get(*run));
   }
   return results;
 }

@@ -36,6 +36,7 @@ CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, Ru
                                        prometheus::Registry& metrics)
     : registry_(registry),
       runs_(std::move(runs)),
+      completed_logs_(runs_.data_dir),
       build_(BuildInfoToProto(build)),
       start_time_(start_time),
       learner_registrations_(RegistrationsFamily(metrics).Add({{"role", "learner"}})),

@@ -16,6 +16,7 @@
 
 #include "absl/time/time.h"
 #include "coordinator/run_store.h"
+#include "coordinator/sweep_results.h"
 #include "coordinator/worker_registry.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
@@ -134,6 +135,7 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
 
   coordinator::WorkerRegistry& registry_;
   const RunStorage runs_;
+  coordinator::CompletedRunLogs completed_logs_;  // what sweeps' reports read
   const v1::BuildInfo build_;
   const absl::Time start_time_;
   prometheus::Counter& learner_registrations_;
