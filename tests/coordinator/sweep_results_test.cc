@@ -42,8 +42,9 @@ class SweepResultsTest : public testing::TempDirTest {
     RunRecord run{.id = "run-" + std::to_string(number), .state = RunState::kCompleted};
     run.trial = trial;
     run.submission.seed = seed;
-    EXPECT_TRUE(
-        run::WriteEvaluationLog(RunDirectory(dir().string(), run.id), Log(seed, 100 + seed)).ok());
+    const std::string run_dir = RunDirectory(dir().string(), run.id);
+    std::filesystem::create_directories(run_dir);
+    EXPECT_TRUE(run::WriteEvaluationLog(run_dir, Log(seed, 100 + seed)).ok());
     return run;
   }
 };
