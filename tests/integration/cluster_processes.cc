@@ -24,10 +24,10 @@ std::string ClusterProcesses::coordinator_address() const {
   return absl::StrCat("127.0.0.1:", coordinator_port_);
 }
 
-void ClusterProcesses::StartCoordinator() {
+void ClusterProcesses::StartCoordinator(std::optional<absl::Duration> lease) {
   Start("coordinator", "dcs-coordinator",
         {absl::StrCat("--listen=", coordinator_address()), "--data-dir=" + dir_ + "/data",
-         absl::StrCat("--lease-duration=", absl::FormatDuration(lease_))});
+         absl::StrCat("--lease-duration=", absl::FormatDuration(lease.value_or(lease_)))});
 }
 
 void ClusterProcesses::StartLearner(const std::string& name) {

@@ -8,6 +8,7 @@
 // Every process still running is killed with the cluster. Confined to the test's thread.
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,8 +26,9 @@ class ClusterProcesses {
   const std::string& dir() const { return dir_; }
   std::string coordinator_address() const;
 
-  // The coordinator on its port and data directory (again, after Kill).
-  void StartCoordinator();
+  // The coordinator on its port and data directory (again, after Kill), with the cluster's lease
+  // duration or `lease`.
+  void StartCoordinator(std::optional<absl::Duration> lease = std::nullopt);
   void StartLearner(const std::string& name);
   void StartActor(const std::string& name, int max_slots);
 

@@ -296,7 +296,10 @@ TEST_F(DataPlaneTest, AKilledCoordinatorRestartsOnItsDataAndLosesNothing) {
   cluster.WaitForProgress(run_id, 2304);
   cluster.Kill("coordinator");
   absl::SleepFor(absl::Seconds(2));  // longer than a lease
-  cluster.StartCoordinator();
+  // A restarted coordinator gives held leases a full lease from its start to be renewed in.
+  // Workers reconnect after gRPC's reconnect backoff (1 s, +-20 %), so the restarted one's
+  // leases last longer than that; a 1 s lease could lapse before the learner is back.
+  cluster.StartCoordinator(absl::Seconds(3));
   std::optional<RunOutcome> outcome = cluster.Finish(run_id);
   ASSERT_TRUE(outcome.has_value());
   ExpectSameOutcome(*outcome, InOneProcess());
