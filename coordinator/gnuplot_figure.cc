@@ -20,12 +20,6 @@ constexpr const char* kPalette[] = {"#0072B2", "#D55E00", "#009E73", "#E69F00",
 
 }  // namespace
 
-absl::StatusOr<FigureFormat> ParseFigureFormat(absl::string_view name) {
-  if (std::optional<FigureFormat> format = FindByName(kFigureFormatNames, name)) return *format;
-  return absl::InvalidArgumentError(absl::StrCat("unknown figure format '", name,
-                                                 "': expected ", ListNames(kFigureFormatNames)));
-}
-
 std::string GnuplotFigure::ImageFileName(FigureFormat format) const {
   return absl::StrCat(name, ".", NameOf(kFigureFormatNames, format));
 }

@@ -30,9 +30,6 @@ inline constexpr EnumName<FigureFormat> kFigureFormatNames[] = {
     {FigureFormat::kSvg, "svg"}, {FigureFormat::kPng, "png"}, {FigureFormat::kPdf, "pdf"}};
 static_assert(InEnumOrder(kFigureFormatNames));
 
-// INVALID_ARGUMENT naming the known formats for any other name.
-absl::StatusOr<FigureFormat> ParseFigureFormat(absl::string_view name);
-
 struct DataFile {
   std::string name;  // relative to the figure's directory, e.g. "learning_curves.csv"
   std::string csv;   // a header row, then the rows

@@ -357,12 +357,6 @@ std::string FormatHtml(const v1::SweepReport& report) {
 
 }  // namespace
 
-absl::StatusOr<ReportFormat> ParseReportFormat(absl::string_view name) {
-  if (std::optional<ReportFormat> format = FindByName(kReportFormatNames, name)) return *format;
-  return absl::InvalidArgumentError(
-      absl::StrCat("unknown format ", name, ": expected ", ListNames(kReportFormatNames)));
-}
-
 std::string FormatReport(const v1::SweepReport& report, ReportFormat format) {
   switch (format) {
     case ReportFormat::kTable:

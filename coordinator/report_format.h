@@ -26,9 +26,6 @@ inline constexpr EnumName<ReportFormat> kReportFormatNames[] = {
     {ReportFormat::kLatex, "latex"}, {ReportFormat::kHtml, "html"}};
 static_assert(InEnumOrder(kReportFormatNames));
 
-// The format called `name`; INVALID_ARGUMENT listing the known names otherwise.
-absl::StatusOr<ReportFormat> ParseReportFormat(absl::string_view name);
-
 // `report` as `format`, ending with a newline:
 // - table: aligned plain text; "*" before the best IQM of each mode.
 // - md: a GitHub table between a header and a footer paragraph; the best IQM in bold.

@@ -283,23 +283,7 @@ v1::ReportSettings Settings(const ReportOptions& options, const std::string& bas
   return settings;
 }
 
-template <typename E, size_t N>
-absl::StatusOr<E> ParseName(const EnumName<E> (&table)[N], absl::string_view what,
-                            absl::string_view name) {
-  if (std::optional<E> value = FindByName(table, name); value.has_value()) return *value;
-  return absl::InvalidArgumentError(
-      absl::StrCat("unknown ", what, " ", name, ": expected ", ListNames(table)));
-}
-
 }  // namespace
-
-absl::StatusOr<ReportCheckpoint> ParseReportCheckpoint(absl::string_view name) {
-  return ParseName(kReportCheckpointNames, "checkpoint", name);
-}
-
-absl::StatusOr<ReportSplit> ParseReportSplit(absl::string_view name) {
-  return ParseName(kReportSplitNames, "split", name);
-}
 
 absl::StatusOr<v1::SweepReport> BuildSweepReport(const v1::SweepResults& results,
                                                  const ReportOptions& options) {

@@ -50,10 +50,6 @@ struct ReportOptions {
   std::string baseline;
 };
 
-// The value called `name`; INVALID_ARGUMENT listing the known names otherwise.
-absl::StatusOr<ReportCheckpoint> ParseReportCheckpoint(absl::string_view name);
-absl::StatusOr<ReportSplit> ParseReportSplit(absl::string_view name);
-
 // The report of `results`. Rows: conditions in the sweep's order, the baseline moved first;
 // columns: observation modes in the order they first appear. Every condition has a cell in
 // every mode, marked empty while it has no finished run (or the sweep has no such trial). The

@@ -12,17 +12,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-TEST(FigureFormatTest, ParsesEveryNameAndRefusesOthers) {
-  for (const auto& [format, name] : kFigureFormatNames) {
-    absl::StatusOr<FigureFormat> parsed = ParseFigureFormat(name);
-    ASSERT_TRUE(parsed.ok()) << parsed.status();
-    EXPECT_EQ(*parsed, format);
-  }
-  const absl::StatusOr<FigureFormat> jpeg = ParseFigureFormat("jpeg");
-  EXPECT_EQ(jpeg.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(jpeg.status().message(), HasSubstr("svg, png or pdf"));
-}
-
 TEST(GnuplotFigureTest, NamesItsScriptAndImages) {
   const GnuplotFigure figure{.name = "learning_curves"};
   EXPECT_EQ(figure.ScriptFileName(), "learning_curves.gp");

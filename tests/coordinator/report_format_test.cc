@@ -73,17 +73,6 @@ std::vector<std::string> Lines(const std::string& text) {
   return lines;
 }
 
-TEST(ReportFormatTest, TheNameTableIsTheSourceOfTheFormatChoices) {
-  for (const EnumName<ReportFormat>& entry : kReportFormatNames) {
-    const absl::StatusOr<ReportFormat> parsed = ParseReportFormat(entry.name);
-    ASSERT_TRUE(parsed.ok()) << parsed.status();
-    EXPECT_EQ(*parsed, entry.value);
-  }
-  const absl::StatusOr<ReportFormat> unknown = ParseReportFormat("xml");
-  EXPECT_EQ(unknown.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(unknown.status().message(), HasSubstr("table, md, csv, json, latex or html"));
-}
-
 TEST(ReportFormatTest, TableIsAlignedMarksTheBestAndStatesItsSettings) {
   const std::string table = FormatReport(SmallReport(), ReportFormat::kTable);
   const std::vector<std::string> lines = Lines(table);

@@ -379,15 +379,5 @@ TEST(SweepReportTest, RefusesBadRunsAndBadSweeps) {
   EXPECT_EQ(code(Sweep(2, {trial}), bad), kInvalid);
 }
 
-TEST(SweepReportTest, ParsesTheNamesOfItsTables) {
-  EXPECT_EQ(*ParseReportCheckpoint("best"), ReportCheckpoint::kBest);
-  EXPECT_EQ(*ParseReportSplit("ood_low"), ReportSplit::kOodLow);
-  EXPECT_EQ(*ParseReportSplit("combined"), ReportSplit::kCombined);
-  const absl::StatusOr<ReportSplit> unknown = ParseReportSplit("ood");
-  EXPECT_EQ(unknown.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(unknown.status().message(), HasSubstr("combined, id, ood_low or ood_high"));
-  EXPECT_FALSE(ParseReportCheckpoint("final").ok());
-}
-
 }  // namespace
 }  // namespace dcs::coordinator
