@@ -1,8 +1,6 @@
 // Copyright 2026 The DCS Authors.
 #include "run/run_spec_yaml.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -14,6 +12,7 @@
 #include "absl/strings/str_replace.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/run/source_files.h"
 
 namespace dcs::run {
 namespace {
@@ -57,20 +56,13 @@ std::string ErrorOf(const std::string& text) {
 }
 
 TEST(RunSpecYamlTest, EveryConfigInConfigsParsesAndValidates) {
-  const std::filesystem::path dir = std::filesystem::path(DCS_SOURCE_DIR) / "configs";
   int parsed = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    const std::filesystem::path& path = entry.path();
-    if (path.extension() != ".yaml" || path.filename() == "coordinator.yaml") continue;
-    std::ifstream file(path);
-    std::stringstream text;
-    text << file.rdbuf();
-    const YAML::Node root = YAML::Load(text.str());
-    if (root.IsMap() && root["conditions"]) continue;  // a sweep spec (sweep_spec_yaml_test.cc)
-    absl::StatusOr<RunSpec> spec = ParseRunSpecYaml(text.str(), path.string());
+  for (const ConfigFile& config : ConfigFiles()) {
+    if (config.sweep) continue;  // sweep_spec_yaml_test.cc reads those
+    absl::StatusOr<RunSpec> spec = ParseRunSpecYaml(config.text, config.path.string());
     EXPECT_TRUE(spec.ok()) << spec.status();
     if (spec.ok()) {
-      EXPECT_TRUE(ValidateRunSpec(*spec).ok()) << path;
+      EXPECT_TRUE(ValidateRunSpec(*spec).ok()) << config.path;
       ++parsed;
     }
   }
@@ -78,17 +70,7 @@ TEST(RunSpecYamlTest, EveryConfigInConfigsParsesAndValidates) {
 }
 
 TEST(RunSpecYamlTest, TheHeadersExampleParses) {
-  // The first block of "//   " lines in run/run_spec_yaml.h, without the comment marks.
-  std::ifstream header(std::filesystem::path(DCS_SOURCE_DIR) / "run" / "run_spec_yaml.h");
-  std::string line;
-  std::string example;
-  while (std::getline(header, line)) {
-    if (absl::StartsWith(line, "//   ")) {
-      absl::StrAppend(&example, line.substr(5), "\n");
-    } else if (!example.empty()) {
-      break;
-    }
-  }
+  const std::string example = HeaderExample("run/run_spec_yaml.h");
   ASSERT_THAT(example, HasSubstr("stages:"));
   // It shows `schedule` and `stages` together, as alternatives: keep the stages.
   const std::string stages_only =

@@ -1,11 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "run/sweep_spec_yaml.h"
 
-#include <yaml-cpp/yaml.h>
-
-#include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -18,6 +14,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "run/run_spec_yaml.h"
+#include "tests/run/source_files.h"
 
 namespace dcs::run {
 namespace {
@@ -101,13 +98,6 @@ double Param(const RunSpec& run, size_t stage, const std::string& name) {
   const env::ScheduleParam& param = run.stages.at(stage).schedule.params.at(name);
   EXPECT_TRUE(std::holds_alternative<double>(param)) << name;
   return std::holds_alternative<double>(param) ? std::get<double>(param) : -1;
-}
-
-std::string ReadFile(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
 }
 
 TEST(SweepSpecYamlTest, ExpandsConditionsInOrderEachInItsModes) {
@@ -516,22 +506,20 @@ TEST(SweepSpecYamlTest, ABaseProblemIsReportedOnceAsARunConfigsWouldBe) {
 }
 
 TEST(SweepSpecYamlTest, EveryConfigWithConditionsParses) {
-  const std::filesystem::path dir = std::filesystem::path(DCS_SOURCE_DIR) / "configs";
   int parsed = 0;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
-    const std::filesystem::path& path = entry.path();
-    if (path.extension() != ".yaml") continue;
-    const std::string text = ReadFile(path);
-    const YAML::Node root = YAML::Load(text);
-    if (!root.IsMap() || !root["conditions"]) continue;
-    absl::StatusOr<SweepSpec> spec = ParseSweepSpecYaml(text, path.string());
+  std::optional<ConfigFile> quickstart_file;
+  for (const ConfigFile& config : ConfigFiles()) {
+    if (!config.sweep) continue;
+    absl::StatusOr<SweepSpec> spec = ParseSweepSpecYaml(config.text, config.path.string());
     EXPECT_TRUE(spec.ok()) << spec.status();
     parsed += spec.ok();
+    if (config.path.filename() == "quickstart.yaml") quickstart_file = config;
   }
   EXPECT_GE(parsed, 1);
 
+  ASSERT_TRUE(quickstart_file.has_value());
   absl::StatusOr<SweepSpec> quickstart =
-      ParseSweepSpecYaml(ReadFile(dir / "quickstart.yaml"), "quickstart.yaml");
+      ParseSweepSpecYaml(quickstart_file->text, "quickstart.yaml");
   ASSERT_TRUE(quickstart.ok()) << quickstart.status();
   EXPECT_EQ(quickstart->name, "quickstart");
   EXPECT_THAT(quickstart->seeds, ElementsAre(0, 1, 2));
@@ -550,17 +538,7 @@ TEST(SweepSpecYamlTest, EveryConfigWithConditionsParses) {
 }
 
 TEST(SweepSpecYamlTest, TheHeadersExampleParses) {
-  // The first block of "//   " lines in run/sweep_spec_yaml.h, without the comment marks.
-  std::ifstream header(std::filesystem::path(DCS_SOURCE_DIR) / "run" / "sweep_spec_yaml.h");
-  std::string line;
-  std::string example;
-  while (std::getline(header, line)) {
-    if (absl::StartsWith(line, "//   ")) {
-      absl::StrAppend(&example, line.substr(5), "\n");
-    } else if (!example.empty()) {
-      break;
-    }
-  }
+  const std::string example = HeaderExample("run/sweep_spec_yaml.h");
   ASSERT_THAT(example, HasSubstr("conditions:"));
   const SweepSpec spec = Parse(example);
   EXPECT_THAT(Trials(spec),

@@ -1,0 +1,29 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_TESTS_RUN_SOURCE_FILES_H_
+#define DCS_TESTS_RUN_SOURCE_FILES_H_
+
+// The project's own files that the config tests read: the YAML files of configs/ and the
+// examples in the headers that document the formats. Paths are relative to the source tree
+// (DCS_SOURCE_DIR, defined by the test target). Thread-compatible.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace dcs::run {
+
+// A YAML file of configs/ (subfolders included), but the coordinator's settings file.
+struct ConfigFile {
+  std::filesystem::path path;
+  std::string text;
+  bool sweep = false;  // a sweep spec (a mapping with `conditions`), else a run config
+};
+std::vector<ConfigFile> ConfigFiles();
+
+// The first block of "//   " lines of `header` (e.g. "run/run_spec_yaml.h"), without the
+// comment marks: the format's example.
+std::string HeaderExample(const std::string& header);
+
+}  // namespace dcs::run
+
+#endif  // DCS_TESTS_RUN_SOURCE_FILES_H_
