@@ -112,6 +112,58 @@ std::vector<std::string> Footer(const v1::SweepReport& report, absl::string_view
   return lines;
 }
 
+// --- coverage (table, md and html) ---------------------------------------------------------
+
+// "50k", "151.552k", "0".
+std::string Steps(int64_t steps) {
+  return steps == 0 ? "0" : absl::StrFormat("%gk", static_cast<double>(steps) / 1000);
+}
+
+std::string CoverageTitle(const v1::CoverageSection& section) {
+  return absl::StrCat("Coverage of ", section.projection(), " (", section.cells(),
+                      " cells): percent of the cells the runs visited over the run (mean and ",
+                      "standard error across runs), and within each window of steps (mean).");
+}
+
+// The header row, then one row per condition and mode.
+Rows CoverageRows(const v1::CoverageSection& section) {
+  Rows rows = {{"condition", "mode", "runs", "run %"}};
+  for (int w = 0; w < section.window_ends_size(); ++w) {
+    rows[0].push_back(absl::StrCat(Steps(section.window_starts(w)), "-",
+                                   Steps(section.window_ends(w)), " %"));
+  }
+  for (const v1::CoverageRow& row : section.rows()) {
+    std::vector<std::string> line = {row.condition(), row.mode(), absl::StrCat(row.runs_size()),
+                                     absl::StrCat(Fixed(row.mean(), 2), " +- ",
+                                                  Fixed(row.sem(), 2))};
+    for (double mean : row.window_means()) line.push_back(Fixed(mean, 2));
+    rows.push_back(std::move(line));
+  }
+  return rows;
+}
+
+// One sentence per mode: its tests, or why there are none.
+std::vector<std::string> CoverageTests(const v1::CoverageSection& section) {
+  std::vector<std::string> lines;
+  for (const v1::CoverageTest& test : section.tests()) {
+    std::vector<std::string> parts;
+    if (test.has_anova()) {
+      const v1::CoverageAnova& anova = test.anova();
+      parts.push_back(absl::StrFormat("one-way ANOVA across conditions F(%d, %d) = %.3g, p = %.3g",
+                                      anova.df_between(), anova.df_within(), anova.f(),
+                                      anova.p_value()));
+    }
+    if (test.has_correlation()) {
+      const v1::CoverageCorrelation& r = test.correlation();
+      parts.push_back(absl::StrFormat("Pearson r(score, coverage) = %.3f, p = %.3g (%d runs)",
+                                      r.r(), r.p_value(), r.runs()));
+    }
+    if (!test.note().empty()) parts.push_back(test.note());
+    lines.push_back(absl::StrCat(test.mode(), ": ", absl::StrJoin(parts, "; "), "."));
+  }
+  return lines;
+}
+
 // --- table ---------------------------------------------------------------------------------
 
 std::string FormatTable(const v1::SweepReport& report) {
@@ -130,8 +182,16 @@ std::string FormatTable(const v1::SweepReport& report) {
     }
     rows.push_back(std::move(line));
   }
-  return absl::StrCat(Header(report), "\n\n", RenderTable(rows, right), "\n",
-                      absl::StrJoin(Footer(report, "*"), "\n"), "\n");
+  std::string out = absl::StrCat(Header(report), "\n\n", RenderTable(rows, right), "\n",
+                                 absl::StrJoin(Footer(report, "*"), "\n"), "\n");
+  for (const v1::CoverageSection& section : report.coverage()) {
+    const Rows coverage = CoverageRows(section);
+    std::vector<bool> numbers(coverage[0].size(), true);
+    numbers[0] = numbers[1] = false;
+    absl::StrAppend(&out, "\n", CoverageTitle(section), "\n\n", RenderTable(coverage, numbers),
+                    "\n", absl::StrJoin(CoverageTests(section), "\n"), "\n");
+  }
+  return out;
 }
 
 // --- md ------------------------------------------------------------------------------------
@@ -170,6 +230,24 @@ std::string FormatMarkdown(const v1::SweepReport& report) {
   absl::StrAppend(&out, "\n");
   for (const std::string& sentence : Footer(report, "Bold")) {
     absl::StrAppend(&out, MarkdownEscape(sentence), "\n");
+  }
+  for (const v1::CoverageSection& section : report.coverage()) {
+    const Rows coverage = CoverageRows(section);
+    absl::StrAppend(&out, "\n", MarkdownEscape(CoverageTitle(section)), "\n\n");
+    for (size_t r = 0; r < coverage.size(); ++r) {
+      std::vector<std::string> line;
+      for (const std::string& text : coverage[r]) line.push_back(MarkdownEscape(text));
+      absl::StrAppend(&out, "| ", absl::StrJoin(line, " | "), " |\n");
+      if (r == 0) {
+        std::vector<std::string> alignment(line.size(), "--:");
+        alignment[0] = alignment[1] = "---";
+        absl::StrAppend(&out, "|", absl::StrJoin(alignment, "|"), "|\n");
+      }
+    }
+    absl::StrAppend(&out, "\n");
+    for (const std::string& sentence : CoverageTests(section)) {
+      absl::StrAppend(&out, MarkdownEscape(sentence), "\n");
+    }
   }
   return out;
 }
@@ -352,6 +430,22 @@ std::string FormatHtml(const v1::SweepReport& report) {
                   2 + columns.size() * report.modes_size(), "\">",
                   HtmlEscape(absl::StrJoin(Footer(report, "Bold"), " ")),
                   "</td></tr>\n</tfoot>\n</table>\n");
+  for (const v1::CoverageSection& section : report.coverage()) {
+    const Rows coverage = CoverageRows(section);
+    absl::StrAppend(&out, "<table class=\"dcs-coverage\">\n<caption>",
+                    HtmlEscape(CoverageTitle(section)), "</caption>\n");
+    for (size_t r = 0; r < coverage.size(); ++r) {
+      const absl::string_view tag = r == 0 ? "th" : "td";
+      absl::StrAppend(&out, "<tr>");
+      for (const std::string& text : coverage[r]) {
+        absl::StrAppend(&out, "<", tag, ">", HtmlEscape(text), "</", tag, ">");
+      }
+      absl::StrAppend(&out, "</tr>\n");
+    }
+    absl::StrAppend(&out, "<tfoot>\n<tr><td colspan=\"", coverage[0].size(), "\">",
+                    HtmlEscape(absl::StrJoin(CoverageTests(section), " ")),
+                    "</td></tr>\n</tfoot>\n</table>\n");
+  }
   return out;
 }
 

@@ -36,6 +36,10 @@ static_assert(InEnumOrder(kReportFormatNames));
 //   with IQM [Q1, Q3] cells, the best in \textbf, "$^\dagger$" on cells with fewer runs than
 //   seeds, and a caption stating the checkpoint, split, seeds and bootstrap settings.
 // - html: a <table> with a <caption> and a <tfoot>; the best IQM in <strong>.
+// With coverage sections (coordinator/coverage_report.h), table, md and html follow the scores
+// with one more table per projection (per condition and mode: runs, run coverage mean +- SEM,
+// each window's mean) and a sentence per mode with its ANOVA and correlation; json holds them
+// too; csv and latex are the score table only.
 // Text from the report (condition names, ...) is escaped for each format.
 std::string FormatReport(const v1::SweepReport& report, ReportFormat format);
 

@@ -11,6 +11,7 @@
 #include "absl/container/flat_hash_map.h"
 #include "absl/strings/str_cat.h"
 #include "common/status_macros.h"
+#include "coordinator/coverage_report.h"
 #include "coordinator/iqm.h"
 #include "coordinator/probability_of_improvement.h"
 
@@ -319,6 +320,7 @@ absl::StatusOr<v1::SweepReport> BuildSweepReport(const v1::SweepResults& results
   }
   if (baseline >= 0) DCS_RETURN_IF_ERROR(AddImprovements(options, report));
   MarkBest(report);
+  DCS_RETURN_IF_ERROR(AddCoverageSections(results, report));
   return report;
 }
 

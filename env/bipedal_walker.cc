@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 #include "absl/strings/str_cat.h"
 #include "common/status_macros.h"
@@ -46,6 +47,22 @@ const ContextSpace& BipedalWalker::Features() {
        0.0, 1.0},
   });
   return *features;
+}
+
+const std::vector<StateProjection>& BipedalWalker::CoverageProjections() {
+  // Gymnasium's observation bounds are float32: pi as the float the tracker reads.
+  constexpr double kPi = static_cast<float>(std::numbers::pi);
+  constexpr int kHull = 0, kHip1 = 4, kHip1Speed = 5, kKnee1 = 6, kHip2 = 9, kKnee2 = 11;
+  static const auto* projections = new std::vector<StateProjection>{
+      {.name = "inter_leg", .dims = {kHip1, kHip2}, .bins = 30, .low = {-kPi, -kPi},
+       .high = {kPi, kPi}},
+      {.name = "joints", .dims = {kHip1, kKnee1, kHip2, kKnee2}, .bins = 12,
+       .low = {-kPi, -kPi, -kPi, -kPi}, .high = {kPi, kPi, kPi, kPi}},
+      {.name = "posture", .dims = {kHull, kHip1, kHip2}, .bins = 15, .low = {-kPi, -kPi, -kPi},
+       .high = {kPi, kPi, kPi}},
+      {.name = "leg1_phase", .dims = {kHip1, kHip1Speed}, .bins = 30, .low = {-kPi, -5.0},
+       .high = {kPi, 5.0}}};
+  return *projections;
 }
 
 absl::Status BipedalWalker::ValidateContext(std::span<const double> values) {

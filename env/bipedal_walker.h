@@ -40,12 +40,14 @@
 #include <array>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "absl/strings/string_view.h"
 #include "common/random.h"
 #include "env/bipedal_walker_world.h"
 #include "env/context_feature.h"
+#include "env/state_projection.h"
 #include "env/step_result.h"
 
 namespace dcs::env {
@@ -101,6 +103,12 @@ class BipedalWalker final {
   // The features with CARL's bounds (COM_X: [-2, 2], the paper's sensor bounds, wide enough for
   // the evaluation grid up to +-1.7); normalisation bounds equal the physical ones.
   static const ContextSpace& Features();
+
+  // The coverage diagnostic's four projections (spec/schedules.md §11) over Gymnasium's declared
+  // bounds (contexts.md §9): "inter_leg" hip 1 vs hip 2 angle (30^2), "joints" the hip and knee
+  // angles of both legs (12^4), "posture" hull and both hip angles (15^3), "leg1_phase" hip 1
+  // angle vs speed (30^2).
+  static const std::vector<StateProjection>& CoverageProjections();
 
   // OK if every value is valid for its feature and the integer features (TERRAIN_LENGTH,
   // TERRAIN_GRASS, VIEWPORT_W, VIEWPORT_H, HARDCORE) hold integers.

@@ -29,6 +29,18 @@ const ContextSpace& CartPole::Features() {
   return *features;
 }
 
+const std::vector<StateProjection>& CartPole::CoverageProjections() {
+  // Cart position, cart velocity, pole angle, pole angular velocity: the paper's "physically
+  // plausible ranges" (its observation bounds are infinite for the velocities).
+  static const auto* projections = new std::vector<StateProjection>{
+      {.name = "state",
+       .dims = {0, 1, 2, 3},
+       .bins = 12,
+       .low = {-2.5, -3.5, -0.30, -4.0},
+       .high = {2.5, 3.5, 0.30, 4.0}}};
+  return *projections;
+}
+
 absl::Status CartPole::ValidateContext(std::span<const double> values) {
   for (int i = 0; i < kNumFeatures; ++i) DCS_RETURN_IF_ERROR(Features().Validate(i, values[i]));
   if (values[kInitialStateLower] > values[kInitialStateUpper]) {

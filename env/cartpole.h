@@ -21,11 +21,13 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "common/random.h"
 #include "env/context_feature.h"
 #include "env/raster.h"
+#include "env/state_projection.h"
 #include "env/step_result.h"
 
 namespace dcs::env {
@@ -66,6 +68,10 @@ class CartPole final {
 
   // CARL's CartPole features, with the paper's sensor bounds for the length (0.05, 2.0) m.
   static const ContextSpace& Features();
+
+  // The coverage diagnostic's projection (spec/schedules.md §11): "state", the four observation
+  // dimensions in 12 bins each over the paper's physically plausible ranges.
+  static const std::vector<StateProjection>& CoverageProjections();
 
   // OK if every value is valid for its feature and initial_state_lower <= initial_state_upper.
   static absl::Status ValidateContext(std::span<const double> values);

@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "learner/training_session.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <utility>
@@ -18,14 +19,19 @@ constexpr size_t kRecentEpisodes = 100;  // SB3's ep_info_buffer
 
 absl::StatusOr<std::unique_ptr<TrainingSession>> TrainingSession::Create(
     run::RunSpec spec, run::RunPlan plan, const run::PolicySpec& policy,
-    const run::Checkpoint* checkpoint) {
+    const std::vector<env::StateProjection>& projections, const run::Checkpoint* checkpoint) {
+  std::vector<env::StateProjection> coverage_projections;
+  if (spec.coverage.has_value()) {
+    DCS_ASSIGN_OR_RETURN(coverage_projections, run::SelectProjections(*spec.coverage, projections));
+  }
   DCS_ASSIGN_OR_RETURN(std::unique_ptr<PpoLearner> learner,
                        PpoLearner::Create(policy, spec.ppo, spec.n_envs, spec.seed));
-  std::unique_ptr<TrainingSession> session(
-      new TrainingSession(std::move(spec), std::move(plan), std::move(learner)));
+  std::unique_ptr<TrainingSession> session(new TrainingSession(
+      std::move(spec), std::move(plan), std::move(coverage_projections), std::move(learner)));
   if (checkpoint == nullptr) {
-    // Every slot stands at the reset of its first episode.
+    // Every slot stands at the reset of its first episode; no cell is visited yet.
     session->state_.journals.resize(session->spec_.n_envs);
+    session->state_.coverage = run::NewCoverage(session->coverage_projections_);
     return session;
   }
   DCS_RETURN_IF_ERROR(session->learner_->LoadState(checkpoint->learner));
@@ -35,15 +41,26 @@ absl::StatusOr<std::unique_ptr<TrainingSession>> TrainingSession::Create(
         absl::StrCat("checkpoint ", checkpoint->name, " has ", checkpoint->state.journals.size(),
                      " environment slots, the run has n_envs ", n_envs));
   }
+  const std::vector<run::ProjectionCounts> fresh = run::NewCoverage(session->coverage_projections_);
+  if (!std::equal(fresh.begin(), fresh.end(), checkpoint->state.coverage.begin(),
+                  checkpoint->state.coverage.end(),
+                  [](const run::ProjectionCounts& a, const run::ProjectionCounts& b) {
+                    return a.projection == b.projection && a.cells == b.cells;
+                  })) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        "checkpoint ", checkpoint->name, " counts coverage in other projections than the run"));
+  }
   session->state_ = checkpoint->state;
   return session;
 }
 
 TrainingSession::TrainingSession(run::RunSpec spec, run::RunPlan plan,
+                                 std::vector<env::StateProjection> coverage_projections,
                                  std::unique_ptr<PpoLearner> learner)
     : spec_(std::move(spec)),
       plan_(std::move(plan)),
       evaluation_steps_(run::EvaluationSteps(spec_, plan_)),
+      coverage_projections_(std::move(coverage_projections)),
       learner_(std::move(learner)) {}
 
 absl::StatusOr<std::optional<EvaluationDue>> TrainingSession::AddRollout(
@@ -73,6 +90,10 @@ absl::StatusOr<std::optional<EvaluationDue>> TrainingSession::AddRollout(
   }
   state_.journals = std::move(journals);
   waiting_from_ = state_.timesteps;
+  if (spec_.coverage.has_value()) {
+    run::RecordCoverage(coverage_projections_, spec_.coverage->window, rollout, waiting_from_,
+                        state_.coverage);
+  }
   state_.timesteps += static_cast<int64_t>(rollout.num_steps) * rollout.num_envs;
   waiting_ = std::move(rollout);
   checkpoint_due_ = false;
@@ -126,7 +147,12 @@ absl::StatusOr<run::Checkpoint> TrainingSession::Checkpoint() const {
 }
 
 v1::EvaluationLog TrainingSession::EvaluationLog() const {
-  return run::MakeEvaluationLog(spec_, state_.evaluations, plan_.stage_boundaries, complete());
+  v1::EvaluationLog log =
+      run::MakeEvaluationLog(spec_, state_.evaluations, plan_.stage_boundaries, complete());
+  if (spec_.coverage.has_value()) {
+    run::AppendCoverage(state_.coverage, spec_.coverage->window, state_.timesteps, log);
+  }
+  return log;
 }
 
 double TrainingSession::recent_return() const {

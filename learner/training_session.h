@@ -37,7 +37,9 @@
 #include "actor/rollout_collector.h"
 #include "common/status_macros.h"
 #include "dcs/v1/evaluation.pb.h"
+#include "env/state_projection.h"
 #include "learner/ppo_learner.h"
+#include "run/coverage.h"
 #include "run/run_checkpoint.h"
 #include "run/run_plan.h"
 #include "run/run_spec.h"
@@ -61,8 +63,8 @@ class TrainingSession {
  public:
   // A session training `spec` on `Env`: the plan (run::PlanRun), the learner with its initial
   // weights from the seed. With `checkpoint`, it continues from there. INVALID_ARGUMENT as
-  // PlanRun; FAILED_PRECONDITION for a checkpoint of another run (seed, network shapes or
-  // number of slots); DATA_LOSS for one whose learner state does not load.
+  // PlanRun or for coverage the environment cannot count; FAILED_PRECONDITION for a checkpoint of
+  // another run (seed, network shapes, number of slots or coverage projections); DATA_LOSS for one whose learner state does not load.
   template <typename Env>
   static absl::StatusOr<std::unique_ptr<TrainingSession>> Create(
       run::RunSpec spec, const run::Checkpoint* checkpoint = nullptr);
@@ -73,7 +75,8 @@ class TrainingSession {
   const run::RunSpec& spec() const { return spec_; }
   const run::RunPlan& plan() const { return plan_; }
   // Counters, the slots' journals (one per slot; in a new run each at the reset of episode 0),
-  // the last training episodes' returns, the evaluations.
+  // the last training episodes' returns, the evaluations, the coverage counted if the spec asks
+  // for it (run/coverage.h: the session counts every rollout it is given).
   const run::RunState& state() const { return state_; }
   bool complete() const { return state_.timesteps >= spec_.total_timesteps; }
 
@@ -108,7 +111,7 @@ class TrainingSession {
   // serialise itself.
   absl::StatusOr<run::Checkpoint> Checkpoint() const;
 
-  // The evaluation log so far (run/evaluation_log.h).
+  // The evaluation log so far (run/evaluation_log.h), with the coverage so far.
   v1::EvaluationLog EvaluationLog() const;
 
   // The mean return of the last 100 finished training episodes (SB3's ep_rew_mean); NaN before
@@ -119,16 +122,20 @@ class TrainingSession {
   std::vector<float> Parameters() const { return learner_->Parameters(); }
 
  private:
-  TrainingSession(run::RunSpec spec, run::RunPlan plan, std::unique_ptr<PpoLearner> learner);
+  TrainingSession(run::RunSpec spec, run::RunPlan plan,
+                  std::vector<env::StateProjection> coverage_projections,
+                  std::unique_ptr<PpoLearner> learner);
 
+  // `projections`: the environment's (run::EnvironmentProjections).
   static absl::StatusOr<std::unique_ptr<TrainingSession>> Create(
       run::RunSpec spec, run::RunPlan plan, const run::PolicySpec& policy,
-      const run::Checkpoint* checkpoint);
+      const std::vector<env::StateProjection>& projections, const run::Checkpoint* checkpoint);
 
   // Fixed at construction.
   const run::RunSpec spec_;
   const run::RunPlan plan_;
   const std::vector<int64_t> evaluation_steps_;
+  const std::vector<env::StateProjection> coverage_projections_;  // empty: coverage is off
   const std::unique_ptr<PpoLearner> learner_;
 
   run::RunState state_;
@@ -146,7 +153,8 @@ absl::StatusOr<std::unique_ptr<TrainingSession>> TrainingSession::Create(
   DCS_ASSIGN_OR_RETURN(run::RunPlan plan, run::PlanRun(spec, Env::Features()));
   const run::PolicySpec policy =
       run::PolicySpecFor<Env>(static_cast<int>(plan.slot.observed_features.size()));
-  return Create(std::move(spec), std::move(plan), policy, checkpoint);
+  return Create(std::move(spec), std::move(plan), policy, run::EnvironmentProjections<Env>(),
+                checkpoint);
 }
 
 }  // namespace dcs::learner

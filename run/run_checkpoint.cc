@@ -13,6 +13,7 @@
 
 #include "absl/algorithm/container.h"
 #include "absl/strings/ascii.h"
+#include "absl/strings/escaping.h"
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
@@ -41,6 +42,74 @@ void EmitNumbers(YAML::Emitter& out, const Values& values) {
   out << YAML::Flow << YAML::BeginSeq;
   for (double value : values) out << RoundTrip(value);
   out << YAML::EndSeq;
+}
+
+// A bitset as base64 of its words' little-endian bytes, and back (nullopt unless it decodes to
+// `words` words).
+std::string EncodeBits(const std::vector<uint64_t>& bits) {
+  std::string bytes;
+  for (uint64_t word : bits) {
+    for (int i = 0; i < 8; ++i) bytes.push_back(static_cast<char>((word >> (8 * i)) & 0xff));
+  }
+  return absl::Base64Escape(bytes);
+}
+
+std::optional<std::vector<uint64_t>> DecodeBits(const std::string& text, size_t words) {
+  std::string bytes;
+  if (!absl::Base64Unescape(text, &bytes) || bytes.size() != 8 * words) return std::nullopt;
+  std::vector<uint64_t> bits(words);
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    bits[i / 8] |= uint64_t{static_cast<unsigned char>(bytes[i])} << (8 * (i % 8));
+  }
+  return bits;
+}
+
+void EmitCoverage(YAML::Emitter& out, const ProjectionCounts& counts) {
+  out << YAML::BeginMap;
+  out << YAML::Key << "projection" << YAML::Value << counts.projection;
+  out << YAML::Key << "cells" << YAML::Value << counts.cells;
+  out << YAML::Key << "window" << YAML::Value << counts.window;
+  out << YAML::Key << "window_new" << YAML::Value << counts.window_new;
+  out << YAML::Key << "seen" << YAML::Value << EncodeBits(counts.seen);
+  out << YAML::Key << "window_seen" << YAML::Value << EncodeBits(counts.window_seen);
+  out << YAML::Key << "closed" << YAML::Value << YAML::BeginSeq;
+  for (const CoverageWindow& w : counts.closed) {
+    out << YAML::Flow << YAML::BeginSeq << w.start_step << w.end_step << w.visited << w.new_cells
+        << YAML::EndSeq;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+}
+
+// REQUIRES: called inside DecodeRunState's try (yaml-cpp throws on a missing or mistyped key).
+absl::StatusOr<ProjectionCounts> DecodeCoverage(const YAML::Node& node,
+                                                const std::string& source) {
+  ProjectionCounts counts{.projection = node["projection"].as<std::string>(),
+                          .cells = node["cells"].as<int64_t>(),
+                          .window = node["window"].as<int64_t>(),
+                          .window_new = node["window_new"].as<int64_t>()};
+  const size_t words = counts.cells > 0 ? static_cast<size_t>((counts.cells + 63) / 64) : 0;
+  std::optional<std::vector<uint64_t>> seen = DecodeBits(node["seen"].as<std::string>(), words);
+  std::optional<std::vector<uint64_t>> window_seen =
+      DecodeBits(node["window_seen"].as<std::string>(), words);
+  if (words == 0 || !seen.has_value() || !window_seen.has_value()) {
+    return absl::DataLossError(absl::StrCat(source, ": the coverage of projection '",
+                                            counts.projection, "' does not hold its ",
+                                            counts.cells, " cells"));
+  }
+  counts.seen = *std::move(seen);
+  counts.window_seen = *std::move(window_seen);
+  for (const YAML::Node& w : node["closed"]) {
+    const std::vector<int64_t> values = w.as<std::vector<int64_t>>();
+    if (values.size() != 4) {
+      return absl::DataLossError(absl::StrCat(source, ": a coverage window of projection '",
+                                              counts.projection, "' is not 4 numbers"));
+    }
+    counts.closed.push_back({.start_step = values[0],
+                             .end_step = values[1],
+                             .visited = values[2],
+                             .new_cells = values[3]});
+  }
+  return counts;
 }
 
 // Reads one checkpoint directory. DATA_LOSS for a file that is missing, does not match the
@@ -110,7 +179,13 @@ std::string EncodeRunState(const RunState& state) {
     }
     out << YAML::EndSeq << YAML::EndMap;
   }
-  out << YAML::EndSeq << YAML::EndMap;
+  out << YAML::EndSeq;
+  if (!state.coverage.empty()) {
+    out << YAML::Key << "coverage" << YAML::Value << YAML::BeginSeq;
+    for (const ProjectionCounts& counts : state.coverage) EmitCoverage(out, counts);
+    out << YAML::EndSeq;
+  }
+  out << YAML::EndMap;
   return absl::StrCat(out.c_str(), "\n");
 }
 
@@ -144,6 +219,10 @@ absl::StatusOr<RunState> DecodeRunState(const std::string& text, const std::stri
       }
       actor::Summarize(evaluation);
       state.evaluations.push_back(std::move(evaluation));
+    }
+    for (const YAML::Node& node : root["coverage"]) {
+      DCS_ASSIGN_OR_RETURN(ProjectionCounts counts, DecodeCoverage(node, source));
+      state.coverage.push_back(std::move(counts));
     }
   } catch (const YAML::Exception& e) {
     return absl::DataLossError(absl::StrCat(source, " is unreadable: ", e.what()));

@@ -4,12 +4,12 @@
 
 // Checkpoints of a training run: everything needed to resume it exactly. Every random stream of
 // a run is derived from its seed and counters, so the state is the learner's (weights, Adam's
-// moments, update count), the counters, each environment slot's running episode (to replay it)
-// and the evaluations so far.
+// moments, update count), the counters, each environment slot's running episode (to replay it),
+// the evaluations so far and, if the run counts it, its coverage (run/coverage.h).
 //
 // Layout, in the run's output directory (spec/operations.md §7.3):
 //   checkpoints/<timesteps>/learner.bin   PpoLearner::SaveState
-//   checkpoints/<timesteps>/run.yaml      counters, journals, evaluations
+//   checkpoints/<timesteps>/run.yaml      counters, journals, evaluations, coverage
 //   checkpoints/<timesteps>/MANIFEST      sha256 of both, written after them
 //   checkpoints/latest                    the newest <timesteps>, written last
 // Each file is written atomically (common/atomic_file.h); the newest `keep` checkpoints are
@@ -23,6 +23,7 @@
 #include "absl/strings/string_view.h"
 #include "actor/evaluation.h"
 #include "actor/rollout_collector.h"
+#include "run/coverage.h"
 
 namespace dcs::run {
 
@@ -32,6 +33,7 @@ struct RunState {
   std::vector<actor::SlotJournal> journals;
   std::vector<double> recent_returns;  // the last finished training episodes' returns
   std::vector<actor::EvaluationResult> evaluations;
+  std::vector<ProjectionCounts> coverage;  // empty unless the run counts coverage
 };
 
 struct Checkpoint {

@@ -66,6 +66,15 @@ struct RunSpec {
   }
 
   PpoConfig ppo;
+
+  // The coverage diagnostic (spec/schedules.md §11; run/coverage.h), off unless asked for: the
+  // cells of the environment's state projections that training visits, per window of `window`
+  // environment steps and over the run.
+  struct Coverage {
+    int64_t window = 50'000;
+    std::vector<std::string> projections;  // by name; empty: every one the environment has
+  };
+  std::optional<Coverage> coverage;
 };
 
 }  // namespace dcs::run

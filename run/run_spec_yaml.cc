@@ -21,6 +21,7 @@
 #include "env/context_feature.h"
 #include "env/env_registry.h"
 #include "env/schedule_config.h"
+#include "run/coverage.h"
 #include "run/ppo_config.h"
 #include "run/schedule_yaml.h"
 #include "run/yaml_reader.h"
@@ -166,8 +167,17 @@ absl::Status Validate(const RunSpec& spec, const ConfigErrors& errors, bool sche
                                          absl::StrJoin(environments, ", "), ")"));
   }
   DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
-    return CheckWithEnvironment(spec, Env::Features(), &Env::ValidateContext, errors,
-                                schedule_key);
+    DCS_RETURN_IF_ERROR(CheckWithEnvironment(spec, Env::Features(), &Env::ValidateContext,
+                                             errors, schedule_key));
+    if (!spec.coverage.has_value()) return absl::OkStatus();
+    if (spec.coverage->window < 1) {
+      return errors.At("coverage.window",
+                       absl::StrCat("must be at least 1, got ", spec.coverage->window));
+    }
+    absl::StatusOr<std::vector<env::StateProjection>> projections =
+        SelectProjections(*spec.coverage, EnvironmentProjections<Env>());
+    if (!projections.ok()) return errors.At("coverage.projections", projections.status().message());
+    return absl::OkStatus();
   }));
   return ValidatePpoConfig(spec.ppo, spec.n_envs, errors);
 }
@@ -189,6 +199,7 @@ class Parser {
   absl::Status Stages(const YAML::Node& node, RunSpec& spec);
   absl::Status Evaluation(const YAML::Node& node, RunSpec& spec);
   absl::Status Ppo(const YAML::Node& node, PpoConfig& ppo);
+  absl::Status Coverage(const YAML::Node& node, RunSpec& spec);
 
   YamlReader& r_;
 };
@@ -279,6 +290,26 @@ absl::Status Parser::Evaluation(const YAML::Node& node, RunSpec& spec) {
       });
 }
 
+absl::Status Parser::Coverage(const YAML::Node& node, RunSpec& spec) {
+  RunSpec::Coverage& coverage = spec.coverage.emplace();
+  return r_.ForEachKey(node, "coverage", {"window", "projections"},
+                       [&](const std::string& key, const YAML::Node& value,
+                           const std::string& path) -> absl::Status {
+                         if (key == "window") {
+                           DCS_ASSIGN_OR_RETURN(coverage.window, r_.Int64(value, path));
+                           return absl::OkStatus();
+                         }
+                         return r_.ForEachItem(
+                             value, path, "a list of projection names",
+                             [&](const YAML::Node& item,
+                                 const std::string& item_path) -> absl::Status {
+                               DCS_ASSIGN_OR_RETURN(coverage.projections.emplace_back(),
+                                                    r_.Word(item, item_path));
+                               return absl::OkStatus();
+                             });
+                       });
+}
+
 absl::Status Parser::Ppo(const YAML::Node& node, PpoConfig& ppo) {
   const std::map<std::string, double*> numbers = {{"learning_rate", &ppo.learning_rate},
                                                   {"gamma", &ppo.gamma},
@@ -328,7 +359,7 @@ absl::Status Parser::Document(const YAML::Node& root, RunSpec& spec, bool& sched
   DCS_RETURN_IF_ERROR(r_.ForEachKey(
       root, "",
       {"env", "seed", "total_timesteps", "n_envs", "context", "feature", "training_range", "pool",
-       "schedule", "stages", "observe", "evaluation", "ppo"},
+       "schedule", "stages", "observe", "evaluation", "ppo", "coverage"},
       [&](const std::string& key, const YAML::Node& value,
           const std::string& path) -> absl::Status {
         if (key == "env") {
@@ -369,6 +400,8 @@ absl::Status Parser::Document(const YAML::Node& root, RunSpec& spec, bool& sched
           spec.observe = *observe;
         } else if (key == "evaluation") {
           return Evaluation(value, spec);
+        } else if (key == "coverage") {
+          return Coverage(value, spec);
         } else {
           return Ppo(value, spec.ppo);
         }

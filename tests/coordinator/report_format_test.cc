@@ -211,5 +211,63 @@ TEST(ReportFormatTest, WithoutABaselineNoFormatHasAnImprovementColumn) {
   }
 }
 
+// SmallReport with a coverage section: two rows in mode none, one test with both statistics,
+// one mode whose test has only a note.
+v1::SweepReport WithCoverage() {
+  v1::SweepReport report = SmallReport();
+  v1::CoverageSection& section = *report.add_coverage();
+  section.set_projection("state");
+  section.set_cells(20736);
+  for (const auto& [start, end] : {std::pair(0, 50'000), std::pair(50'000, 100'000),
+                                    std::pair(100'000, 151'552)}) {
+    section.add_window_starts(start);
+    section.add_window_ends(end);
+  }
+  for (const char* condition : {"static", kWeird}) {
+    v1::CoverageRow& row = *section.add_rows();
+    row.set_condition(condition);
+    row.set_mode("none");
+    row.add_runs(6.5);
+    row.add_runs(6.7);
+    row.set_mean(6.6);
+    row.set_sem(0.1);
+    for (double mean : {6.45, 0.571, 0.27}) row.add_window_means(mean);
+  }
+  v1::CoverageTest& test = *section.add_tests();
+  test.set_mode("none");
+  test.mutable_anova()->set_f(1.25);
+  test.mutable_anova()->set_df_between(1);
+  test.mutable_anova()->set_df_within(2);
+  test.mutable_anova()->set_p_value(0.38);
+  test.mutable_correlation()->set_r(0.21);
+  test.mutable_correlation()->set_p_value(0.003);
+  test.mutable_correlation()->set_runs(4);
+  section.add_tests()->set_mode("live");
+  section.mutable_tests(1)->set_note("no ANOVA: a one-way ANOVA needs at least two groups, got 0");
+  return report;
+}
+
+TEST(ReportFormatTest, CoverageFollowsTheScoresInTableMarkdownAndHtml) {
+  const v1::SweepReport report = WithCoverage();
+  const std::string table = FormatReport(report, ReportFormat::kTable);
+  EXPECT_THAT(table, HasSubstr("\nCoverage of state (20736 cells): percent of the cells"));
+  EXPECT_THAT(table, HasSubstr("0-50k %  50k-100k %  100k-151.552k %"));
+  EXPECT_THAT(table, HasSubstr("6.60 +- 0.10"));
+  EXPECT_THAT(table, HasSubstr("none: one-way ANOVA across conditions F(1, 2) = 1.25, p = 0.38; "
+                               "Pearson r(score, coverage) = 0.210, p = 0.003 (4 runs).\n"));
+  EXPECT_THAT(table, HasSubstr("live: no ANOVA: a one-way ANOVA needs at least two groups"));
+  const std::string md = FormatReport(report, ReportFormat::kMarkdown);
+  EXPECT_THAT(md, HasSubstr("| condition | mode | runs | run % | 0-50k % |"));
+  EXPECT_THAT(md, HasSubstr("|---|---|--:|--:|--:|--:|--:|\n"));
+  EXPECT_THAT(md, HasSubstr("| a\\<b, & 50%#\\_x | none | 2 | 6.60 +- 0.10 | 6.45 | 0.57 | 0.27 |"));
+  const std::string html = FormatReport(report, ReportFormat::kHtml);
+  EXPECT_THAT(html, HasSubstr("<table class=\"dcs-coverage\">\n<caption>Coverage of state"));
+  EXPECT_THAT(html, HasSubstr("<td>a&lt;b, &amp; 50%#_x</td><td>none</td>"));
+  // The score table only in csv and latex.
+  for (const ReportFormat format : {ReportFormat::kCsv, ReportFormat::kLatex}) {
+    EXPECT_EQ(FormatReport(report, format), FormatReport(SmallReport(), format));
+  }
+}
+
 }  // namespace
 }  // namespace dcs::coordinator

@@ -329,6 +329,79 @@ TEST(SweepReportTest, ANanScoreIsAnErrorNamingTheTrialAndSeed) {
   EXPECT_THAT(report.status().message(), HasSubstr("nan"));
 }
 
+// `trial` with coverage of a 100-cell projection "state" on its runs: run i visits
+// `first[i]` cells in steps (0, 50] and 5 cells in (50, 100], `added[i]` of them new.
+v1::TrialResults WithCoverage(v1::TrialResults trial, const std::vector<int>& first,
+                              const std::vector<int>& added) {
+  for (int i = 0; i < trial.runs_size(); ++i) {
+    v1::ProjectionCoverage& coverage = *trial.mutable_runs(i)->add_coverage();
+    coverage.set_projection("state");
+    coverage.set_cells(100);
+    v1::CoverageWindow& early = *coverage.add_windows();
+    early.set_end_step(50);
+    early.set_visited(first[i]);
+    early.set_new_cells(first[i]);
+    v1::CoverageWindow& late = *coverage.add_windows();
+    late.set_start_step(50);
+    late.set_end_step(100);
+    late.set_visited(5);
+    late.set_new_cells(added[i]);
+  }
+  return trial;
+}
+
+TEST(SweepReportTest, CoverageSectionsCompareConditionsByAnovaAndCorrelateWithTheScore) {
+  v1::TrialResults sin = WithCoverage(Trial("sin", "sinusoidal", "none", {300, 320, 340}),
+                                      {18, 20, 22}, {2, 2, 2});
+  *sin.add_runs() = Log(3, {{.combined = 500}});  // counted no coverage: left out
+  const v1::SweepResults results =
+      Sweep(4, {WithCoverage(Trial("static", "static", "none", {100, 120, 140}), {9, 11, 13},
+                             {1, 1, 1}),
+                sin});
+  const absl::StatusOr<v1::SweepReport> report = BuildSweepReport(results, FastOptions());
+  ASSERT_TRUE(report.ok()) << report.status();
+  ASSERT_EQ(report->coverage_size(), 1);
+  const v1::CoverageSection& section = report->coverage(0);
+  EXPECT_EQ(section.projection(), "state");
+  EXPECT_EQ(section.cells(), 100);
+  EXPECT_THAT(section.window_ends(), ::testing::ElementsAre(50, 100));
+  ASSERT_EQ(section.rows_size(), 2);
+  EXPECT_EQ(section.rows(0).condition(), "static");
+  EXPECT_THAT(section.rows(0).runs(), ::testing::ElementsAre(10, 12, 14));
+  EXPECT_DOUBLE_EQ(section.rows(0).mean(), 12);
+  EXPECT_DOUBLE_EQ(section.rows(0).sem(), 2 / std::sqrt(3.0));
+  EXPECT_THAT(section.rows(0).window_means(), ::testing::ElementsAre(11, 5));
+  EXPECT_THAT(section.rows(1).runs(), ::testing::ElementsAre(20, 22, 24));
+  ASSERT_EQ(section.tests_size(), 1);
+  const v1::CoverageTest& test = section.tests(0);
+  EXPECT_EQ(test.mode(), "none");
+  // SSB = 3 (12 - 17)^2 + 3 (22 - 17)^2 = 150 on 1 df; SSW = 8 + 8 = 16 on 4: F = 37.5.
+  EXPECT_DOUBLE_EQ(test.anova().f(), 37.5);
+  EXPECT_EQ(test.anova().df_between(), 1);
+  EXPECT_EQ(test.anova().df_within(), 4);
+  EXPECT_LT(test.anova().p_value(), 0.01);
+  // Coverage rises with the score run for run.
+  EXPECT_EQ(test.correlation().runs(), 6);
+  EXPECT_GT(test.correlation().r(), 0.9);
+  EXPECT_TRUE(test.note().empty());
+}
+
+TEST(SweepReportTest, CoverageOfOneConditionHasNoAnovaAndSaysWhy) {
+  const absl::StatusOr<v1::SweepReport> report = BuildSweepReport(
+      Sweep(2, {WithCoverage(Trial("static", "static", "none", {1, 2}), {9, 11}, {1, 1})}),
+      FastOptions());
+  ASSERT_TRUE(report.ok()) << report.status();
+  const v1::CoverageTest& test = report->coverage(0).tests(0);
+  EXPECT_FALSE(test.has_anova());
+  EXPECT_FALSE(test.has_correlation());
+  EXPECT_THAT(test.note(), HasSubstr("no ANOVA: a one-way ANOVA needs at least two groups"));
+  EXPECT_THAT(test.note(), HasSubstr("no correlation: a correlation's test needs at least three"));
+  // Without coverage in any run there is no section.
+  EXPECT_EQ(BuildSweepReport(Sweep(2, {Trial("static", "static", "none", {1, 2})}), FastOptions())
+                ->coverage_size(),
+            0);
+}
+
 TEST(SweepReportTest, RefusesBadRunsAndBadSweeps) {
   const auto code = [](const v1::SweepResults& sweep, const ReportOptions& options) {
     return BuildSweepReport(sweep, options).status().code();

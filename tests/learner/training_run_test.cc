@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "learner/training_run.h"
 
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -105,6 +106,40 @@ TEST_F(TrainingRunTest, StoppedAndResumedRunEndsWithTheWeightsOfAnUninterruptedO
   EXPECT_EQ(resumed->parameters, straight->parameters);
   EXPECT_EQ(Returns(resumed->state), Returns(straight->state));
   EXPECT_EQ(resumed->state.recent_returns, straight->state.recent_returns);
+}
+
+TEST_F(TrainingRunTest, CountsCoverageInTheLogAndAResumedRunCountsOnExactly) {
+  const run::RunSpec spec = Spec(absl::StrCat(kSmallRun, "coverage: {window: 500}\n"));
+  absl::StatusOr<TrainingResult> straight = Train<env::CartPole>(spec, {});
+  ASSERT_TRUE(straight.ok()) << straight.status();
+  v1::EvaluationLog log;
+  run::AppendCoverage(straight->state.coverage, 500, straight->state.timesteps, log);
+  ASSERT_EQ(log.coverage_size(), 1);
+  const v1::ProjectionCoverage& coverage = log.coverage(0);
+  EXPECT_EQ(coverage.projection(), "state");
+  ASSERT_EQ(coverage.windows_size(), 3);  // steps 1-500, 501-1000, 1001-1280
+  EXPECT_EQ(coverage.windows(2).end_step(), 1280);
+  int64_t seen = 0;
+  for (uint64_t word : straight->state.coverage[0].seen) seen += std::popcount(word);
+  int64_t new_cells = 0;
+  for (const v1::CoverageWindow& window : coverage.windows()) {
+    EXPECT_GT(window.visited(), 0);
+    EXPECT_LE(window.new_cells(), window.visited());
+    new_cells += window.new_cells();
+  }
+  EXPECT_EQ(new_cells, seen);
+  EXPECT_EQ(coverage.windows(0).new_cells(), coverage.windows(0).visited());
+
+  const std::string dir = testing::MakeTempDir();
+  TrainingOptions options{.out_dir = dir,
+                          .on_update = [](const TrainingProgress& p) { return p.updates < 6; }};
+  ASSERT_TRUE(Train<env::CartPole>(spec, options).ok());  // stops at step 768, in window 2
+  absl::StatusOr<TrainingResult> resumed =
+      Train<env::CartPole>(spec, {.out_dir = dir, .resume = true});
+  ASSERT_TRUE(resumed.ok()) << resumed.status();
+  absl::StatusOr<v1::EvaluationLog> written = run::ReadEvaluationLog(dir);
+  ASSERT_TRUE(written.ok()) << written.status();
+  EXPECT_EQ(written->coverage(0).SerializeAsString(), coverage.SerializeAsString());
 }
 
 TEST_F(TrainingRunTest, WritesTheEvaluationLogAsCsvAndJson) {

@@ -380,6 +380,32 @@ TEST(RunSpecYamlTest, RefusesValuesOutOfRangeNamingTheField) {
               AllOf(HasSubstr("evaluation.contexts"), HasSubstr("at least one")));
 }
 
+TEST(RunSpecYamlTest, CoverageIsOffUnlessAskedForAndNamesTheEnvironmentsProjections) {
+  absl::StatusOr<RunSpec> off = ParseRunSpecYaml(kBase, "run.yaml");
+  ASSERT_TRUE(off.ok()) << off.status();
+  EXPECT_FALSE(off->coverage.has_value());
+  absl::StatusOr<RunSpec> defaults = ParseRunSpecYaml(absl::StrCat(kBase, "coverage: {}\n"), "");
+  ASSERT_TRUE(defaults.ok()) << defaults.status();
+  ASSERT_TRUE(defaults->coverage.has_value());
+  EXPECT_EQ(defaults->coverage->window, 50'000);
+  EXPECT_TRUE(defaults->coverage->projections.empty());
+  absl::StatusOr<RunSpec> named = ParseRunSpecYaml(
+      absl::StrCat(kBase, "coverage: {window: 1000, projections: [state]}\n"), "");
+  ASSERT_TRUE(named.ok()) << named.status();
+  EXPECT_EQ(named->coverage->window, 1000);
+  EXPECT_THAT(named->coverage->projections, ElementsAre("state"));
+
+  EXPECT_THAT(ErrorOf(absl::StrCat(kBase, "coverage: {window: 0}\n")),
+              AllOf(HasSubstr("coverage.window: line 15"), HasSubstr("at least 1, got 0")));
+  EXPECT_THAT(ErrorOf(absl::StrCat(kBase, "coverage: {projections: [joints]}\n")),
+              AllOf(HasSubstr("coverage.projections"),
+                    HasSubstr("unknown projection 'joints' (the environment has: state)")));
+  EXPECT_THAT(ErrorOf(absl::StrCat(kBase, "coverage: {bins: 10}\n")),
+              AllOf(HasSubstr("coverage.bins"), HasSubstr("window, projections")));
+  EXPECT_THAT(ErrorOf(absl::StrCat(kBase, "coverage: {projections: state}\n")),
+              HasSubstr("a list of projection names"));
+}
+
 TEST(RunSpecYamlTest, ScheduleErrorsNameTheStage) {
   EXPECT_THAT(ErrorOf(absl::StrCat(kBase, "schedule: {family: sinusodal}\n")),
               AllOf(HasSubstr("schedule: line 15"), HasSubstr("sinusodal")));
