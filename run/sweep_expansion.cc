@@ -21,7 +21,7 @@ namespace dcs::run::internal {
 namespace {
 
 // The base keys whose mappings merge key by key with a condition's.
-constexpr absl::string_view kMergedKeys[] = {"context", "evaluation", "ppo"};
+constexpr absl::string_view kMergedKeys[] = {"context", "evaluation", "ppo", "coverage"};
 
 bool IsMergedKey(absl::string_view key) {
   return std::find(std::begin(kMergedKeys), std::end(kMergedKeys), key) != std::end(kMergedKeys);

@@ -34,21 +34,22 @@ constexpr int64_t kMaxRuns = 10'000;
 
 // The run config's keys the top level gives as the base of every run; a condition may
 // override each.
-constexpr absl::string_view kBaseKeys[] = {"env",     "total_timesteps", "n_envs",
-                                           "context", "feature",         "training_range",
-                                           "pool",    "evaluation",      "ppo"};
+constexpr absl::string_view kBaseKeys[] = {
+    "env",  "total_timesteps", "n_envs", "context", "feature", "training_range",
+    "pool", "evaluation",      "ppo",    "coverage"};
 // The run config's keys a condition may give, and its grid vary.
 constexpr absl::string_view kConditionRunKeys[] = {
-    "schedule", "stages",         "env",  "total_timesteps", "n_envs", "context",
-    "feature",  "training_range", "pool", "evaluation",      "ppo"};
+    "schedule", "stages", "env",        "total_timesteps", "n_envs",  "context",
+    "feature",  "training_range", "pool", "evaluation",    "ppo",     "coverage"};
 // The keys allowed, as error messages list them.
 constexpr absl::string_view kTopLevelKeys[] = {
-    "name",    "seeds",   "observe",        "conditions", "env",        "total_timesteps",
-    "n_envs",  "context", "feature",        "training_range", "pool",   "evaluation",
-    "ppo"};
+    "name",    "seeds",   "observe", "conditions",     "env",  "total_timesteps",
+    "n_envs",  "context", "feature", "training_range", "pool", "evaluation",
+    "ppo",     "coverage"};
 constexpr absl::string_view kConditionKeys[] = {
     "name",    "grid",    "observe", "schedule",       "stages", "env",        "total_timesteps",
-    "n_envs",  "context", "feature", "training_range", "pool",   "evaluation", "ppo"};
+    "n_envs",  "context", "feature", "training_range", "pool",   "evaluation", "ppo",
+    "coverage"};
 
 bool Contains(absl::Span<const absl::string_view> names, absl::string_view name) {
   return std::find(names.begin(), names.end(), name) != names.end();

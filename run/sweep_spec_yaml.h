@@ -27,13 +27,13 @@
 //         - {steps: 120000, schedule: {family: cosine_annealing, T_0: 250}}
 //     - name: pool15
 //       pool: {size: 15}      # a condition may override any base key (not seed)
-//       ppo: {n_epochs: 5}    # context, evaluation and ppo merge key by key with the base's
+//       ppo: {n_epochs: 5}    # context, evaluation, ppo, coverage merge key by key
 //       observe: live         # its own modes, instead of the sweep's
 //
 // A condition holds `name`, `grid`, `observe`, `schedule` or `stages` (not both), and any base
 // key. A base key the condition gives replaces the base's whole (`pool` too), except the
-// mappings `context`, `evaluation` and `ppo`, whose keys the condition's replace one by one
-// (one level deep: a condition's `evaluation: {contexts: ...}` replaces all the contexts).
+// mappings `context`, `evaluation`, `ppo` and `coverage`, whose keys the condition's replace one
+// by one (one level deep: a condition's `evaluation: {contexts: ...}` replaces all the contexts).
 //
 // `grid` maps key paths within the condition's run config (`schedule.period`, `pool.size`,
 // `n_envs`, `ppo.learning_rate`, `stages[1].schedule.T_0`) to non-empty lists of values; the

@@ -311,7 +311,7 @@ TEST(SweepSpecYamlTest, TopLevelKeysAreTheSweepsAndTheBasesOnly) {
   EXPECT_EQ(ErrorOf(Spec("  - name: a\nfoo: 1\n")),
             "sweep.yaml: foo: line 22: unknown key 'foo' at the top level (allowed: name, seeds, "
             "observe, conditions, env, total_timesteps, n_envs, context, feature, "
-            "training_range, pool, evaluation, ppo)");
+            "training_range, pool, evaluation, ppo, coverage)");
   EXPECT_THAT(ErrorOf(Spec("  - name: a\nseed: 4\n")),
               StartsWith("sweep.yaml: seed: line 22: a sweep gives 'seeds'"));
   EXPECT_THAT(ErrorOf(Spec("  - name: a\nschedule: {family: constant}\n")),
@@ -328,7 +328,7 @@ TEST(SweepSpecYamlTest, ConditionKeysAreChecked) {
   EXPECT_EQ(ErrorOf(Spec("  - name: a\n    sed: 4\n")),
             "sweep.yaml: conditions[0].sed: line 22: unknown key 'sed' in conditions[0] (allowed: "
             "name, grid, observe, schedule, stages, env, total_timesteps, n_envs, context, "
-            "feature, training_range, pool, evaluation, ppo)");
+            "feature, training_range, pool, evaluation, ppo, coverage)");
   EXPECT_THAT(ErrorOf(Spec("  - name: a\n    seed: 4\n")),
               StartsWith("sweep.yaml: conditions[0].seed: line 22: seeds are the sweep's"));
   EXPECT_THAT(ErrorOf(Spec("  - name: a/b\n")),
@@ -482,7 +482,7 @@ TEST(SweepSpecYamlTest, ReportsEveryProblemTogether) {
             "  sweep.yaml: seeds: line 1: must be at least 1, got 0\n"
             "  sweep.yaml: conditions[0].wobble: line 22: unknown key 'wobble' in conditions[0] "
             "(allowed: name, grid, observe, schedule, stages, env, total_timesteps, n_envs, "
-            "context, feature, training_range, pool, evaluation, ppo)\n"
+            "context, feature, training_range, pool, evaluation, ppo, coverage)\n"
             "  sweep.yaml: conditions[1].grid.schedule.period: line 24: must list at least one "
             "value: an empty list makes no conditions\n"
             "  sweep.yaml: conditions[2].ppo.gamma: line 26: must be in [0, 1], got 2");
