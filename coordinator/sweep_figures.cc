@@ -379,7 +379,41 @@ absl::StatusOr<GnuplotFigure> PerformanceProfilesFigure(const v1::SweepResults& 
   return LineChartFigure(chart);
 }
 
-absl::StatusOr<std::vector<GnuplotFigure>> SweepFigures(const v1::SweepResults& results) {
+absl::StatusOr<GnuplotFigure> CoverageFigure(const v1::SweepReport& report) {
+  if (report.coverage().empty()) {
+    return absl::FailedPreconditionError(
+        absl::StrCat("sweep ", report.name(), " has no runs that counted coverage"));
+  }
+  BarChart chart{.name = "coverage",
+                 .title = absl::StrCat("Coverage: ", report.name())};
+  size_t most_rows = 0;
+  for (const v1::CoverageSection& section : report.coverage()) {
+    for (const v1::CoverageTest& test : section.tests()) {
+      BarPanel panel{.title = absl::StrCat(section.projection(), ", ", PanelTitle(test.mode())),
+                     .x_label = "condition",
+                     .y_label = absl::StrCat("% of ", section.cells(), " cells (mean, SEM)"),
+                     .legend = LegendPlace::kNone};
+      BarSeries series;
+      for (const v1::CoverageRow& row : section.rows()) {
+        if (row.mode() != test.mode()) continue;
+        panel.categories.push_back({.label = row.condition()});
+        series.y.push_back(row.mean());
+        series.y_low.push_back(row.mean() - row.sem());
+        series.y_high.push_back(row.mean() + row.sem());
+      }
+      most_rows = std::max(most_rows, panel.categories.size());
+      panel.series.push_back(std::move(series));
+      chart.panels.push_back(std::move(panel));
+    }
+  }
+  // Room for each condition's name under its bar.
+  chart.panel_width = std::max(640, static_cast<int>(90 * most_rows));
+  chart.columns = ColumnsFor(chart.panel_width);
+  return BarChartFigure(chart);
+}
+
+absl::StatusOr<std::vector<GnuplotFigure>> SweepFigures(const v1::SweepResults& results,
+                                                        const v1::SweepReport& report) {
   std::vector<GnuplotFigure> figures;
   DCS_ASSIGN_OR_RETURN(GnuplotFigure curves, LearningCurvesFigure(results));
   figures.push_back(std::move(curves));
@@ -393,6 +427,10 @@ absl::StatusOr<std::vector<GnuplotFigure>> SweepFigures(const v1::SweepResults& 
   }
   DCS_ASSIGN_OR_RETURN(GnuplotFigure profiles, PerformanceProfilesFigure(results));
   figures.push_back(std::move(profiles));
+  if (!report.coverage().empty()) {
+    DCS_ASSIGN_OR_RETURN(GnuplotFigure coverage, CoverageFigure(report));
+    figures.push_back(std::move(coverage));
+  }
   return figures;
 }
 

@@ -15,6 +15,7 @@
 
 #include "absl/status/statusor.h"
 #include "coordinator/gnuplot_figure.h"
+#include "dcs/v1/report.pb.h"
 #include "dcs/v1/sweep.pb.h"
 
 namespace dcs::coordinator {
@@ -40,9 +41,17 @@ absl::StatusOr<GnuplotFigure> FamilyHeatmapFigure(const v1::SweepResults& result
 // against tau (a step line; rliable's performance profile).
 absl::StatusOr<GnuplotFigure> PerformanceProfilesFigure(const v1::SweepResults& results);
 
-// Every figure above the results allow, in that order: the heatmap is left out when it would
-// be FAILED_PRECONDITION.
-absl::StatusOr<std::vector<GnuplotFigure>> SweepFigures(const v1::SweepResults& results);
+// "coverage" (the paper's coverage figure, §4.4): from the coverage sections of `report`
+// (coordinator/coverage_report.h), a panel per state projection and observe mode, a bar per
+// condition: its runs' mean coverage (percent of the projection's cells visited over the run)
+// with error bars of one standard error. FAILED_PRECONDITION if the report has no coverage.
+absl::StatusOr<GnuplotFigure> CoverageFigure(const v1::SweepReport& report);
+
+// Every figure above that `results` and their `report` (BuildSweepReport's) allow, in that
+// order: the heatmap and the coverage figure are left out when they would be
+// FAILED_PRECONDITION.
+absl::StatusOr<std::vector<GnuplotFigure>> SweepFigures(const v1::SweepResults& results,
+                                                        const v1::SweepReport& report);
 
 // Each function above: FAILED_PRECONDITION naming the sweep if no trial has a completed run;
 // DATA_LOSS naming the condition and seed for a run without evaluations or with a context of

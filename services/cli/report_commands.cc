@@ -60,7 +60,7 @@ absl::StatusOr<std::string> Plot(const GlobalFlags& flags, const PlotFlags& plot
   DCS_ASSIGN_OR_RETURN(const v1::SweepReport report,
                        FetchReport(flags, plot.sweep_id, {}, &results));
   DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::GnuplotFigure> figures,
-                       coordinator::SweepFigures(results));
+                       coordinator::SweepFigures(results, report));
   std::error_code error;
   std::filesystem::create_directories(plot.out, error);
   if (error) {

@@ -224,17 +224,45 @@ TEST(PerformanceProfilesFigureTest, CountsTiedScoresOnce) {
 }
 
 TEST(SweepFiguresTest, MakesEveryFigureInOrder) {
-  const std::vector<GnuplotFigure> figures = Must(SweepFigures(Results()));
+  const std::vector<GnuplotFigure> figures = Must(SweepFigures(Results(), v1::SweepReport()));
   std::vector<std::string> names;
   for (const GnuplotFigure& figure : figures) names.push_back(figure.name);
   EXPECT_THAT(names, ElementsAre("learning_curves", "context_returns", "family_heatmap",
                                  "performance_profiles"));
 }
 
+TEST(SweepFiguresTest, CoverageFigureHasABarPerConditionWithStandardErrorBars) {
+  v1::SweepReport report;
+  report.set_name("cov");
+  EXPECT_EQ(CoverageFigure(report).status().code(), absl::StatusCode::kFailedPrecondition);
+  v1::CoverageSection& section = *report.add_coverage();
+  section.set_projection("state");
+  section.set_cells(20736);
+  section.add_tests()->set_mode("none");
+  for (const auto& [condition, mean] : {std::pair("static", 6.5), std::pair("sinusoidal", 6.8)}) {
+    v1::CoverageRow& row = *section.add_rows();
+    row.set_condition(condition);
+    row.set_mode("none");
+    row.set_mean(mean);
+    row.set_sem(0.25);
+  }
+  const GnuplotFigure figure = Must(CoverageFigure(report));
+  EXPECT_EQ(figure.name, "coverage");
+  ASSERT_EQ(figure.data.size(), 1u);
+  const std::string& csv = figure.data[0].csv;
+  EXPECT_THAT(csv, HasSubstr(",6.5,6.25,6.75,"));
+  EXPECT_THAT(csv, HasSubstr(",6.8,6.55,7.05,"));
+  EXPECT_THAT(figure.script, HasSubstr("state, observe: none"));
+  EXPECT_THAT(figure.script, HasSubstr("% of 20736 cells (mean, SEM)"));
+  std::vector<std::string> names;
+  for (const GnuplotFigure& f : Must(SweepFigures(Results(), report))) names.push_back(f.name);
+  EXPECT_EQ(names.back(), "coverage");
+}
+
 TEST(SweepFiguresTest, LeavesOutTheHeatmapWithoutAStaticBaseline) {
   v1::SweepResults results;
   AddTrial(results, "sin", "sinusoidal", "none", 20);
-  const std::vector<GnuplotFigure> figures = Must(SweepFigures(results));
+  const std::vector<GnuplotFigure> figures = Must(SweepFigures(results, v1::SweepReport()));
   ASSERT_EQ(figures.size(), 3u);
   EXPECT_EQ(figures[2].name, "performance_profiles");
 }
@@ -242,7 +270,7 @@ TEST(SweepFiguresTest, LeavesOutTheHeatmapWithoutAStaticBaseline) {
 TEST(SweepFiguresTest, RefusesSweepsWithoutRunsOrWithBrokenRuns) {
   v1::SweepResults results = Results();
   for (v1::TrialResults& trial : *results.mutable_trials()) trial.clear_runs();
-  const absl::Status none = SweepFigures(results).status();
+  const absl::Status none = SweepFigures(results, v1::SweepReport()).status();
   EXPECT_EQ(none.code(), absl::StatusCode::kFailedPrecondition);
   EXPECT_THAT(none.message(), HasSubstr("sweep-7"));
 

@@ -11,12 +11,14 @@
 #include <iostream>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
 #include "coordinator/sweep_figures.h"
+#include "coordinator/sweep_report.h"
 #include "coordinator/sweep_index_html.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
@@ -94,6 +96,19 @@ v1::SweepResults DemoResults() {
         }
         log.set_last(last.avg_combined());
         log.set_complete(true);
+        // Coverage as the paper's: about 6.5 % of the cells in the first 50k steps, few after.
+        v1::ProjectionCoverage& coverage = *log.add_coverage();
+        coverage.set_projection("state");
+        coverage.set_cells(20736);
+        for (const auto& [start, visited, added] :
+             {std::tuple(0, 1300 + 40 * condition_index + 10 * seed, 1300), std::tuple(50000, 130, 5),
+              std::tuple(100000, 60, 1)}) {
+          v1::CoverageWindow& window = *coverage.add_windows();
+          window.set_start_step(start);
+          window.set_end_step(start + 50000);
+          window.set_visited(visited);
+          window.set_new_cells(start == 0 ? visited : added);
+        }
       }
     }
   }
@@ -116,8 +131,14 @@ class FiguresTest : public ::testing::Test {
 
   // Renders every figure of DemoResults() as `format` and writes index.html.
   std::vector<GnuplotFigure> RenderReport(FigureFormat format) {
+    const v1::SweepResults results = DemoResults();
+    coordinator::ReportOptions options;
+    options.bootstrap_resamples = 200;
+    const absl::StatusOr<v1::SweepReport> report = coordinator::BuildSweepReport(results, options);
+    EXPECT_TRUE(report.ok()) << report.status();
+    if (!report.ok()) return {};
     absl::StatusOr<std::vector<GnuplotFigure>> figures =
-        coordinator::SweepFigures(DemoResults());
+        coordinator::SweepFigures(results, *report);
     EXPECT_TRUE(figures.ok()) << figures.status();
     if (!figures.ok()) return {};
     for (const GnuplotFigure& figure : *figures) {
@@ -140,7 +161,7 @@ class FiguresTest : public ::testing::Test {
 
 TEST_F(FiguresTest, EveryFigureOfTheReportLoadsInABrowser) {
   const std::vector<GnuplotFigure> figures = RenderReport(FigureFormat::kSvg);
-  ASSERT_EQ(figures.size(), 4u);
+  ASSERT_EQ(figures.size(), 5u);  // the coverage figure last
   const std::vector<std::string> images = LoadedImages(dir_ + "/index.html");
   ASSERT_EQ(images.size(), figures.size());
   for (size_t i = 0; i < images.size(); ++i) {
@@ -161,7 +182,7 @@ TEST_F(FiguresTest, TheImageCheckSeesAMissingImage) {
   RenderReport(FigureFormat::kPng);
   fs::remove(dir_ + "/family_heatmap.png");
   const std::vector<std::string> images = LoadedImages(dir_ + "/index.html");
-  ASSERT_EQ(images.size(), 4u);
+  ASSERT_EQ(images.size(), 5u);
   EXPECT_THAT(images[0], HasSubstr("learning_curves.png loaded"));
   EXPECT_EQ(images[2], "family_heatmap.png broken 0x0");
 }
