@@ -23,8 +23,12 @@ absl::StatusOr<double> ProbabilityOfImprovement(std::span<const double> x,
 
 // A percentile bootstrap interval for ProbabilityOfImprovement(x, y), as rliable's
 // StratifiedIndependentBootstrap draws it for one task: each repetition resamples `x` and then
-// `y` with replacement, independently, from StreamSeed(seed, "improvement"). `confidence` is
-// e.g. 0.95. INVALID_ARGUMENT as ProbabilityOfImprovement, or for confidence outside (0, 1) or
+// `y` with replacement, independently (internal::DrawResample with the strata x, y), from
+// StreamSeed(seed, "improvement"); the interval is as BootstrapIqmInterval's. A resample costs
+// O(|x| + |y|), not |x| |y| comparisons: from each run's rank among the other side's runs and
+// how often it was drawn. Up to internal::kMaxLaneValues runs a side, calls with equal sizes,
+// repetitions and seed share their draws, as there. `confidence` is e.g. 0.95.
+// INVALID_ARGUMENT as ProbabilityOfImprovement, or for confidence outside (0, 1) or
 // repetitions < 1.
 absl::StatusOr<ConfidenceInterval> BootstrapImprovementInterval(std::span<const double> x,
                                                                 std::span<const double> y,

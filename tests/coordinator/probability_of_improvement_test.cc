@@ -2,6 +2,7 @@
 #include "coordinator/probability_of_improvement.h"
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "common/random.h"
@@ -85,6 +86,75 @@ TEST(BootstrapImprovementTest, SeparatedSamplesGiveAPointInterval) {
   const ConfidenceInterval interval = *BootstrapImprovementInterval(high, low, 0.95, 100, 0);
   EXPECT_EQ(interval.lo, 1);
   EXPECT_EQ(interval.hi, 1);
+}
+
+// The definition, computed the slow way: each repetition draws X's runs and then Y's, value by
+// value, from StreamSeed(seed, "improvement") and counts all pairs of the resamples (the
+// O(|x| |y|) ProbabilityOfImprovement); the estimates sorted, their quantiles by numpy's rule.
+ConfidenceInterval DefinitionImprovementInterval(const std::vector<double>& x,
+                                                 const std::vector<double>& y, double confidence,
+                                                 int repetitions, uint64_t seed) {
+  Random random(StreamSeed(seed, "improvement"));
+  std::vector<double> estimates;
+  for (int r = 0; r < repetitions; ++r) {
+    std::vector<double> x_sample;
+    std::vector<double> y_sample;
+    const auto x_size = static_cast<int64_t>(x.size());
+    const auto y_size = static_cast<int64_t>(y.size());
+    for (int64_t i = 0; i < x_size; ++i) x_sample.push_back(x[random.Integers(0, x_size)]);
+    for (int64_t i = 0; i < y_size; ++i) y_sample.push_back(y[random.Integers(0, y_size)]);
+    estimates.push_back(*ProbabilityOfImprovement(x_sample, y_sample));
+  }
+  const double tail = (1 - confidence) / 2;
+  return {.lo = *Quantile(estimates, tail), .hi = *Quantile(estimates, 1 - tail)};
+}
+
+// `size` runs; with `ties`, whole numbers below 6, so that runs of X and Y tie often.
+std::vector<double> RandomRuns(Random& random, int size, bool ties) {
+  std::vector<double> runs;
+  for (int i = 0; i < size; ++i) {
+    runs.push_back(ties ? static_cast<double>(random.Integers(0, 6)) : random.Uniform(0, 1));
+  }
+  return runs;
+}
+
+TEST(BootstrapImprovementTest, FastResamplesCountWhatAllPairsCount) {
+  // The bootstrap works from ranks and drawn counts, never the pairs; it must give the bits of
+  // counting every pair of every resample. Sizes around the fast path's bound
+  // (internal::kMaxLaneValues runs a side) and its 256-resample blocks, with and without ties;
+  // confidences from 0.01 to 0.99 read order statistics all through the sorted estimates.
+  Random random(13);
+  const std::vector<std::pair<int, int>> sizes = {{1, 1},  {1, 5},  {4, 3},   {10, 10},
+                                                  {7, 12}, {30, 2}, {255, 9}, {256, 3}};
+  for (const auto& [x_size, y_size] : sizes) {
+    for (const bool ties : {false, true}) {
+      const std::vector<double> x = RandomRuns(random, x_size, ties);
+      const std::vector<double> y = RandomRuns(random, y_size, ties);
+      const int repetitions = x_size >= 255 ? 300 : 777;
+      for (const double confidence : {0.01, 0.2, 0.5, 0.8, 0.9, 0.95, 0.99}) {
+        SCOPED_TRACE(testing::Message()
+                     << x_size << " x " << y_size << " runs" << (ties ? " with ties" : "")
+                     << ", confidence " << confidence);
+        const ConfidenceInterval fast =
+            *BootstrapImprovementInterval(x, y, confidence, repetitions, 3);
+        const ConfidenceInterval definition =
+            DefinitionImprovementInterval(x, y, confidence, repetitions, 3);
+        EXPECT_EQ(fast.lo, definition.lo);
+        EXPECT_EQ(fast.hi, definition.hi);
+      }
+    }
+  }
+}
+
+TEST(BootstrapImprovementTest, TheReportsDefaultsGiveTheDefinitionsBits) {
+  // One cell of a report against its baseline: 10 seeds each, 10,000 resamples at 95%, seed 0.
+  Random random(19);
+  const std::vector<double> x = RandomRuns(random, 10, false);
+  const std::vector<double> y = RandomRuns(random, 10, false);
+  const ConfidenceInterval fast = *BootstrapImprovementInterval(x, y, 0.95, 10'000, 0);
+  const ConfidenceInterval definition = DefinitionImprovementInterval(x, y, 0.95, 10'000, 0);
+  EXPECT_EQ(fast.lo, definition.lo);
+  EXPECT_EQ(fast.hi, definition.hi);
 }
 
 }  // namespace
