@@ -29,9 +29,21 @@ absl::StatusOr<v1::EvaluationLog> CompletedRunLogs::Get(const RunRecord& run) {
   return logs_.try_emplace(run.id, *std::move(log)).first->second;
 }
 
+void KeepScoresOnly(v1::EvaluationLog& log) {
+  const int last = log.evaluations_size() - 1;
+  const int best = log.best_anytime_index();
+  google::protobuf::RepeatedPtrField<v1::Evaluation> kept;
+  if (best >= 0 && best < last) *kept.Add() = std::move(*log.mutable_evaluations(best));
+  if (last >= 0) *kept.Add() = std::move(*log.mutable_evaluations(last));
+  for (v1::Evaluation& evaluation : kept) evaluation.clear_contexts();
+  // An index out of range stays out of range, for the report to refuse as before.
+  if (best >= 0 && best <= last) log.set_best_anytime_index(best == last ? kept.size() - 1 : 0);
+  *log.mutable_evaluations() = std::move(kept);
+}
+
 absl::StatusOr<v1::SweepResults> CollectSweepResults(const SweepRecord& sweep,
                                                      const std::vector<RunRecord>& runs,
-                                                     CompletedRunLogs& logs) {
+                                                     CompletedRunLogs& logs, bool scores_only) {
   v1::SweepResults results;
   results.set_sweep_id(sweep.id);
   results.set_name(sweep.name);
@@ -52,7 +64,9 @@ absl::StatusOr<v1::SweepResults> CollectSweepResults(const SweepRecord& sweep,
     return a->submission.seed < b->submission.seed;
   });
   for (const RunRecord* run : completed) {
-    DCS_ASSIGN_OR_RETURN(*results.mutable_trials(*run->trial)->add_runs(), logs.Get(*run));
+    v1::EvaluationLog& log = *results.mutable_trials(*run->trial)->add_runs();
+    DCS_ASSIGN_OR_RETURN(log, logs.Get(*run));
+    if (scores_only) KeepScoresOnly(log);
   }
   return results;
 }

@@ -38,11 +38,19 @@ class CompletedRunLogs {
   absl::flat_hash_map<std::string, v1::EvaluationLog> logs_ ABSL_GUARDED_BY(mu_);
 };
 
+// Cuts `log` down to what a report reads (coordinator/sweep_report.h): the last evaluation and
+// the best-anytime one (best_anytime_index renumbered), each without its per-context results;
+// the scores, the coverage and the rest of the log as they were. A report built from logs cut so
+// is the one built from the whole logs, and a large sweep's results shrink about tenfold.
+void KeepScoresOnly(v1::EvaluationLog& log);
+
 // Each trial of `sweep` with the logs of its completed runs among `runs` (the sweep's, any
-// order), in seed order. Errors as CompletedRunLogs::Get.
+// order), in seed order; with `scores_only`, each cut by KeepScoresOnly. Errors as
+// CompletedRunLogs::Get.
 absl::StatusOr<v1::SweepResults> CollectSweepResults(const SweepRecord& sweep,
                                                      const std::vector<RunRecord>& runs,
-                                                     CompletedRunLogs& logs);
+                                                     CompletedRunLogs& logs,
+                                                     bool scores_only);
 
 }  // namespace dcs::coordinator
 

@@ -127,7 +127,8 @@ grpc::ServerUnaryReactor* CoordinatorService::GetSweepResults(
     DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
                          runs_.store->ListSweepRuns(request->sweep_id()));
     DCS_ASSIGN_OR_RETURN(*response,
-                         coordinator::CollectSweepResults(sweep, runs, completed_logs_));
+                         coordinator::CollectSweepResults(sweep, runs, completed_logs_,
+                                                          request->scores_only()));
     return absl::OkStatus();
   };
   return Finish(context, get());

@@ -35,19 +35,21 @@ struct PlotFlags {
   coordinator::FigureFormat format = coordinator::FigureFormat::kSvg;
 };
 
-// The sweep's report as `options` asks, from its results on the coordinator.
+// The sweep's report as `options` asks, from its results on the coordinator (only the scores a
+// report reads with `scores_only`; everything, for figures, without).
 absl::StatusOr<v1::SweepReport> FetchReport(const GlobalFlags& flags, const std::string& sweep_id,
                                             const coordinator::ReportOptions& options,
-                                            v1::SweepResults* results) {
-  DCS_ASSIGN_OR_RETURN(*results,
-                       GetSweepResults(CoordinatorAddress(flags), sweep_id, flags.timeout));
+                                            bool scores_only, v1::SweepResults* results) {
+  DCS_ASSIGN_OR_RETURN(*results, GetSweepResults(CoordinatorAddress(flags), sweep_id,
+                                                 scores_only, flags.timeout));
   return coordinator::BuildSweepReport(*results, options);
 }
 
 int ReportCommand(const GlobalFlags& flags, const ReportFlags& report_flags) {
   v1::SweepResults results;
   absl::StatusOr<v1::SweepReport> report =
-      FetchReport(flags, report_flags.sweep_id, report_flags.options, &results);
+      FetchReport(flags, report_flags.sweep_id, report_flags.options,
+                  /*scores_only=*/true, &results);
   if (!report.ok()) return FailCommand(report.status());
   std::cout << coordinator::FormatReport(*report, report_flags.format) << std::flush;
   return kExitOk;
@@ -58,7 +60,7 @@ int ReportCommand(const GlobalFlags& flags, const ReportFlags& report_flags) {
 absl::StatusOr<std::string> Plot(const GlobalFlags& flags, const PlotFlags& plot) {
   v1::SweepResults results;
   DCS_ASSIGN_OR_RETURN(const v1::SweepReport report,
-                       FetchReport(flags, plot.sweep_id, {}, &results));
+                       FetchReport(flags, plot.sweep_id, {}, /*scores_only=*/false, &results));
   DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::GnuplotFigure> figures,
                        coordinator::SweepFigures(results, report));
   std::error_code error;

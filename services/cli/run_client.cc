@@ -133,10 +133,11 @@ absl::StatusOr<v1::RetrySweepResponse> RetrySweep(const std::string& address,
 }
 
 absl::StatusOr<v1::SweepResults> GetSweepResults(const std::string& address,
-                                                 const std::string& sweep_id,
+                                                 const std::string& sweep_id, bool scores_only,
                                                  absl::Duration timeout) {
   v1::GetSweepResultsRequest request;
   request.set_sweep_id(sweep_id);
+  request.set_scores_only(scores_only);
   v1::SweepResults response;
   DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address),
                                 &v1::CoordinatorService::Stub::GetSweepResults, request,

@@ -67,8 +67,9 @@ absl::StatusOr<v1::Sweep> CancelSweep(const std::string& address, const std::str
 absl::StatusOr<v1::RetrySweepResponse> RetrySweep(const std::string& address,
                                                   const std::string& sweep_id,
                                                   absl::Duration timeout);
+// `scores_only`: as GetSweepResultsRequest.scores_only.
 absl::StatusOr<v1::SweepResults> GetSweepResults(const std::string& address,
-                                                 const std::string& sweep_id,
+                                                 const std::string& sweep_id, bool scores_only,
                                                  absl::Duration timeout);
 
 // The progress line of a run (training_report.h).

@@ -3,9 +3,11 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coordinator/run_files.h"
+#include "coordinator/sweep_report.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "run/evaluation_log.h"
@@ -58,7 +60,7 @@ TEST_F(SweepResultsTest, EachTrialGetsItsCompletedRunsInSeedOrderWithoutReturns)
   runs.push_back({.id = "run-4", .state = RunState::kRunning});  // not read
   runs.back().trial = 0;
   CompletedRunLogs logs(dir().string());
-  absl::StatusOr<v1::SweepResults> results = CollectSweepResults(sweep, runs, logs);
+  absl::StatusOr<v1::SweepResults> results = CollectSweepResults(sweep, runs, logs, /*scores_only=*/false);
   ASSERT_TRUE(results.ok()) << results.status();
   ASSERT_EQ(results->trials_size(), 2);
   EXPECT_EQ(results->trials(0).condition(), "static");
@@ -82,6 +84,75 @@ TEST_F(SweepResultsTest, ALogIsReadOnceAndAMissingOneIsDataLoss) {
   const absl::Status missing = logs.Get({.id = "run-9", .state = RunState::kCompleted}).status();
   EXPECT_EQ(missing.code(), absl::StatusCode::kDataLoss);
   EXPECT_THAT(missing.message(), HasSubstr("run-9"));
+}
+
+// A run of evaluations scoring `scores` at steps 10, 20, ..., its best-anytime the highest, each
+// with a context per split.
+v1::EvaluationLog Scored(uint64_t seed, const std::vector<double>& scores) {
+  v1::EvaluationLog log;
+  log.set_seed(seed);
+  log.set_complete(true);
+  for (size_t i = 0; i < scores.size(); ++i) {
+    v1::Evaluation& evaluation = *log.add_evaluations();
+    evaluation.set_step(10 * static_cast<int64_t>(i + 1));
+    evaluation.set_avg_combined(scores[i]);
+    evaluation.mutable_id()->set_mean(scores[i] + 1);
+    evaluation.mutable_ood_low()->set_mean(scores[i] - 1);
+    evaluation.mutable_ood_high()->set_mean(scores[i] / 2);
+    evaluation.add_contexts()->set_mean(scores[i]);
+    if (scores[i] > scores[log.best_anytime_index()]) log.set_best_anytime_index(i);
+  }
+  log.set_last(scores.back());
+  log.set_best_anytime(scores[log.best_anytime_index()]);
+  log.add_coverage()->set_projection("state");
+  return log;
+}
+
+TEST(KeepScoresOnlyTest, KeepsTheLastAndTheBestEvaluationWithoutContexts) {
+  v1::EvaluationLog log = Scored(0, {1, 5, 3, 2});
+  KeepScoresOnly(log);
+  ASSERT_EQ(log.evaluations_size(), 2);
+  EXPECT_EQ(log.evaluations(0).step(), 20);
+  EXPECT_EQ(log.evaluations(1).step(), 40);
+  EXPECT_EQ(log.best_anytime_index(), 0);
+  EXPECT_EQ(log.evaluations(0).contexts_size(), 0);
+  EXPECT_EQ(log.coverage_size(), 1);
+  v1::EvaluationLog best_last = Scored(0, {1, 2, 3});
+  KeepScoresOnly(best_last);
+  ASSERT_EQ(best_last.evaluations_size(), 1);
+  EXPECT_EQ(best_last.best_anytime_index(), 0);
+}
+
+TEST(KeepScoresOnlyTest, AReportOfCutLogsIsTheReportOfWholeOnes) {
+  v1::SweepResults whole;
+  whole.set_seeds(3);
+  const std::vector<std::vector<double>> runs = {{1, 5, 3}, {2, 2, 9}, {7, 1, 1}, {4, 6, 5}};
+  for (const auto& [condition, offset] : {std::pair("static", 0.0), std::pair("sin", 1.0)}) {
+    v1::TrialResults& trial = *whole.add_trials();
+    trial.set_condition(condition);
+    trial.set_family(condition);
+    trial.set_observe("none");
+    for (size_t seed = 0; seed < runs.size(); ++seed) {
+      std::vector<double> scores = runs[seed];
+      for (double& score : scores) score += offset;
+      *trial.add_runs() = Scored(seed, scores);
+    }
+  }
+  v1::SweepResults cut = whole;
+  for (v1::TrialResults& trial : *cut.mutable_trials()) {
+    for (v1::EvaluationLog& log : *trial.mutable_runs()) KeepScoresOnly(log);
+  }
+  for (ReportCheckpoint checkpoint : {ReportCheckpoint::kLast, ReportCheckpoint::kBest}) {
+    for (ReportSplit split :
+         {ReportSplit::kCombined, ReportSplit::kId, ReportSplit::kOodLow, ReportSplit::kOodHigh}) {
+      ReportOptions options{.checkpoint = checkpoint, .split = split, .bootstrap_resamples = 50};
+      absl::StatusOr<v1::SweepReport> from_whole = BuildSweepReport(whole, options);
+      absl::StatusOr<v1::SweepReport> from_cut = BuildSweepReport(cut, options);
+      ASSERT_TRUE(from_whole.ok()) << from_whole.status();
+      ASSERT_TRUE(from_cut.ok()) << from_cut.status();
+      EXPECT_EQ(from_cut->SerializeAsString(), from_whole->SerializeAsString());
+    }
+  }
 }
 
 }  // namespace
