@@ -8,15 +8,10 @@
 #include <boost/math/distributions/fisher_f.hpp>
 
 #include "absl/strings/str_cat.h"
+#include "coordinator/sample_stats.h"
 
 namespace dcs::coordinator {
 namespace {
-
-double Mean(const std::vector<double>& values) {
-  double sum = 0;
-  for (double value : values) sum += value;
-  return sum / static_cast<double>(values.size());
-}
 
 absl::Status CheckGroups(const std::vector<std::vector<double>>& groups) {
   if (groups.size() < 2) {

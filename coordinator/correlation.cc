@@ -8,17 +8,9 @@
 #include <boost/math/distributions/students_t.hpp>
 
 #include "absl/strings/str_cat.h"
+#include "coordinator/sample_stats.h"
 
 namespace dcs::coordinator {
-namespace {
-
-double Mean(std::span<const double> values) {
-  double sum = 0;
-  for (double value : values) sum += value;
-  return sum / static_cast<double>(values.size());
-}
-
-}  // namespace
 
 absl::StatusOr<Correlation> PearsonCorrelation(std::span<const double> x,
                                                std::span<const double> y) {

@@ -1,7 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "coordinator/coverage_report.h"
 
-#include <cmath>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +12,7 @@
 #include "common/status_macros.h"
 #include "coordinator/anova.h"
 #include "coordinator/correlation.h"
+#include "coordinator/sample_stats.h"
 
 namespace dcs::coordinator {
 namespace {
@@ -84,15 +85,10 @@ v1::CoverageRow RowOf(const v1::TrialResults& trial, const v1::ReportCell& cell,
     row.add_runs(Percent(visited, section.cells()));
     pairs.emplace_back(cell.scores(i).score(), row.runs(row.runs_size() - 1));
   }
-  const int n = row.runs_size();
-  if (n == 0) return row;
-  double sum = 0;
-  for (double value : row.runs()) sum += value;
-  const double mean = sum / n;
-  double squares = 0;
-  for (double value : row.runs()) squares += (value - mean) * (value - mean);
-  row.set_mean(mean);
-  row.set_sem(n > 1 ? std::sqrt(squares / (n - 1) / n) : 0);
+  if (row.runs().empty()) return row;
+  const std::span<const double> runs(row.runs().data(), row.runs().size());
+  row.set_mean(Mean(runs));
+  row.set_sem(StandardError(runs));
   for (size_t w = 0; w < window_sums.size(); ++w) {
     row.add_window_means(window_runs[w] > 0 ? window_sums[w] / window_runs[w] : 0);
   }

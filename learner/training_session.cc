@@ -41,11 +41,11 @@ absl::StatusOr<std::unique_ptr<TrainingSession>> TrainingSession::Create(
         absl::StrCat("checkpoint ", checkpoint->name, " has ", checkpoint->state.journals.size(),
                      " environment slots, the run has n_envs ", n_envs));
   }
-  const std::vector<run::ProjectionCounts> fresh = run::NewCoverage(session->coverage_projections_);
-  if (!std::equal(fresh.begin(), fresh.end(), checkpoint->state.coverage.begin(),
-                  checkpoint->state.coverage.end(),
-                  [](const run::ProjectionCounts& a, const run::ProjectionCounts& b) {
-                    return a.projection == b.projection && a.cells == b.cells;
+  if (!std::equal(session->coverage_projections_.begin(), session->coverage_projections_.end(),
+                  checkpoint->state.coverage.begin(), checkpoint->state.coverage.end(),
+                  [](const env::StateProjection& projection, const run::ProjectionCounts& counts) {
+                    return projection.name == counts.projection &&
+                           env::NumCells(projection) == counts.cells;
                   })) {
     return absl::FailedPreconditionError(absl::StrCat(
         "checkpoint ", checkpoint->name, " counts coverage in other projections than the run"));
