@@ -1,11 +1,15 @@
 // Copyright 2026 The DCS Authors.
 #include "learner/actor_critic.h"
 
+#include <ATen/CPUFunctions.h>
+
 #include <cmath>
 #include <numbers>
 #include <tuple>
 
 #include "absl/strings/str_cat.h"
+#include "absl/synchronization/mutex.h"
+#include "learner/torch_runtime.h"
 
 namespace dcs::learner {
 namespace {
@@ -13,6 +17,7 @@ namespace {
 // SB3's init_weights: orthogonal weights with `gain`, zero biases, for Linear and Conv2d.
 void InitWeights(torch::nn::Module& module, double gain) {
   torch::NoGradGuard no_grad;
+  absl::MutexLock blas(&BlasMutex());  // orthogonal_ factorises with LAPACK
   for (auto& child : module.modules(/*include_self=*/true)) {
     if (auto* linear = child->as<torch::nn::Linear>()) {
       torch::nn::init::orthogonal_(linear->weight, gain);
@@ -42,11 +47,75 @@ int OutputsOf(const std::vector<int>& widths, int inputs) {
   return widths.empty() ? inputs : widths.back();
 }
 
+// `buffer`, (re)allocated if it does not have `sizes`.
+torch::Tensor& Buffer(torch::Tensor& buffer, torch::IntArrayRef sizes) {
+  if (!buffer.defined() || buffer.sizes() != sizes) buffer = torch::empty(sizes);
+  return buffer;
+}
+
+// A parameter's gradient, allocated if it has none yet.
+torch::Tensor& Gradient(torch::Tensor& parameter) {
+  if (!parameter.grad().defined()) parameter.mutable_grad() = torch::zeros_like(parameter);
+  return parameter.mutable_grad();
+}
+
+// out = input W^T + b, as torch::nn::Linear computes it.
+void LinearForward(const torch::nn::LinearImpl& linear, const torch::Tensor& input,
+                   torch::Tensor& out) {
+  absl::MutexLock blas(&BlasMutex());
+  at::cpu::addmm_out(Buffer(out, {input.size(0), linear.weight.size(0)}), linear.bias, input,
+                     linear.weight.t());
+}
+
+// The gradients of `linear`'s weight and bias from the gradient at its output.
+void LinearGradients(torch::nn::LinearImpl& linear, const torch::Tensor& input,
+                     const torch::Tensor& d_output) {
+  {
+    absl::MutexLock blas(&BlasMutex());
+    at::cpu::mm_out(Gradient(linear.weight), d_output.t(), input);
+  }
+  at::cpu::sum_out(Gradient(linear.bias), d_output, {0});
+}
+
 }  // namespace
 
-torch::Tensor ActorCriticImpl::TanhMlp::Forward(torch::Tensor x) {
-  for (torch::nn::Linear& layer : layers) x = torch::tanh(layer->forward(x));
-  return x;
+const torch::Tensor& ActorCriticImpl::TanhMlp::Forward(const torch::Tensor& input,
+                                                       std::vector<torch::Tensor>& outputs) {
+  outputs.resize(layers.size());
+  const torch::Tensor* x = &input;
+  for (size_t l = 0; l < layers.size(); ++l) {
+    LinearForward(*layers[l], *x, outputs[l]);
+    at::cpu::tanh_out(outputs[l], outputs[l]);
+    x = &outputs[l];
+  }
+  return *x;
+}
+
+void ActorCriticImpl::TanhMlp::Backward(torch::nn::Linear& head, const torch::Tensor& input,
+                                        const std::vector<torch::Tensor>& outputs,
+                                        const torch::Tensor& d_head,
+                                        std::vector<torch::Tensor>& d_outputs,
+                                        torch::Tensor* d_input) {
+  d_outputs.resize(layers.size());
+  LinearGradients(*head, outputs.empty() ? input : outputs.back(), d_head);
+  // Down the layers: `d` is the gradient at the output of the linear layer `weight` belongs to.
+  const torch::Tensor* d = &d_head;
+  const torch::Tensor* weight = &head->weight;
+  for (size_t l = layers.size(); l-- > 0;) {
+    torch::Tensor& d_output = Buffer(d_outputs[l], outputs[l].sizes());
+    {
+      absl::MutexLock blas(&BlasMutex());
+      at::cpu::mm_out(d_output, *d, *weight);
+    }
+    at::cpu::tanh_backward_out(d_output, d_output, outputs[l]);
+    LinearGradients(*layers[l], l == 0 ? input : outputs[l - 1], d_output);
+    d = &d_output;
+    weight = &layers[l]->weight;
+  }
+  if (d_input != nullptr) {
+    absl::MutexLock blas(&BlasMutex());
+    at::cpu::addmm_out(*d_input, *d_input, *d, *weight);
+  }
 }
 
 ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConfig& config)
@@ -61,10 +130,13 @@ ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConf
         torch::nn::Conv2d(torch::nn::Conv2dOptions(32, 64, 4).stride(2)), torch::nn::ReLU(),
         torch::nn::Conv2d(torch::nn::Conv2dOptions(64, 64, 3).stride(1)), torch::nn::ReLU(),
         torch::nn::Flatten());
-    torch::NoGradGuard no_grad;
-    const int64_t flattened =
-        cnn_->forward(torch::zeros({1, spec.image_channels, spec.image_height, spec.image_width}))
-            .size(1);
+    const int64_t flattened = [&] {
+      torch::NoGradGuard no_grad;
+      absl::MutexLock blas(&BlasMutex());
+      return cnn_
+          ->forward(torch::zeros({1, spec.image_channels, spec.image_height, spec.image_width}))
+          .size(1);
+    }();
     cnn_->push_back(torch::nn::Linear(flattened, config.cnn_features));
     cnn_->push_back(torch::nn::ReLU());
     register_module("cnn", cnn_);
@@ -94,43 +166,44 @@ ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConf
   }
 }
 
-torch::Tensor ActorCriticImpl::Features(const ObservationBatch& batch) {
-  if (!spec_.has_image()) return batch.flat;
-  torch::Tensor image_features = cnn_->forward(batch.images);
-  if (spec_.context_size == 0) return image_features;
-  return torch::cat({image_features, batch.flat}, 1);
-}
-
-torch::Tensor ActorCriticImpl::ActionHead(const ObservationBatch& batch) {
-  return action_net_->forward(pi_.Forward(Features(batch)));
-}
-
-torch::Tensor ActorCriticImpl::Value(const ObservationBatch& batch) {
-  return value_net_->forward(vf_.Forward(Features(batch))).squeeze(1);
-}
-
-ActorCriticImpl::Evaluation ActorCriticImpl::EvaluateActions(const ObservationBatch& batch,
-                                                             const torch::Tensor& actions,
-                                                             bool entropy_gradient) {
-  const torch::Tensor features = Features(batch);
-  const torch::Tensor head = action_net_->forward(pi_.Forward(features));
-  Evaluation evaluation;
-  evaluation.values = value_net_->forward(vf_.Forward(features)).squeeze(1);
-  if (spec_.discrete()) {
-    // torch.distributions.Categorical(logits): normalised by logsumexp.
-    const torch::Tensor log_p = torch::log_softmax(head, 1);
-    evaluation.log_probs = log_p.gather(1, actions).squeeze(1);
-    torch::AutoGradMode entropy_mode(entropy_gradient);
-    evaluation.entropy = -(log_p.exp() * log_p).sum(1);
+void ActorCriticImpl::Forward(const ObservationBatch& batch, bool record_image_graph,
+                              Pass& pass) {
+  // Not recorded: some of libtorch's kernels call dispatched operators (addmm copies the bias
+  // into its output), which would otherwise chain autograd nodes on the reused buffers.
+  torch::NoGradGuard no_grad;
+  if (spec_.has_image()) {
+    {
+      absl::MutexLock blas(&BlasMutex());
+      torch::AutoGradMode graph(record_image_graph);
+      pass.image_features = cnn_->forward(batch.images);
+    }
+    const torch::Tensor image_features = pass.image_features.detach();
+    pass.features = spec_.context_size == 0 ? image_features
+                                            : torch::cat({image_features, batch.flat}, 1);
   } else {
-    // A diagonal Gaussian, summed over action dimensions.
-    static const double kHalfLog2Pi = 0.5 * std::log(2 * std::numbers::pi);
-    const torch::Tensor z = (actions - head) * torch::exp(-log_std_);
-    evaluation.log_probs = (-0.5 * z * z - log_std_ - kHalfLog2Pi).sum(1);
-    torch::AutoGradMode entropy_mode(entropy_gradient);
-    evaluation.entropy = (0.5 + kHalfLog2Pi + log_std_).sum().expand({head.size(0)});
+    pass.features = batch.flat;
   }
-  return evaluation;
+  LinearForward(*action_net_, pi_.Forward(pass.features, pass.pi), pass.head);
+  LinearForward(*value_net_, vf_.Forward(pass.features, pass.vf), pass.values);
+}
+
+void ActorCriticImpl::Backward(Pass& pass, const torch::Tensor& d_head,
+                               const torch::Tensor& d_values, const torch::Tensor& d_log_std) {
+  torch::NoGradGuard no_grad;
+  torch::Tensor* d_features = nullptr;
+  if (spec_.has_image()) {
+    Buffer(pass.d_features, pass.features.sizes()).zero_();
+    d_features = &pass.d_features;
+  }
+  pi_.Backward(action_net_, pass.features, pass.pi, d_head, pass.d_pi, d_features);
+  vf_.Backward(value_net_, pass.features, pass.vf, d_values, pass.d_vf, d_features);
+  if (!spec_.discrete()) Gradient(log_std_).copy_(d_log_std);
+  if (spec_.has_image()) {
+    // NatureCNN's gradients through autograd, from the image features' part of d_features.
+    for (torch::Tensor& parameter : cnn_->parameters()) Gradient(parameter).zero_();
+    absl::MutexLock blas(&BlasMutex());
+    pass.image_features.backward(pass.d_features.narrow(1, 0, pass.image_features.size(1)));
+  }
 }
 
 actor::PolicyWeights ActorCriticImpl::ExportActor() const {

@@ -10,6 +10,9 @@
 // Features: the flat observation and context as they are; or, for an image observation,
 // SB3's CombinedExtractor: NatureCNN (256 features) on the image / 255, then the context
 // appended.
+// Forward and backward passes are explicit (Forward, Backward), for PPO's update: the loss's
+// gradient with respect to the heads' outputs (learner/ppo_loss.h) goes down the MLPs through
+// libtorch's kernels, and through autograd only in NatureCNN.
 //
 // Internal to learner/: only learner translation units include libtorch headers.
 // Confined to one thread (libtorch is pinned to one thread per run).
@@ -35,27 +38,31 @@ class ActorCriticImpl : public torch::nn::Module {
   // REQUIRES: spec and config valid. Initialises from torch's global generator (seed it first).
   ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConfig& config);
 
-  // The action head's output: logits [B, num_actions] or the Gaussian mean [B, action_size].
-  torch::Tensor ActionHead(const ObservationBatch& batch);
-  // V(s) [B].
-  torch::Tensor Value(const ObservationBatch& batch);
-
-  struct Evaluation {
-    torch::Tensor values;     // [B]
-    torch::Tensor log_probs;  // [B], summed over action dimensions
-    torch::Tensor entropy;    // [B]
+  // One forward pass's inputs and outputs, kept for its backward pass, and the backward pass's
+  // scratch. Buffers are reused by the next pass of the same batch size.
+  struct Pass {
+    torch::Tensor image_features;  // NatureCNN's output (image policies), maybe with its graph
+    torch::Tensor features;        // [B, F], the MLPs' input
+    std::vector<torch::Tensor> pi;  // each policy layer's output, after tanh
+    std::vector<torch::Tensor> vf;  // each value layer's output, after tanh
+    torch::Tensor head;             // [B, A]: logits, or the Gaussian mean
+    torch::Tensor values;           // [B, 1]
+    std::vector<torch::Tensor> d_pi;
+    std::vector<torch::Tensor> d_vf;
+    torch::Tensor d_features;
   };
-  // SB3's evaluate_actions: `actions` [B, action_size], float (discrete: [B, 1] indices as
-  // kLong, as ActionIndices makes them). Without
-  // `entropy_gradient` the entropy is computed outside autograd (for logging only: with
-  // ent_coef 0 it adds nothing to the gradient, and each recorded operation costs time).
-  Evaluation EvaluateActions(const ObservationBatch& batch, const torch::Tensor& actions,
-                             bool entropy_gradient = true);
 
-  // Discrete actions stored as floats, as EvaluateActions takes them: [B, 1] kLong.
-  static torch::Tensor ActionIndices(const torch::Tensor& actions) {
-    return actions.to(torch::kLong);
-  }
+  // The forward pass of `batch`, computed with libtorch's kernels but not recorded for autograd
+  // (the MLPs' backward pass is explicit, below). `record_image_graph`: NatureCNN's part is
+  // recorded, for a Backward of this pass. Leaves `pass.head` and `pass.values` contiguous.
+  void Forward(const ObservationBatch& batch, bool record_image_graph, Pass& pass);
+
+  // Sets the gradient (each parameter's .grad, allocated if undefined) of every parameter from
+  // the gradient of the loss with respect to the outputs of `pass`, a Forward with
+  // `record_image_graph` for image policies: `d_head` [B, A], `d_values` [B, 1], `d_log_std`
+  // [action_size] (Gaussian policies; undefined otherwise).
+  void Backward(Pass& pass, const torch::Tensor& d_head, const torch::Tensor& d_values,
+                const torch::Tensor& d_log_std);
 
   // The actor half, for Eigen inference (actor/policy_network.h).
   actor::PolicyWeights ExportActor() const;
@@ -63,16 +70,22 @@ class ActorCriticImpl : public torch::nn::Module {
   const torch::Tensor& log_std() const { return log_std_; }
 
  private:
-  torch::Tensor Features(const ObservationBatch& batch);
-
-  const run::PolicySpec spec_;
-  // Linear layers each followed by tanh, called directly: torch::nn::Sequential's type-erased
-  // dispatch costs more than these layers compute.
+  // Linear layers each followed by tanh. Their passes call libtorch's kernels directly
+  // (matrix products, tanh and its derivative into reused buffers): on layers this small,
+  // autograd's recording and the operators' dispatch cost more than the arithmetic.
   struct TanhMlp {
     std::vector<torch::nn::Linear> layers;
-    torch::Tensor Forward(torch::Tensor x);
+    // `outputs`: each layer's; returns the last (or `input` with no layers).
+    const torch::Tensor& Forward(const torch::Tensor& input, std::vector<torch::Tensor>& outputs);
+    // Gradients of the layers' and `head`'s parameters from `d_head` (the gradient at the
+    // output of `head`, the linear layer on this MLP), given the forward pass's `input` and
+    // `outputs`; if `d_input` is defined, adds the gradient with respect to `input` to it.
+    void Backward(torch::nn::Linear& head, const torch::Tensor& input,
+                  const std::vector<torch::Tensor>& outputs, const torch::Tensor& d_head,
+                  std::vector<torch::Tensor>& d_outputs, torch::Tensor* d_input);
   };
 
+  const run::PolicySpec spec_;
   torch::nn::Sequential cnn_{nullptr};  // NatureCNN, image observations only
   TanhMlp pi_;
   TanhMlp vf_;

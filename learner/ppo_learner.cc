@@ -10,10 +10,12 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "absl/synchronization/mutex.h"
 #include "common/random.h"
 #include "common/status_macros.h"
 #include "learner/actor_critic.h"
 #include "learner/gae.h"
+#include "learner/ppo_loss.h"
 
 namespace dcs::learner {
 namespace {
@@ -43,6 +45,34 @@ absl::Status CheckFinite(const std::vector<float>& values, int per_transition, i
     }
   }
   return absl::OkStatus();
+}
+
+// The elements of a contiguous float tensor.
+std::span<const float> Floats(const torch::Tensor& tensor) {
+  return {tensor.data_ptr<float>(), static_cast<size_t>(tensor.numel())};
+}
+std::span<float> MutableFloats(torch::Tensor& tensor) {
+  return {tensor.data_ptr<float>(), static_cast<size_t>(tensor.numel())};
+}
+
+// `values` in the order `order`.
+std::vector<float> Gather(const std::vector<float>& values, const std::vector<int64_t>& order,
+                          int64_t width) {
+  std::vector<float> gathered(values.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    std::copy_n(values.begin() + order[i] * width, width, gathered.begin() + i * width);
+  }
+  return gathered;
+}
+
+// Population variance (numpy's var).
+double Variance(std::span<const double> values) {
+  double mean = 0;
+  for (double v : values) mean += v;
+  mean /= static_cast<double>(values.size());
+  double squares = 0;
+  for (double v : values) squares += (v - mean) * (v - mean);
+  return squares / static_cast<double>(values.size());
 }
 
 // `count` channel-last images as channel-first floats in [0, 1] (SB3's VecTransposeImage and
@@ -84,6 +114,15 @@ struct PpoLearner::Impl {
   torch::Tensor flat_gradients;
   std::unique_ptr<torch::optim::Adam> optimizer;
   int64_t updates = 0;
+  // Buffers of the network's passes: the rollout's, its bootstrap values', a minibatch's.
+  ActorCriticImpl::Pass rollout_pass;
+  ActorCriticImpl::Pass bootstrap_pass;
+  ActorCriticImpl::Pass minibatch_pass;
+
+  // The Gaussian policy's log-std (a view of flat_parameters); empty for categorical policies.
+  std::span<const float> LogStd() const {
+    return spec.discrete() ? std::span<const float>() : Floats(network->log_std());
+  }
 
   // Makes the network's parameters views into flat_parameters (copying their values) and their
   // gradients views into flat_gradients. Again after loading, which replaces the tensors.
@@ -161,49 +200,41 @@ struct PpoLearner::Impl {
 
 absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   const int64_t n = static_cast<int64_t>(r.num_steps) * r.num_envs;
+  const int64_t head_size = spec.discrete() ? spec.num_actions : spec.action_size;
   const ObservationBatch all = Batch(r.inputs, r.images, n);
-  torch::Tensor actions = View(r.actions, {n, spec.action_size}, torch::kFloat32);
-  if (spec.discrete()) actions = ActorCriticImpl::ActionIndices(actions);
   const auto gamma = static_cast<float>(config.gamma);
 
   // Values and log-probabilities at collection time (the policy has not changed since).
-  torch::Tensor old_values;
-  torch::Tensor old_log_probs;
+  std::vector<float> values(n);
+  std::vector<float> old_log_probs(n);
   std::vector<float> rewards = r.rewards;
   std::vector<float> last_values(r.num_envs);
-  {
-    torch::NoGradGuard no_grad;
-    ActorCriticImpl::Evaluation evaluation = network->EvaluateActions(all, actions);
-    old_values = evaluation.values.contiguous();
-    old_log_probs = evaluation.log_probs.contiguous();
-    // A time-limit cut continues in expectation: r += gamma * V(final observation).
-    for (const actor::Rollout::Truncation& cut : r.truncations) {
-      const float value = network->Value(Batch(cut.input, cut.image, 1)).item<float>();
-      rewards[static_cast<size_t>(cut.step) * r.num_envs + cut.env] += gamma * value;
-    }
-    const torch::Tensor last = network->Value(Batch(r.last_inputs, r.last_images, r.num_envs));
-    std::copy(last.data_ptr<float>(), last.data_ptr<float>() + r.num_envs, last_values.begin());
+  network->Forward(all, /*record_image_graph=*/false, rollout_pass);
+  std::ranges::copy(Floats(rollout_pass.values), values.begin());
+  ActionLogProbs(spec, Floats(rollout_pass.head), LogStd(), r.actions, old_log_probs);
+  // A time-limit cut continues in expectation: r += gamma * V(final observation).
+  for (const actor::Rollout::Truncation& cut : r.truncations) {
+    network->Forward(Batch(cut.input, cut.image, 1), false, bootstrap_pass);
+    rewards[static_cast<size_t>(cut.step) * r.num_envs + cut.env] +=
+        gamma * bootstrap_pass.values.item<float>();
   }
+  network->Forward(Batch(r.last_inputs, r.last_images, r.num_envs), false, bootstrap_pass);
+  std::ranges::copy(Floats(bootstrap_pass.values), last_values.begin());
 
-  std::vector<float> values(old_values.data_ptr<float>(), old_values.data_ptr<float>() + n);
   std::vector<float> advantages(n);
   std::vector<float> returns(n);
   ComputeGae({r.num_steps, r.num_envs, rewards, values, r.episode_starts, last_values,
               r.last_dones},
              gamma, static_cast<float>(config.gae_lambda), advantages, returns);
-  const torch::Tensor return_tensor = View(returns, {n}, torch::kFloat32);
 
   UpdateStats stats;
-  // Sums over minibatches of what SB3 logs, from each minibatch's values (plain arithmetic on
-  // B numbers costs less than recording it as tensor operations).
-  double policy_loss_sum = 0;
-  double value_loss_sum = 0;
-  double entropy_loss_sum = 0;
-  double clip_fraction_sum = 0;
-  double approx_kl_sum = 0;
+  // Sums over minibatches of what SB3 logs.
+  PpoLoss sums;
   int minibatches = 0;
+  torch::Tensor d_head = torch::empty({config.batch_size, head_size});
+  torch::Tensor d_values = torch::empty({config.batch_size, 1});
+  torch::Tensor d_log_std = torch::empty({spec.discrete() ? 0 : spec.action_size});
   std::vector<int64_t> order(n);
-  const double clip = config.clip_range;
   for (int epoch = 0; epoch < config.n_epochs && !stats.stopped_early; ++epoch) {
     // A fresh permutation each epoch (Fisher-Yates), from a stream of (update, epoch); the
     // epoch's data is gathered once in that order and each minibatch is a slice of it.
@@ -215,76 +246,60 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
     const torch::Tensor flat = all.flat.index_select(0, permutation);
     const torch::Tensor images =
         spec.has_image() ? all.images.index_select(0, permutation) : torch::Tensor();
-    const torch::Tensor epoch_actions = actions.index_select(0, permutation);
-    // Advantages in the epoch's order, normalised per minibatch (mean 0, unbiased std 1, +1e-8
-    // as SB3) here rather than by torch: they carry no gradient.
-    std::vector<float> epoch_advantage_values(n);
-    for (int64_t i = 0; i < n; ++i) epoch_advantage_values[i] = advantages[order[i]];
+    const std::vector<float> epoch_actions = Gather(r.actions, order, spec.action_size);
+    const std::vector<float> epoch_returns = Gather(returns, order, 1);
+    const std::vector<float> epoch_log_probs = Gather(old_log_probs, order, 1);
+    const std::vector<float> epoch_values = Gather(values, order, 1);
+    // Advantages normalised per minibatch (mean 0, unbiased std 1, +1e-8 as SB3).
+    std::vector<float> epoch_advantages = Gather(advantages, order, 1);
     if (config.normalize_advantage) {
       for (int64_t start = 0; start < n; start += config.batch_size) {
-        NormalizeMinibatch(std::span<float>(epoch_advantage_values)
+        NormalizeMinibatch(std::span<float>(epoch_advantages)
                                .subspan(start, std::min<int64_t>(config.batch_size, n - start)));
       }
     }
-    const torch::Tensor epoch_advantages = View(epoch_advantage_values, {n}, torch::kFloat32);
-    const torch::Tensor epoch_returns = return_tensor.index_select(0, permutation);
-    const torch::Tensor epoch_log_probs = old_log_probs.index_select(0, permutation);
-    const torch::Tensor epoch_values = old_values.index_select(0, permutation);
 
     for (int64_t start = 0; start < n; start += config.batch_size) {
       const int64_t size = std::min<int64_t>(config.batch_size, n - start);
       ObservationBatch batch{.flat = flat.narrow(0, start, size)};
       if (spec.has_image()) batch.images = images.narrow(0, start, size);
-      ActorCriticImpl::Evaluation evaluation = network->EvaluateActions(
-          batch, epoch_actions.narrow(0, start, size), config.ent_coef > 0);
-      const torch::Tensor advantage = epoch_advantages.narrow(0, start, size);
-      const torch::Tensor ratio =
-          torch::exp(evaluation.log_probs - epoch_log_probs.narrow(0, start, size));
-      const torch::Tensor policy_loss =
-          -torch::min(advantage * ratio, advantage * torch::clamp(ratio, 1 - clip, 1 + clip))
-               .mean();
-      torch::Tensor predicted = evaluation.values;
-      if (config.clip_range_vf.has_value()) {
-        const torch::Tensor old = epoch_values.narrow(0, start, size);
-        predicted = old + torch::clamp(evaluation.values - old, -*config.clip_range_vf,
-                                       *config.clip_range_vf);
+      network->Forward(batch, /*record_image_graph=*/true, minibatch_pass);
+      torch::Tensor minibatch_d_head = d_head.narrow(0, 0, size);
+      torch::Tensor minibatch_d_values = d_values.narrow(0, 0, size);
+      const auto slice = [start, size](const std::vector<float>& v, int64_t width = 1) {
+        return std::span<const float>(v).subspan(start * width, size * width);
+      };
+      const PpoLoss loss = ComputePpoLoss(
+          spec, config,
+          {.size = static_cast<int>(size),
+           .head = Floats(minibatch_pass.head),
+           .values = Floats(minibatch_pass.values),
+           .log_std = LogStd(),
+           .actions = slice(epoch_actions, spec.action_size),
+           .advantages = slice(epoch_advantages),
+           .returns = slice(epoch_returns),
+           .old_log_probs = slice(epoch_log_probs),
+           .old_values = slice(epoch_values)},
+          {.head = MutableFloats(minibatch_d_head),
+           .values = MutableFloats(minibatch_d_values),
+           .log_std = MutableFloats(d_log_std)});
+      sums.policy += loss.policy;
+      sums.value += loss.value;
+      sums.entropy += loss.entropy;
+      sums.clip_fraction += loss.clip_fraction;
+      sums.approx_kl += loss.approx_kl;
+      ++minibatches;
+      if (config.target_kl.has_value() && loss.approx_kl > 1.5 * *config.target_kl) {
+        stats.stopped_early = true;  // before this minibatch's step, as SB3
+        break;
       }
-      const torch::Tensor value_loss =
-          torch::mse_loss(predicted, epoch_returns.narrow(0, start, size));
-      const torch::Tensor entropy_loss = -evaluation.entropy.mean();
-      torch::Tensor loss = policy_loss + config.vf_coef * value_loss;
-      if (config.ent_coef > 0) loss = loss + config.ent_coef * entropy_loss;
-
-      {
-        // approx_kl = mean((r - 1) - log r), SB3's estimator; clip_fraction = mean(|r - 1| > clip).
-        const torch::Tensor ratios = ratio.detach().contiguous();
-        const float* ratio_values = ratios.data_ptr<float>();
-        double approx_kl = 0;
-        int clipped = 0;
-        for (int64_t i = 0; i < size; ++i) {
-          approx_kl += (ratio_values[i] - 1.0) - std::log(static_cast<double>(ratio_values[i]));
-          clipped += std::abs(ratio_values[i] - 1.0f) > clip;
-        }
-        approx_kl /= static_cast<double>(size);
-        approx_kl_sum += approx_kl;
-        clip_fraction_sum += static_cast<double>(clipped) / static_cast<double>(size);
-        policy_loss_sum += policy_loss.item<double>();
-        value_loss_sum += value_loss.item<double>();
-        entropy_loss_sum += entropy_loss.item<double>();
-        ++minibatches;
-        if (config.target_kl.has_value() && approx_kl > 1.5 * *config.target_kl) {
-          stats.stopped_early = true;  // before this minibatch's step, as SB3
-          break;
-        }
-      }
-      stats.loss = loss.item<double>();
+      stats.loss = loss.total;
       if (!std::isfinite(stats.loss)) {
         return absl::InternalError(absl::StrCat("the loss became ", stats.loss, " in update ",
                                                 updates, ", epoch ", epoch,
                                                 "; the minibatch was not applied"));
       }
-      flat_gradients.zero_();
-      loss.backward();
+      network->Backward(minibatch_pass, minibatch_d_head, minibatch_d_values, d_log_std);
       {
         // torch.nn.utils.clip_grad_norm_ over every parameter: one norm of the flat gradient,
         // coefficient max_norm / (norm + 1e-6) in float32 as torch computes it, clamped to 1
@@ -301,18 +316,22 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   }
   ++updates;
 
-  stats.policy_loss = policy_loss_sum / minibatches;
-  stats.value_loss = value_loss_sum / minibatches;
-  stats.entropy_loss = entropy_loss_sum / minibatches;
-  stats.clip_fraction = clip_fraction_sum / minibatches;
-  stats.approx_kl = approx_kl_sum / minibatches;
+  stats.policy_loss = sums.policy / minibatches;
+  stats.value_loss = sums.value / minibatches;
+  stats.entropy_loss = sums.entropy / minibatches;
+  stats.clip_fraction = sums.clip_fraction / minibatches;
+  stats.approx_kl = sums.approx_kl / minibatches;
   // 1 - Var(returns - values) / Var(returns), NaN when the returns do not vary (as SB3).
-  const torch::Tensor residual = return_tensor - old_values;
-  const double return_variance = return_tensor.var(/*unbiased=*/false).item<double>();
+  std::vector<double> return_values(returns.begin(), returns.end());
+  std::vector<double> residuals(n);
+  for (int64_t i = 0; i < n; ++i) residuals[i] = static_cast<double>(returns[i]) - values[i];
+  const double return_variance = Variance(return_values);
   stats.explained_variance =
-      return_variance == 0 ? std::nan("")
-                           : 1 - residual.var(/*unbiased=*/false).item<double>() / return_variance;
-  if (!spec.discrete()) stats.std = torch::exp(network->log_std()).mean().item<double>();
+      return_variance == 0 ? std::nan("") : 1 - Variance(residuals) / return_variance;
+  if (!spec.discrete()) {
+    for (float log_std : LogStd()) stats.std += std::exp(static_cast<double>(log_std));
+    stats.std /= spec.action_size;
+  }
   return stats;
 }
 
@@ -330,7 +349,10 @@ absl::StatusOr<std::unique_ptr<PpoLearner>> PpoLearner::Create(const run::Policy
   impl->n_envs = n_envs;
   impl->seed = seed;
   try {
-    // Initial weights are the only draws from libtorch's own generator.
+    // Initial weights are the only draws from libtorch's own generator, which is one per
+    // process: learners created at once on several threads take turns.
+    static absl::Mutex generator_mutex;
+    absl::MutexLock lock(&generator_mutex);
     torch::manual_seed(StreamSeed(seed, "init").GenerateState64(1)[0]);
     impl->network = ActorCritic(spec, config);
     impl->Flatten();

@@ -112,6 +112,11 @@ void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note) {
                     "); going on with the kernels the libraries chose: ", kNoMatch));
 }
 
+absl::Mutex& BlasMutex() {
+  ABSL_CONST_INIT static absl::Mutex mutex(absl::kConstInit);
+  return mutex;
+}
+
 std::string BlasCoreName() {
   // Looked up rather than linked: libtorch reaches OpenBLAS through the libblas.so.3
   // alternative, which may be another BLAS.

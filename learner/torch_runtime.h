@@ -16,6 +16,7 @@
 #include "absl/functional/function_ref.h"
 #include "absl/status/status.h"
 #include "absl/strings/string_view.h"
+#include "absl/synchronization/mutex.h"
 #include "common/library_version.h"
 
 namespace dcs::learner {
@@ -65,6 +66,15 @@ std::vector<KernelVariable> UnpinnedKernelVariables();
 // results will not match other machines' bit for bit, and the process goes on with the kernels
 // its libraries chose.
 void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note);
+
+// OpenBLAS's serial build, which DCS installs (single-threaded, as DESIGN.md §4 requires),
+// shares its work buffers between callers without a lock: two threads multiplying at once get
+// wrong products (measured: about 4% of 64 x 64 products from two threads with its Haswell
+// kernels). Its pthread build locks them, but with it prometheus-cpp's HTTP server fails to
+// start in dcs-learner. So every call into BLAS from learner code (matrix products,
+// convolutions, orthogonal initialisation) holds this lock, and runs updating at once on
+// several threads stay exact.
+absl::Mutex& BlasMutex();
 
 // The OpenBLAS core in use ("Haswell", "SkylakeX", ...), or empty if libtorch's BLAS is not
 // OpenBLAS.

@@ -101,7 +101,7 @@ void BM_TorchForwardCarRacing(benchmark::State& state) {
   ActorCritic network(spec, run::PpoConfig{});
   std::vector<uint8_t> frame = RandomFrame();
   std::vector<float> context = {0.25f};
-  torch::NoGradGuard no_grad;
+  ActorCriticImpl::Pass pass;
   for (auto _ : state) {
     // As PpoLearner turns frames into tensors: channel first, floats in [0, 1].
     const ObservationBatch batch{
@@ -110,8 +110,8 @@ void BM_TorchForwardCarRacing(benchmark::State& state) {
                       .permute({0, 3, 1, 2})
                       .to(torch::kFloat32)
                       .div(255.0)};
-    torch::Tensor head = network->ActionHead(batch);
-    benchmark::DoNotOptimize(head.data_ptr<float>());
+    network->Forward(batch, /*record_image_graph=*/false, pass);
+    benchmark::DoNotOptimize(pass.head.data_ptr<float>());
   }
   state.SetItemsProcessed(state.iterations());
 }

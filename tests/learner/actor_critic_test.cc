@@ -58,9 +58,10 @@ void ExpectEigenMatchesTorch(const run::PolicySpec& spec, int samples) {
               .to(torch::kFloat32)
               .div(255.0);
     }
-    const torch::Tensor torch_head = network->ActionHead(batch);
+    ActorCriticImpl::Pass pass;
+    network->Forward(batch, /*record_image_graph=*/false, pass);
     for (int i = 0; i < head; ++i) {
-      EXPECT_NEAR(eigen[i], torch_head[0][i].item<float>(), 1e-5) << "sample " << sample;
+      EXPECT_NEAR(eigen[i], pass.head[0][i].item<float>(), 1e-5) << "sample " << sample;
     }
   }
 }
@@ -103,24 +104,6 @@ TEST(ActorCriticTest, InitialisesWithSb3Gains) {
   }
 }
 
-TEST(ActorCriticTest, GaussianLogProbAndEntropyAreSummedOverDimensions) {
-  torch::manual_seed(2);
-  const run::PolicySpec spec = WalkerSpec();
-  ActorCritic network(spec, run::PpoConfig{.log_std_init = -0.5});
-  const torch::Tensor input = torch::zeros({1, spec.flat_input_size()});
-  const torch::Tensor mean = network->ActionHead({.flat = input}).detach();
-  const torch::Tensor action = mean + 0.3;
-  const ActorCriticImpl::Evaluation evaluation =
-      network->EvaluateActions({.flat = input}, action);
-  // Each dimension: N(mean, e^-0.5) at mean + 0.3.
-  const double sigma = std::exp(-0.5);
-  const double per_dim =
-      -0.5 * (0.3 / sigma) * (0.3 / sigma) - std::log(sigma) - 0.5 * std::log(2 * M_PI);
-  EXPECT_NEAR(evaluation.log_probs.item<double>(), 4 * per_dim, 1e-5);
-  EXPECT_NEAR(evaluation.entropy.item<double>(), 4 * (0.5 + 0.5 * std::log(2 * M_PI) - 0.5),
-              1e-5);
-}
-
 TEST(ActorCriticTest, ImagePoliciesRunNatureCnnOnTheImageAndAppendTheContext) {
   torch::manual_seed(4);
   const run::PolicySpec spec{.image_height = 96,
@@ -133,14 +116,33 @@ TEST(ActorCriticTest, ImagePoliciesRunNatureCnnOnTheImageAndAppendTheContext) {
                         .action_high = {1, 1, 1}};
   ActorCritic network(spec, run::PpoConfig{});
   const ObservationBatch batch{.flat = torch::zeros({5, 2}), .images = torch::rand({5, 3, 96, 96})};
-  const ActorCriticImpl::Evaluation evaluation =
-      network->EvaluateActions(batch, torch::zeros({5, 3}));
-  EXPECT_EQ(evaluation.values.sizes(), torch::IntArrayRef({5}));
-  EXPECT_EQ(evaluation.log_probs.sizes(), torch::IntArrayRef({5}));
+  ActorCriticImpl::Pass pass;
+  network->Forward(batch, /*record_image_graph=*/false, pass);
+  EXPECT_EQ(pass.features.sizes(), torch::IntArrayRef({5, 256 + 2}));
+  EXPECT_EQ(pass.head.sizes(), torch::IntArrayRef({5, 3}));
+  EXPECT_EQ(pass.values.sizes(), torch::IntArrayRef({5, 1}));
   // The context reaches the heads: changing it changes the value.
-  const ObservationBatch other{.flat = torch::ones({5, 2}), .images = batch.images};
-  torch::NoGradGuard no_grad;
-  EXPECT_FALSE(torch::equal(network->Value(batch), network->Value(other)));
+  const torch::Tensor values = pass.values.clone();
+  network->Forward({.flat = torch::ones({5, 2}), .images = batch.images}, false, pass);
+  EXPECT_FALSE(torch::equal(values, pass.values));
+}
+
+TEST(ActorCriticTest, PassesLeaveNoAutogradGraphOnTheirBuffers) {
+  // Buffers are reused pass after pass: a graph recorded on them would chain across passes
+  // (growing without bound, then overflowing the stack when freed).
+  torch::manual_seed(5);
+  ActorCritic network(CartPoleSpec(), run::PpoConfig{});
+  ActorCriticImpl::Pass pass;
+  const ObservationBatch batch{.flat = torch::randn({8, 5})};
+  for (int i = 0; i < 2; ++i) {
+    network->Forward(batch, /*record_image_graph=*/true, pass);
+    network->Backward(pass, torch::ones({8, 2}), torch::ones({8, 1}), torch::Tensor());
+  }
+  for (const torch::Tensor* buffer : {&pass.pi[0], &pass.pi[1], &pass.vf[1], &pass.head,
+                                      &pass.values, &pass.d_pi[0], &pass.d_vf[1]}) {
+    EXPECT_FALSE(buffer->requires_grad());
+    EXPECT_EQ(buffer->grad_fn(), nullptr);
+  }
 }
 
 }  // namespace

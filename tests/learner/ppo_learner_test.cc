@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <thread>
 #include <vector>
 
 #include "actor/policy_network.h"
@@ -90,6 +91,28 @@ TEST_F(PpoLearnerTest, SameSeedAndRolloutsGiveTheSameWeightsBitForBit) {
     ASSERT_TRUE(b->Update(rollout).ok());
   }
   EXPECT_EQ(a->Parameters(), b->Parameters());
+}
+
+TEST_F(PpoLearnerTest, LearnersUpdatingAtOnceOnTwoThreadsGetTheWeightsTheyGetAlone) {
+  // As a learner hosting several runs updates them, on the pinned kernels (where the serial
+  // OpenBLAS's products race between threads unless they hold BlasMutex).
+  constexpr int kUpdates = 30;  // enough for a race to show nearly every time
+  const auto train = [](uint64_t seed) {
+    std::unique_ptr<PpoLearner> learner = NewLearner(seed);
+    for (int update = 0; update < kUpdates; ++update) {
+      EXPECT_TRUE(learner->Update(BanditRollout(*learner, seed * 100 + update)).ok());
+    }
+    return learner->Parameters();
+  };
+  const std::vector<float> alone_a = train(1);
+  const std::vector<float> alone_b = train(2);
+  std::vector<float> together_a;
+  std::vector<float> together_b;
+  std::thread other([&] { together_b = train(2); });
+  together_a = train(1);
+  other.join();
+  EXPECT_EQ(together_a, alone_a);
+  EXPECT_EQ(together_b, alone_b);
 }
 
 TEST_F(PpoLearnerTest, NonFiniteRewardsAndObservationsAreRefusedAndTouchNothing) {
