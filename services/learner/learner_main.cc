@@ -31,8 +31,8 @@ class LearnerRole final : public WorkerServiceRole {
                    "reproducible)")
         ->capture_default_str();
     app.add_option("--max-runs", max_runs_,
-                   "runs hosted at once, each updating on its own thread (default: the number "
-                   "of cores)")
+                   "runs hosted at once, each updating on its own thread (default: twice the "
+                   "number of cores, so that some update while others' rollouts are collected)")
         ->check(CLI::PositiveNumber);
   }
 
@@ -65,7 +65,7 @@ class LearnerRole final : public WorkerServiceRole {
 
  private:
   int torch_threads_ = 1;
-  int max_runs_ = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int max_runs_ = static_cast<int>(2 * std::max(1u, std::thread::hardware_concurrency()));
   std::unique_ptr<HostedRuns> runs_;
   std::unique_ptr<LearnerService> service_;
 };
