@@ -59,21 +59,28 @@ torch::Tensor& Gradient(torch::Tensor& parameter) {
   return parameter.mutable_grad();
 }
 
+// out = a b, and out = c + a b (c broadcast): libtorch's matrix products, holding BlasMutex.
+void Product(torch::Tensor& out, const torch::Tensor& a, const torch::Tensor& b) {
+  absl::MutexLock blas(&BlasMutex());
+  at::cpu::mm_out(out, a, b);
+}
+void ProductPlus(torch::Tensor& out, const torch::Tensor& c, const torch::Tensor& a,
+                 const torch::Tensor& b) {
+  absl::MutexLock blas(&BlasMutex());
+  at::cpu::addmm_out(out, c, a, b);
+}
+
 // out = input W^T + b, as torch::nn::Linear computes it.
 void LinearForward(const torch::nn::LinearImpl& linear, const torch::Tensor& input,
                    torch::Tensor& out) {
-  absl::MutexLock blas(&BlasMutex());
-  at::cpu::addmm_out(Buffer(out, {input.size(0), linear.weight.size(0)}), linear.bias, input,
-                     linear.weight.t());
+  ProductPlus(Buffer(out, {input.size(0), linear.weight.size(0)}), linear.bias, input,
+              linear.weight.t());
 }
 
 // The gradients of `linear`'s weight and bias from the gradient at its output.
 void LinearGradients(torch::nn::LinearImpl& linear, const torch::Tensor& input,
                      const torch::Tensor& d_output) {
-  {
-    absl::MutexLock blas(&BlasMutex());
-    at::cpu::mm_out(Gradient(linear.weight), d_output.t(), input);
-  }
+  Product(Gradient(linear.weight), d_output.t(), input);
   at::cpu::sum_out(Gradient(linear.bias), d_output, {0});
 }
 
@@ -103,19 +110,13 @@ void ActorCriticImpl::TanhMlp::Backward(torch::nn::Linear& head, const torch::Te
   const torch::Tensor* weight = &head->weight;
   for (size_t l = layers.size(); l-- > 0;) {
     torch::Tensor& d_output = Buffer(d_outputs[l], outputs[l].sizes());
-    {
-      absl::MutexLock blas(&BlasMutex());
-      at::cpu::mm_out(d_output, *d, *weight);
-    }
+    Product(d_output, *d, *weight);
     at::cpu::tanh_backward_out(d_output, d_output, outputs[l]);
     LinearGradients(*layers[l], l == 0 ? input : outputs[l - 1], d_output);
     d = &d_output;
     weight = &layers[l]->weight;
   }
-  if (d_input != nullptr) {
-    absl::MutexLock blas(&BlasMutex());
-    at::cpu::addmm_out(*d_input, *d_input, *d, *weight);
-  }
+  if (d_input != nullptr) ProductPlus(*d_input, *d_input, *d, *weight);
 }
 
 ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConfig& config)
@@ -153,9 +154,8 @@ ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConf
       inputs = (*widths)[i];
     }
   }
-  const int action_outputs = spec.discrete() ? spec.num_actions : spec.action_size;
   action_net_ = register_module(
-      "action_net", torch::nn::Linear(OutputsOf(config.pi_layers, features), action_outputs));
+      "action_net", torch::nn::Linear(OutputsOf(config.pi_layers, features), spec.head_size()));
   value_net_ =
       register_module("value_net", torch::nn::Linear(OutputsOf(config.vf_layers, features), 1));
   InitWeights(*action_net_, 0.01);

@@ -200,7 +200,6 @@ struct PpoLearner::Impl {
 
 absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   const int64_t n = static_cast<int64_t>(r.num_steps) * r.num_envs;
-  const int64_t head_size = spec.discrete() ? spec.num_actions : spec.action_size;
   const ObservationBatch all = Batch(r.inputs, r.images, n);
   const auto gamma = static_cast<float>(config.gamma);
 
@@ -231,7 +230,7 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   // Sums over minibatches of what SB3 logs.
   PpoLoss sums;
   int minibatches = 0;
-  torch::Tensor d_head = torch::empty({config.batch_size, head_size});
+  torch::Tensor d_head = torch::empty({config.batch_size, spec.head_size()});
   torch::Tensor d_values = torch::empty({config.batch_size, 1});
   torch::Tensor d_log_std = torch::empty({spec.discrete() ? 0 : spec.action_size});
   std::vector<int64_t> order(n);

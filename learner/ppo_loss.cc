@@ -82,16 +82,12 @@ struct Gaussian {
   }
 };
 
-int HeadSize(const run::PolicySpec& spec) {
-  return spec.discrete() ? spec.num_actions : spec.action_size;
-}
-
 }  // namespace
 
 void ActionLogProbs(const run::PolicySpec& spec, std::span<const float> head,
                     std::span<const float> log_std, std::span<const float> actions,
                     std::span<float> log_probs) {
-  const size_t a = HeadSize(spec);
+  const size_t a = spec.head_size();
   for (size_t i = 0; i < log_probs.size(); ++i) {
     const std::span<const float> row = head.subspan(i * a, a);
     log_probs[i] = spec.discrete()
@@ -103,7 +99,7 @@ void ActionLogProbs(const run::PolicySpec& spec, std::span<const float> head,
 PpoLoss ComputePpoLoss(const run::PolicySpec& spec, const run::PpoConfig& config,
                        const PpoLossInput& input, const PpoLossGradient& gradient) {
   const int b = input.size;
-  const size_t a = HeadSize(spec);
+  const size_t a = spec.head_size();
   const auto clip = static_cast<float>(config.clip_range);
   const auto ent_coef = static_cast<float>(config.ent_coef);
   const auto vf_coef = static_cast<float>(config.vf_coef);

@@ -57,6 +57,8 @@ struct PolicySpec {
   std::vector<float> action_high;
 
   bool discrete() const { return num_actions > 0; }
+  // Outputs of the policy's action head: logits, or the Gaussian's means.
+  int head_size() const { return discrete() ? num_actions : action_size; }
   bool has_image() const { return image_height > 0; }
   // Bytes of one image observation; 0 without.
   size_t image_size() const {

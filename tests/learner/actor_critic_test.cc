@@ -39,7 +39,7 @@ void ExpectEigenMatchesTorch(const run::PolicySpec& spec, int samples) {
   const int image_size = static_cast<int>(spec.image_size());
   ASSERT_EQ(policy->image_size(), image_size);
   Random random(3);
-  const int head = spec.discrete() ? spec.num_actions : spec.action_size;
+  const int head = spec.head_size();
   for (int sample = 0; sample < samples; ++sample) {
     std::vector<float> input(spec.flat_input_size());
     for (float& x : input) x = static_cast<float>(random.Uniform(-3, 3));

@@ -114,7 +114,7 @@ void ExpectExplicitGradientsMatchAutograd(const run::PolicySpec& spec,
   ActionLogProbs(spec, head, log_std, actions, log_probs);
   m.old_log_probs = torch::tensor(log_probs) + 0.3 * torch::randn({b});
 
-  const int head_size = spec.discrete() ? spec.num_actions : spec.action_size;
+  const int head_size = spec.head_size();
   torch::Tensor d_head = torch::empty({b, head_size});
   torch::Tensor d_values = torch::empty({b, 1});
   torch::Tensor d_log_std = torch::empty({spec.discrete() ? 0 : spec.action_size});

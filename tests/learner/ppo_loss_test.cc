@@ -47,23 +47,23 @@ TEST(PpoLossTest, GaussianLogProbAndEntropyAreSummedOverDimensions) {
   EXPECT_NEAR(loss.entropy, -4 * (0.5 + kHalfLog2Pi - 0.5), 1e-5);  // -mean(H)
 }
 
-// One sample of the two-action policy with equal logits (log p = log 1/2), given its old
-// log-probability and advantage.
+// One sample of the two-action policy with equal logits (log p = log 1/2) taking action 0,
+// given its old log-probability, advantage, value (also its old value) and return.
 struct OneSample {
   PpoLoss loss;
   std::vector<float> d_logits = std::vector<float>(2);
   float d_value = 0;
 };
-OneSample Evaluate(float old_log_prob, float advantage, float value, float ret,
-                   const run::PpoConfig& config = {}) {
+OneSample Evaluate(float old_log_prob, float advantage, float value, float ret) {
   OneSample s;
   const std::vector<float> logits = {0, 0};
   const float action = 0;
-  s.loss = ComputePpoLoss(TwoActions(), config,
-                          {.size = 1, .head = logits, .values = {&value, 1}, .actions = {&action, 1},
-                           .advantages = {&advantage, 1}, .returns = {&ret, 1},
-                           .old_log_probs = {&old_log_prob, 1}, .old_values = {&value, 1}},
-                          {.head = s.d_logits, .values = {&s.d_value, 1}});
+  s.loss = ComputePpoLoss(
+      TwoActions(), run::PpoConfig{},
+      {.size = 1, .head = logits, .values = {&value, 1}, .actions = {&action, 1},
+       .advantages = {&advantage, 1}, .returns = {&ret, 1},
+       .old_log_probs = {&old_log_prob, 1}, .old_values = {&value, 1}},
+      {.head = s.d_logits, .values = {&s.d_value, 1}});
   return s;
 }
 
