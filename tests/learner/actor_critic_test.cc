@@ -11,22 +11,10 @@
 #include "env/car_racing.h"
 #include "gtest/gtest.h"
 #include "run/run_plan.h"
+#include "tests/learner/policy_specs.h"
 
 namespace dcs::learner {
 namespace {
-
-run::PolicySpec CartPoleSpec() {
-  return {.observation_size = 4, .context_size = 1, .num_actions = 2, .action_size = 1};
-}
-
-run::PolicySpec WalkerSpec() {
-  return {.observation_size = 24,
-          .context_size = 1,
-          .num_actions = 0,
-          .action_size = 4,
-          .action_low = {-1, -1, -1, -1},
-          .action_high = {1, 1, 1, 1}};
-}
 
 // The actor's Eigen network computes the same function as the learner's torch network.
 void ExpectEigenMatchesTorch(const run::PolicySpec& spec, int samples) {

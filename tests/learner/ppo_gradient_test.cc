@@ -15,6 +15,7 @@
 #include "gtest/gtest.h"
 #include "learner/actor_critic.h"
 #include "learner/ppo_loss.h"
+#include "tests/learner/policy_specs.h"
 
 namespace dcs::learner {
 namespace {
@@ -148,19 +149,6 @@ void ExpectExplicitGradientsMatchAutograd(const run::PolicySpec& spec,
     const double error = (explicit_gradients[item.key()] - expected).abs().max().item<double>();
     EXPECT_LE(error, 1e-5 * scale) << item.key();
   }
-}
-
-run::PolicySpec CartPoleSpec() {
-  return {.observation_size = 4, .context_size = 1, .num_actions = 2, .action_size = 1};
-}
-
-run::PolicySpec WalkerSpec() {
-  return {.observation_size = 24,
-          .context_size = 1,
-          .num_actions = 0,
-          .action_size = 4,
-          .action_low = {-1, -1, -1, -1},
-          .action_high = {1, 1, 1, 1}};
 }
 
 TEST(PpoGradientTest, CategoricalWithSb3Defaults) {

@@ -1,0 +1,28 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_TESTS_LEARNER_POLICY_SPECS_H_
+#define DCS_TESTS_LEARNER_POLICY_SPECS_H_
+
+// The policy shapes learner tests use.
+
+#include "run/ppo_config.h"
+
+namespace dcs::learner {
+
+// CartPole's: 4 observations and one context value, two actions.
+inline run::PolicySpec CartPoleSpec() {
+  return {.observation_size = 4, .context_size = 1, .num_actions = 2, .action_size = 1};
+}
+
+// BipedalWalker's: 24 observations and one context value, four continuous actions in [-1, 1].
+inline run::PolicySpec WalkerSpec() {
+  return {.observation_size = 24,
+          .context_size = 1,
+          .num_actions = 0,
+          .action_size = 4,
+          .action_low = {-1, -1, -1, -1},
+          .action_high = {1, 1, 1, 1}};
+}
+
+}  // namespace dcs::learner
+
+#endif  // DCS_TESTS_LEARNER_POLICY_SPECS_H_
