@@ -94,15 +94,7 @@ TEST(ActorCriticTest, InitialisesWithSb3Gains) {
 
 TEST(ActorCriticTest, ImagePoliciesRunNatureCnnOnTheImageAndAppendTheContext) {
   torch::manual_seed(4);
-  const run::PolicySpec spec{.image_height = 96,
-                        .image_width = 96,
-                        .image_channels = 3,
-                        .context_size = 2,
-                        .num_actions = 0,
-                        .action_size = 3,
-                        .action_low = {-1, 0, 0},
-                        .action_high = {1, 1, 1}};
-  ActorCritic network(spec, run::PpoConfig{});
+  ActorCritic network(ImageSpec(96), run::PpoConfig{});
   const ObservationBatch batch{.flat = torch::zeros({5, 2}), .images = torch::rand({5, 3, 96, 96})};
   ActorCriticImpl::Pass pass;
   network->Forward(batch, /*record_image_graph=*/false, pass);

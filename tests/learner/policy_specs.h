@@ -23,6 +23,18 @@ inline run::PolicySpec WalkerSpec() {
           .action_high = {1, 1, 1, 1}};
 }
 
+// A side x side RGB image, two context values, three continuous actions (CarRacing's bounds).
+inline run::PolicySpec ImageSpec(int side) {
+  return {.image_height = side,
+          .image_width = side,
+          .image_channels = 3,
+          .context_size = 2,
+          .num_actions = 0,
+          .action_size = 3,
+          .action_low = {-1, 0, 0},
+          .action_high = {1, 1, 1}};
+}
+
 }  // namespace dcs::learner
 
 #endif  // DCS_TESTS_LEARNER_POLICY_SPECS_H_
