@@ -63,11 +63,16 @@ double Percent(int64_t cells, int64_t of) {
   return 100.0 * static_cast<double>(cells) / static_cast<double>(of);
 }
 
-// The row of `trial`'s runs in `section`; `scores` are the runs' report scores in order. Adds
-// each run's (score, coverage) to `pairs`. Rows without runs have none.
+// Runs' report scores and their coverage, pair by pair (for the correlation of the two).
+struct ScoredCoverage {
+  std::vector<double> scores;
+  std::vector<double> coverage;
+};
+
+// The row of `trial`'s runs in `section`, whose report scores `cell` holds in order. Adds each
+// run's score and coverage to `scored`. Rows without runs have none.
 v1::CoverageRow RowOf(const v1::TrialResults& trial, const v1::ReportCell& cell,
-                      const v1::CoverageSection& section,
-                      std::vector<std::pair<double, double>>& pairs) {
+                      const v1::CoverageSection& section, ScoredCoverage& scored) {
   v1::CoverageRow row;
   row.set_condition(trial.condition());
   row.set_mode(trial.observe());
@@ -83,7 +88,8 @@ v1::CoverageRow RowOf(const v1::TrialResults& trial, const v1::ReportCell& cell,
       ++window_runs[w];
     }
     row.add_runs(Percent(visited, section.cells()));
-    pairs.emplace_back(cell.scores(i).score(), row.runs(row.runs_size() - 1));
+    scored.scores.push_back(cell.scores(i).score());
+    scored.coverage.push_back(row.runs(row.runs_size() - 1));
   }
   if (row.runs().empty()) return row;
   const std::span<const double> runs(row.runs().data(), row.runs().size());
@@ -95,9 +101,9 @@ v1::CoverageRow RowOf(const v1::TrialResults& trial, const v1::ReportCell& cell,
   return row;
 }
 
-// The tests of one mode over its rows and (score, coverage) pairs.
+// The tests of one mode over its rows and its runs' scores and coverage.
 v1::CoverageTest TestOf(const std::string& mode, const std::vector<v1::CoverageRow>& rows,
-                        const std::vector<std::pair<double, double>>& pairs) {
+                        const ScoredCoverage& scored) {
   v1::CoverageTest test;
   test.set_mode(mode);
   std::vector<std::string> notes;
@@ -111,12 +117,8 @@ v1::CoverageTest TestOf(const std::string& mode, const std::vector<v1::CoverageR
   } else {
     notes.push_back(absl::StrCat("no ANOVA: ", anova.status().message()));
   }
-  std::vector<double> scores, coverage;
-  for (const auto& [score, percent] : pairs) {
-    scores.push_back(score);
-    coverage.push_back(percent);
-  }
-  if (absl::StatusOr<Correlation> r = PearsonCorrelation(scores, coverage); r.ok()) {
+  if (absl::StatusOr<Correlation> r = PearsonCorrelation(scored.scores, scored.coverage);
+      r.ok()) {
     test.mutable_correlation()->set_r(r->r);
     test.mutable_correlation()->set_p_value(r->p_value);
     test.mutable_correlation()->set_runs(r->n);
@@ -138,15 +140,15 @@ absl::Status AddCoverageSections(const v1::SweepResults& results, v1::SweepRepor
   for (v1::CoverageSection& section : sections) {
     for (int m = 0; m < report.modes_size(); ++m) {
       std::vector<v1::CoverageRow> rows;
-      std::vector<std::pair<double, double>> pairs;
+      ScoredCoverage scored;
       for (const v1::ReportRow& report_row : report.rows()) {
         const auto trial = trials.find({report_row.condition(), report.modes(m)});
         if (trial == trials.end()) continue;
-        v1::CoverageRow row = RowOf(*trial->second, report_row.cells(m), section, pairs);
+        v1::CoverageRow row = RowOf(*trial->second, report_row.cells(m), section, scored);
         if (row.runs_size() > 0) rows.push_back(std::move(row));
       }
       if (rows.empty()) continue;
-      *section.add_tests() = TestOf(report.modes(m), rows, pairs);
+      *section.add_tests() = TestOf(report.modes(m), rows, scored);
       for (v1::CoverageRow& row : rows) *section.add_rows() = std::move(row);
     }
     *report.add_coverage() = std::move(section);

@@ -65,14 +65,25 @@ std::vector<float> Gather(const std::vector<float>& values, const std::vector<in
   return gathered;
 }
 
-// Population variance (numpy's var).
-double Variance(std::span<const double> values) {
+// The mean of `values` and the sum of their squared deviations from it, in double.
+// REQUIRES: `values` non-empty.
+struct Spread {
   double mean = 0;
-  for (double v : values) mean += v;
-  mean /= static_cast<double>(values.size());
   double squares = 0;
-  for (double v : values) squares += (v - mean) * (v - mean);
-  return squares / static_cast<double>(values.size());
+};
+template <typename T>
+Spread SpreadOf(std::span<const T> values) {
+  Spread spread;
+  for (T v : values) spread.mean += v;
+  spread.mean /= static_cast<double>(values.size());
+  for (T v : values) spread.squares += (v - spread.mean) * (v - spread.mean);
+  return spread;
+}
+
+// Population variance (numpy's var).
+template <typename T>
+double Variance(std::span<const T> values) {
+  return SpreadOf(values).squares / static_cast<double>(values.size());
 }
 
 // `count` channel-last images as channel-first floats in [0, 1] (SB3's VecTransposeImage and
@@ -89,13 +100,9 @@ torch::Tensor ImageTensor(const uint8_t* bytes, int64_t count, const run::Policy
 // (x - mean) / (std + 1e-8) with the unbiased std, in place; a single value is left as is.
 void NormalizeMinibatch(std::span<float> values) {
   if (values.size() < 2) return;
-  double sum = 0;
-  for (float v : values) sum += v;
-  const double mean = sum / static_cast<double>(values.size());
-  double squares = 0;
-  for (float v : values) squares += (v - mean) * (v - mean);
-  const double std = std::sqrt(squares / static_cast<double>(values.size() - 1));
-  for (float& v : values) v = static_cast<float>((v - mean) / (std + 1e-8));
+  const Spread spread = SpreadOf(std::span<const float>(values));
+  const double std = std::sqrt(spread.squares / static_cast<double>(values.size() - 1));
+  for (float& v : values) v = static_cast<float>((v - spread.mean) / (std + 1e-8));
 }
 
 }  // namespace
@@ -321,12 +328,13 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   stats.clip_fraction = sums.clip_fraction / minibatches;
   stats.approx_kl = sums.approx_kl / minibatches;
   // 1 - Var(returns - values) / Var(returns), NaN when the returns do not vary (as SB3).
-  std::vector<double> return_values(returns.begin(), returns.end());
   std::vector<double> residuals(n);
   for (int64_t i = 0; i < n; ++i) residuals[i] = static_cast<double>(returns[i]) - values[i];
-  const double return_variance = Variance(return_values);
+  const double return_variance = Variance(std::span<const float>(returns));
   stats.explained_variance =
-      return_variance == 0 ? std::nan("") : 1 - Variance(residuals) / return_variance;
+      return_variance == 0
+          ? std::nan("")
+          : 1 - Variance(std::span<const double>(residuals)) / return_variance;
   if (!spec.discrete()) {
     for (float log_std : LogStd()) stats.std += std::exp(static_cast<double>(log_std));
     stats.std /= spec.action_size;

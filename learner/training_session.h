@@ -64,7 +64,8 @@ class TrainingSession {
   // A session training `spec` on `Env`: the plan (run::PlanRun), the learner with its initial
   // weights from the seed. With `checkpoint`, it continues from there. INVALID_ARGUMENT as
   // PlanRun or for coverage the environment cannot count; FAILED_PRECONDITION for a checkpoint of
-  // another run (seed, network shapes, number of slots or coverage projections); DATA_LOSS for one whose learner state does not load.
+  // another run (seed, network shapes, number of slots or coverage projections); DATA_LOSS for
+  // one whose learner state does not load.
   template <typename Env>
   static absl::StatusOr<std::unique_ptr<TrainingSession>> Create(
       run::RunSpec spec, const run::Checkpoint* checkpoint = nullptr);

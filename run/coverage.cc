@@ -71,7 +71,7 @@ std::vector<ProjectionCounts> NewCoverage(const std::vector<env::StateProjection
   std::vector<ProjectionCounts> counts;
   for (const env::StateProjection& projection : projections) {
     const int64_t cells = env::NumCells(projection);
-    const size_t words = static_cast<size_t>((cells + 63) / 64);
+    const size_t words = BitsetWords(cells);
     counts.push_back({.projection = projection.name,
                       .cells = cells,
                       .seen = std::vector<uint64_t>(words),

@@ -14,6 +14,7 @@
 // CartPole's 12^4 in the first 50k steps and under 1 % after; over the run, the cells visited at
 // all. Plain data and pure functions; thread-compatible.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -34,7 +35,10 @@ struct CoverageWindow {
   int64_t new_cells = 0;  // of those, cells no earlier window visited
 };
 
-// The counts of one projection so far. Bitsets hold one bit per cell, cell i in word i / 64.
+// The words of a bitset of `cells` bits: cell i is bit i % 64 of word i / 64.
+inline size_t BitsetWords(int64_t cells) { return static_cast<size_t>((cells + 63) / 64); }
+
+// The counts of one projection so far, in bitsets of BitsetWords(cells) words.
 struct ProjectionCounts {
   std::string projection;
   int64_t cells = 0;

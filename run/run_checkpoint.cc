@@ -87,7 +87,7 @@ absl::StatusOr<ProjectionCounts> DecodeCoverage(const YAML::Node& node,
                           .cells = node["cells"].as<int64_t>(),
                           .window = node["window"].as<int64_t>(),
                           .window_new = node["window_new"].as<int64_t>()};
-  const size_t words = counts.cells > 0 ? static_cast<size_t>((counts.cells + 63) / 64) : 0;
+  const size_t words = counts.cells > 0 ? BitsetWords(counts.cells) : 0;
   std::optional<std::vector<uint64_t>> seen = DecodeBits(node["seen"].as<std::string>(), words);
   std::optional<std::vector<uint64_t>> window_seen =
       DecodeBits(node["window_seen"].as<std::string>(), words);
