@@ -6,6 +6,8 @@ find_package(prometheus-cpp CONFIG REQUIRED)
 # prometheus-cpp's CMake package has no version file; its pkg-config file has the version.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(PROMETHEUS_CPP_CORE REQUIRED prometheus-cpp-core)
+# cpp-httplib serves /metrics (services/metrics_endpoint.h says why not prometheus-cpp's pull).
+pkg_check_modules(CPP_HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)
 find_package(Torch CONFIG REQUIRED)
 find_package(Eigen3 CONFIG REQUIRED)
 find_package(box2d CONFIG REQUIRED)

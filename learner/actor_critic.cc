@@ -17,7 +17,7 @@ namespace {
 // SB3's init_weights: orthogonal weights with `gain`, zero biases, for Linear and Conv2d.
 void InitWeights(torch::nn::Module& module, double gain) {
   torch::NoGradGuard no_grad;
-  absl::MutexLock blas(&BlasMutex());  // orthogonal_ factorises with LAPACK
+  absl::MutexLockMaybe blas(BlasMutex());  // orthogonal_ factorises with LAPACK
   for (auto& child : module.modules(/*include_self=*/true)) {
     if (auto* linear = child->as<torch::nn::Linear>()) {
       torch::nn::init::orthogonal_(linear->weight, gain);
@@ -59,14 +59,14 @@ torch::Tensor& Gradient(torch::Tensor& parameter) {
   return parameter.mutable_grad();
 }
 
-// out = a b, and out = c + a b (c broadcast): libtorch's matrix products, holding BlasMutex.
+// out = a b, and out = c + a b (c broadcast): libtorch's matrix products, under BlasMutex.
 void Product(torch::Tensor& out, const torch::Tensor& a, const torch::Tensor& b) {
-  absl::MutexLock blas(&BlasMutex());
+  absl::MutexLockMaybe blas(BlasMutex());
   at::cpu::mm_out(out, a, b);
 }
 void ProductPlus(torch::Tensor& out, const torch::Tensor& c, const torch::Tensor& a,
                  const torch::Tensor& b) {
-  absl::MutexLock blas(&BlasMutex());
+  absl::MutexLockMaybe blas(BlasMutex());
   at::cpu::addmm_out(out, c, a, b);
 }
 
@@ -133,7 +133,7 @@ ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConf
         torch::nn::Flatten());
     const int64_t flattened = [&] {
       torch::NoGradGuard no_grad;
-      absl::MutexLock blas(&BlasMutex());
+      absl::MutexLockMaybe blas(BlasMutex());
       return cnn_
           ->forward(torch::zeros({1, spec.image_channels, spec.image_height, spec.image_width}))
           .size(1);
@@ -173,7 +173,7 @@ void ActorCriticImpl::Forward(const ObservationBatch& batch, bool record_image_g
   torch::NoGradGuard no_grad;
   if (spec_.has_image()) {
     {
-      absl::MutexLock blas(&BlasMutex());
+      absl::MutexLockMaybe blas(BlasMutex());
       torch::AutoGradMode graph(record_image_graph);
       pass.image_features = cnn_->forward(batch.images);
     }
@@ -201,7 +201,7 @@ void ActorCriticImpl::Backward(Pass& pass, const torch::Tensor& d_head,
   if (spec_.has_image()) {
     // NatureCNN's gradients through autograd, from the image features' part of d_features.
     for (torch::Tensor& parameter : cnn_->parameters()) Gradient(parameter).zero_();
-    absl::MutexLock blas(&BlasMutex());
+    absl::MutexLockMaybe blas(BlasMutex());
     pass.image_features.backward(pass.d_features.narrow(1, 0, pass.image_features.size(1)));
   }
 }

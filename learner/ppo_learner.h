@@ -11,8 +11,8 @@
 // Deterministic: initial weights come from StreamSeed(seed, "init") and minibatch orders from
 // StreamSeed(seed, "minibatch", {update, epoch}); with libtorch pinned to one thread
 // (learner/torch_runtime.h) the same seed and rollouts give the same weights bit for bit,
-// whatever other learners do at the same time on other threads (their matrix products take
-// turns: BlasMutex, learner/torch_runtime.h). Each learner is confined to one thread at a time.
+// whatever other learners do at the same time on other threads (on a BLAS that shares buffers
+// between callers, their matrix products take turns: BlasMutex, learner/torch_runtime.h). Each learner is confined to one thread at a time.
 
 #include <cstdint>
 #include <memory>

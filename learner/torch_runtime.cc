@@ -64,6 +64,21 @@ std::string RestartWith(const std::vector<KernelVariable>& unpinned) {
   return std::strerror(errno);
 }
 
+// OpenBLAS's build: "serial", "pthread" or "openmp"; empty if the BLAS is not OpenBLAS.
+std::string BlasBuild() {
+  using Parallel = int (*)();  // 0 serial, 1 pthread, 2 OpenMP
+  const auto parallel = reinterpret_cast<Parallel>(dlsym(RTLD_DEFAULT, "openblas_get_parallel"));
+  if (parallel == nullptr) return "";
+  switch (parallel()) {
+    case 0:
+      return "serial";
+    case 1:
+      return "pthread";
+    default:
+      return "openmp";
+  }
+}
+
 }  // namespace
 
 absl::Status PinTorchThreads(int threads) {
@@ -112,9 +127,10 @@ void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note) {
                     "); going on with the kernels the libraries chose: ", kNoMatch));
 }
 
-absl::Mutex& BlasMutex() {
+absl::Mutex* BlasMutex() {
   ABSL_CONST_INIT static absl::Mutex mutex(absl::kConstInit);
-  return mutex;
+  static const bool locks_itself = BlasBuild() == "pthread" || BlasBuild() == "openmp";
+  return locks_itself ? nullptr : &mutex;
 }
 
 std::string BlasCoreName() {
@@ -150,6 +166,11 @@ std::vector<LibraryVersion> LibraryVersions() {
   std::vector<LibraryVersion> versions = {{"libtorch", TORCH_VERSION}};
   if (const std::string core = BlasCoreName(); !core.empty()) {
     versions.push_back({"openblas core", core});
+    using Threads = int (*)();
+    const auto threads =
+        reinterpret_cast<Threads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    versions.push_back({"openblas build", absl::StrCat(BlasBuild(), ", ", threads(), " thread",
+                                                       threads() == 1 ? "" : "s")});
   }
   if (const std::string capability = AtenCpuCapability(); !capability.empty()) {
     versions.push_back({"aten cpu capability", capability});

@@ -40,8 +40,11 @@ struct KernelVariable {
 // OpenBLAS's "Haswell" core (whose blocking sizes are constants, not read from the cache
 // sizes) and ATen's "avx2" dispatch. Both are read once, when the library loads or first
 // dispatches, so only a process started with them set has them.
+// OpenBLAS's pthread build also splits a product between threads, which changes its sums, so it
+// is pinned to the caller's thread (DESIGN.md §4: one thread per run).
 inline constexpr KernelVariable kPinnedKernels[] = {
     {"OPENBLAS_CORETYPE", "Haswell"},
+    {"OPENBLAS_NUM_THREADS", "1"},
     {"ATEN_CPU_CAPABILITY", "avx2"},
 };
 
@@ -67,14 +70,15 @@ std::vector<KernelVariable> UnpinnedKernelVariables();
 // its libraries chose.
 void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note);
 
-// OpenBLAS's serial build, which DCS installs (single-threaded, as DESIGN.md §4 requires),
-// shares its work buffers between callers without a lock: two threads multiplying at once get
-// wrong products (measured: about 4% of 64 x 64 products from two threads with its Haswell
-// kernels). Its pthread build locks them, but with it prometheus-cpp's HTTP server fails to
-// start in dcs-learner. So every call into BLAS from learner code (matrix products,
-// convolutions, orthogonal initialisation) holds this lock, and runs updating at once on
-// several threads stay exact.
-absl::Mutex& BlasMutex();
+// The lock every call into BLAS from learner code (matrix products, convolutions, orthogonal
+// initialisation) holds, as `absl::MutexLockMaybe blas(BlasMutex());`, or null when the BLAS
+// needs none. OpenBLAS's serial build shares its work buffers between callers without a lock:
+// two threads multiplying at once get wrong products (measured: about 4% of 64 x 64 products
+// from two threads with its Haswell kernels). Its pthread build, which DCS installs, locks them
+// itself, and so do its OpenMP build and other BLAS libraries; with those this returns null and
+// runs updating at once on several threads multiply in parallel. Not OpenBLAS: locked, since
+// whether it shares buffers is unknown.
+absl::Mutex* BlasMutex();
 
 // The OpenBLAS core in use ("Haswell", "SkylakeX", ...), or empty if libtorch's BLAS is not
 // OpenBLAS.

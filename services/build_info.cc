@@ -3,6 +3,7 @@
 
 #include <google/protobuf/stubs/common.h>
 #include <grpcpp/grpcpp.h>
+#include <httplib.h>
 
 #include "absl/base/config.h"
 #include "absl/strings/str_cat.h"
@@ -26,6 +27,7 @@ std::vector<LibraryVersion> ServiceLibraryVersions() {
       // Neither has a version macro; CMake passes the versions it found.
       {"prometheus-cpp", DCS_PROMETHEUS_CPP_VERSION},
       {"yaml-cpp", DCS_YAML_CPP_VERSION},
+      {"cpp-httplib", CPPHTTPLIB_VERSION},
   };
 }
 

@@ -7,20 +7,29 @@
 //   dcs_library_info{name, version} 1    (one per linked library; see common/library_version.h)
 //   process_* (services/process_collector.h)
 // and whatever the process registers in registry(). Thread-safe: prometheus-cpp metrics may be
-// updated from any thread. Stops serving when destroyed.
+// updated, and collectables added, from any thread while it serves. Stops serving when
+// destroyed.
+//
+// prometheus-cpp collects and serializes; cpp-httplib serves, on one thread of its own.
+// (prometheus-cpp's own Exposer serves through civetweb, whose worker threads Debian builds with
+// 100 KiB stacks: too small for the static TLS of a process that links libtorch and the
+// pthread OpenBLAS, so pthread_create fails with EINVAL and the Exposer never starts.)
 
 #include <memory>
 #include <string>
-#include "absl/strings/string_view.h"
+#include <thread>
 #include <vector>
 
 #include <prometheus/registry.h>
 
+#include "absl/base/thread_annotations.h"
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "absl/synchronization/mutex.h"
 #include "services/build_info.h"
 
-namespace prometheus {
-class Exposer;
+namespace httplib {
+class Server;
 }
 
 namespace dcs::services {
@@ -44,9 +53,14 @@ class MetricsEndpoint {
  private:
   MetricsEndpoint() = default;
 
+  // The exposition text of every collectable, as of now.
+  std::string Scrape() const;
+
   std::shared_ptr<prometheus::Registry> registry_;
-  std::vector<std::shared_ptr<prometheus::Collectable>> collectables_;
-  std::unique_ptr<prometheus::Exposer> exposer_;
+  mutable absl::Mutex mutex_;
+  std::vector<std::shared_ptr<prometheus::Collectable>> collectables_ ABSL_GUARDED_BY(mutex_);
+  std::unique_ptr<httplib::Server> server_;
+  std::thread serving_;
   int port_ = 0;
 };
 

@@ -237,13 +237,17 @@ TEST(DcsCliTest, VersionRestartsWithThePinnedNumericKernels) {
   }
   // dcs inherits them.
   setenv("OPENBLAS_CORETYPE", "Prescott", /*overwrite=*/1);
+  setenv("OPENBLAS_NUM_THREADS", "2", /*overwrite=*/1);
   setenv("ATEN_CPU_CAPABILITY", "default", /*overwrite=*/1);
   const RunResult version = Dcs({"version"});
   unsetenv("OPENBLAS_CORETYPE");
+  unsetenv("OPENBLAS_NUM_THREADS");
   unsetenv("ATEN_CPU_CAPABILITY");
   ASSERT_EQ(version.exit_code, 0) << version.output;
   EXPECT_THAT(version.output, Not(HasSubstr("restarting")));  // silently
   EXPECT_THAT(version.output, ContainsRegex("openblas core +Haswell"));
+  // scripts/bootstrap installs the pthread build, which locks its buffers (BlasMutex).
+  EXPECT_THAT(version.output, ContainsRegex("openblas build +pthread, 1 thread\\b"));
   EXPECT_THAT(version.output, ContainsRegex("aten cpu capability +avx2"));
   EXPECT_THAT(version.output, ContainsRegex("onednn convolutions +off"));
 }

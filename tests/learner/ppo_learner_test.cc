@@ -95,7 +95,8 @@ TEST_F(PpoLearnerTest, SameSeedAndRolloutsGiveTheSameWeightsBitForBit) {
 
 TEST_F(PpoLearnerTest, LearnersUpdatingAtOnceOnTwoThreadsGetTheWeightsTheyGetAlone) {
   // As a learner hosting several runs updates them, on the pinned kernels (where the serial
-  // OpenBLAS's products race between threads unless they hold BlasMutex).
+  // OpenBLAS's products race between threads unless they hold BlasMutex, and the pthread
+  // build's must be locked by OpenBLAS itself).
   constexpr int kUpdates = 30;  // enough for a race to show nearly every time
   const auto train = [](uint64_t seed) {
     std::unique_ptr<PpoLearner> learner = NewLearner(seed);

@@ -78,22 +78,28 @@ TEST(UnpinnedKernelVariablesTest, NamesEachVariableThatIsUnsetOrDiffers) {
   const auto name = [](const char* n) { return Field(&KernelVariable::name, StrEq(n)); };
   {
     ScopedVariable blas("OPENBLAS_CORETYPE", std::nullopt);
+    ScopedVariable threads("OPENBLAS_NUM_THREADS", std::nullopt);
     ScopedVariable aten("ATEN_CPU_CAPABILITY", std::nullopt);
     EXPECT_THAT(UnpinnedKernelVariables(),
-                ElementsAre(name("OPENBLAS_CORETYPE"), name("ATEN_CPU_CAPABILITY")));
+                ElementsAre(name("OPENBLAS_CORETYPE"), name("OPENBLAS_NUM_THREADS"),
+                            name("ATEN_CPU_CAPABILITY")));
   }
   {
     ScopedVariable blas("OPENBLAS_CORETYPE", "SkylakeX");
+    ScopedVariable threads("OPENBLAS_NUM_THREADS", "1");
     ScopedVariable aten("ATEN_CPU_CAPABILITY", "avx2");
     EXPECT_THAT(UnpinnedKernelVariables(), ElementsAre(name("OPENBLAS_CORETYPE")));
   }
   {
     ScopedVariable blas("OPENBLAS_CORETYPE", "Haswell");
+    ScopedVariable threads("OPENBLAS_NUM_THREADS", "2");
     ScopedVariable aten("ATEN_CPU_CAPABILITY", "avx512");
-    EXPECT_THAT(UnpinnedKernelVariables(), ElementsAre(name("ATEN_CPU_CAPABILITY")));
+    EXPECT_THAT(UnpinnedKernelVariables(),
+                ElementsAre(name("OPENBLAS_NUM_THREADS"), name("ATEN_CPU_CAPABILITY")));
   }
   {
     ScopedVariable blas("OPENBLAS_CORETYPE", "Haswell");
+    ScopedVariable threads("OPENBLAS_NUM_THREADS", "1");
     ScopedVariable aten("ATEN_CPU_CAPABILITY", "avx2");
     EXPECT_THAT(UnpinnedKernelVariables(), IsEmpty());
   }
@@ -104,6 +110,7 @@ TEST(UnpinnedKernelVariablesTest, NamesEachVariableThatIsUnsetOrDiffers) {
 // checked through `dcs version`: tests/integration/dcs_cli_test.cc.)
 TEST(PinNumericKernelsTest, LeavesAPinnedProcessRunningAndTurnsOneDnnOff) {
   ScopedVariable blas("OPENBLAS_CORETYPE", "Haswell");
+  ScopedVariable threads("OPENBLAS_NUM_THREADS", "1");
   ScopedVariable aten("ATEN_CPU_CAPABILITY", "avx2");
   std::vector<std::string> notes;
   PinNumericKernels([&notes](absl::string_view note) { notes.emplace_back(note); });

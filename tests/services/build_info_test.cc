@@ -25,7 +25,8 @@ TEST(DcsVersionTest, IsReleasePlusCommit) {
 TEST(ServiceLibraryVersionsTest, ListsThePlumbingLibrariesWithVersions) {
   const std::vector<LibraryVersion> libraries = ServiceLibraryVersions();
   EXPECT_EQ(Names(libraries),
-            (std::vector<std::string>{"grpc", "protobuf", "abseil", "prometheus-cpp", "yaml-cpp"}));
+            (std::vector<std::string>{"grpc", "protobuf", "abseil", "prometheus-cpp", "yaml-cpp",
+                                      "cpp-httplib"}));
   for (const LibraryVersion& library : libraries) {
     // Every version is dotted numbers (abseil's is its LTS date and patch level).
     EXPECT_THAT(library.version, MatchesRegex("[0-9]+(\\.[0-9]+)+.*")) << library.name;
@@ -37,12 +38,12 @@ TEST(ProcessBuildInfoTest, PlumbingLibrariesFirstThenOwn) {
   EXPECT_EQ(build.version, DcsVersion());
   EXPECT_EQ(Names(build.libraries),
             (std::vector<std::string>{"grpc", "protobuf", "abseil", "prometheus-cpp", "yaml-cpp",
-                                      "libtorch", "box2d"}));
+                                      "cpp-httplib", "libtorch", "box2d"}));
   for (const LibraryVersion& library : build.libraries) {
     EXPECT_FALSE(library.version.empty()) << library.name;
   }
-  EXPECT_EQ(build.libraries[5].version, "1.13.1");
-  EXPECT_EQ(build.libraries[6].version, "2.4.1");
+  EXPECT_EQ(build.libraries[6].version, "1.13.1");
+  EXPECT_EQ(build.libraries[7].version, "2.4.1");
 }
 
 TEST(ProcessBuildInfoTest, NoOwnLibraries) {
