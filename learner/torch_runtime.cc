@@ -167,8 +167,7 @@ std::vector<LibraryVersion> LibraryVersions() {
   if (const std::string core = BlasCoreName(); !core.empty()) {
     versions.push_back({"openblas core", core});
     using Threads = int (*)();
-    const auto threads =
-        reinterpret_cast<Threads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    const auto threads = reinterpret_cast<Threads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
     versions.push_back({"openblas build", absl::StrCat(BlasBuild(), ", ", threads(), " thread",
                                                        threads() == 1 ? "" : "s")});
   }

@@ -106,10 +106,9 @@ absl::StatusOr<std::unique_ptr<MetricsEndpoint>> MetricsEndpoint::Start(
   server->Get("/metrics", [self](const httplib::Request&, httplib::Response& response) {
     response.set_content(self->Scrape(), "text/plain; version=0.0.4; charset=utf-8");
   });
-  endpoint->port_ = address->port == 0 ? server->bind_to_any_port(address->host)
-                                        : (server->bind_to_port(address->host, address->port)
-                                               ? address->port
-                                               : -1);
+  endpoint->port_ = address->port == 0
+                        ? server->bind_to_any_port(address->host)
+                        : (server->bind_to_port(address->host, address->port) ? address->port : -1);
   if (endpoint->port_ < 0) {
     return absl::UnavailableError(absl::StrCat("cannot serve metrics on ", listen_address, ": ",
                                                BindFailureReason(*address)));

@@ -1,0 +1,97 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COORDINATOR_PARZEN_ESTIMATOR_H_
+#define DCS_COORDINATOR_PARZEN_ESTIMATOR_H_
+
+// TPE's Parzen estimator (shared/spec/tpe.md §5–6, Optuna 4.9): a mixture of
+// product kernels, one per observation plus a prior kernel, over some
+// parameters of a search space (one in independent sampling, a group in
+// multivariate sampling).
+//
+// Each numerical parameter has a working space: its value, or ln(value) for a
+// log range, with bounds widened by half a step for grids and integers (§5.2).
+// A kernel there is a normal truncated to the bounds: continuous, or discrete
+// (the mass of the value's grid cell) for grids and integers. A categorical
+// parameter's kernel is a row of choice probabilities (§5.4). Bandwidths follow
+// the univariate neighbour rule, or the Scott-like rule of Optuna's
+// multivariate TPE, then the magic clip (§5.3).
+//
+// An estimator is immutable once fitted; thread-compatible.
+
+#include <vector>
+
+#include "common/random.h"
+#include "run/search_space.h"
+
+namespace dcs::coordinator {
+
+struct ParzenOptions {
+  double prior_weight = 1.0;  // the prior kernel's weight, and the categorical smoothing
+  bool magic_clip = true;     // σ at least range / min(100, N + 2)
+  bool endpoints = false;     // the outermost observations' σ may reach to the bounds
+  bool multivariate = false;  // Scott-like σ = 0.2·N^(-1/(D+4))·range instead of neighbours
+};
+
+// Optuna's default_weights(n): all ones below 25; from 25 on, the oldest n - 25
+// ramp linearly from 1/n to 1 and the newest 25 are 1.
+std::vector<double> DefaultWeights(int n);
+
+// One parameter's kernels.
+struct ParzenDimension {
+  enum class Kind { kContinuous, kDiscrete, kCategorical };
+  Kind kind = Kind::kContinuous;
+  // Numerical: the working-space bounds, and how values map to it.
+  double low = 0;
+  double high = 0;
+  bool log = false;
+  double step = 0;       // a grid's or linear integer range's step, in the value's
+                         // scale; else 0
+  double value_low = 0;  // the distribution's own bounds, for snapping draws
+  double value_high = 0;
+  // Per kernel (the prior last): centre and bandwidth in working space, and ln
+  // of the kernel's mass inside [low, high].
+  std::vector<double> mu;
+  std::vector<double> sigma;
+  std::vector<double> log_mass;
+  // Categorical: per kernel, the probability of each choice.
+  std::vector<std::vector<double>> probabilities;
+};
+
+class ParzenEstimator {
+ public:
+  // Fits the mixture to `observations`, rows in trial order (their weights
+  // depend on it), each with one value per parameter of `parameters` in
+  // internal representation. REQUIRES: the parameters are valid
+  // (run::ValidateSearchSpace); each row has parameters.size() values, each
+  // contained in its distribution.
+  ParzenEstimator(const std::vector<const run::SearchParameter*>& parameters,
+                  const std::vector<std::vector<double>>& observations,
+                  const ParzenOptions& options);
+
+  // A mixture given kernel by kernel: `weights` (normalised, the prior last) and dimensions laid
+  // out and with kernels as dimensions() shows them (log_mass is recomputed).
+  static ParzenEstimator FromKernels(std::vector<double> weights,
+                                     std::vector<ParzenDimension> dimensions);
+
+  // `count` draws, one row per draw, internal representation. Draws a component
+  // per row from the weights, then each dimension from that component's kernel
+  // (truncated-normal draws by inverse CDF, then snapped to the grid).
+  std::vector<std::vector<double>> Sample(Random& random, int count) const;
+
+  // ln of the mixture's density (mass, for discrete and categorical dimensions)
+  // at each row.
+  std::vector<double> LogPdf(const std::vector<std::vector<double>>& points) const;
+
+  // The normalised weights, the prior last.
+  const std::vector<double>& weights() const { return weights_; }
+  const std::vector<ParzenDimension>& dimensions() const { return dimensions_; }
+
+ private:
+  ParzenEstimator() = default;
+
+  std::vector<double> weights_;
+  std::vector<ParzenDimension> dimensions_;
+};
+
+}  // namespace dcs::coordinator
+
+#endif  // DCS_COORDINATOR_PARZEN_ESTIMATOR_H_

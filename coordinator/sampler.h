@@ -1,0 +1,66 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COORDINATOR_SAMPLER_H_
+#define DCS_COORDINATOR_SAMPLER_H_
+
+// A study's samplers (shared/spec/tpe.md): given the search space and the
+// study's trials so far, the values of a new trial's parameters. Samplers keep
+// no state between trials: a trial's values are a function of the sampler's
+// seed, the trial's number and the other trials, drawn from the named stream
+// StreamSeed(seed, "trial", {number}) (DESIGN.md §4). So a study whose
+// coordinator restarts resumes its sampler exactly, and trials may be asked in
+// any order. Thread-safe (const).
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "common/enum_names.h"
+#include "common/random.h"
+#include "run/search_space.h"
+
+namespace dcs::coordinator {
+
+enum class TrialState { kRunning, kComplete, kPruned, kFailed };
+inline constexpr EnumName<TrialState> kTrialStateNames[] = {{TrialState::kRunning, "running"},
+                                                            {TrialState::kComplete, "complete"},
+                                                            {TrialState::kPruned, "pruned"},
+                                                            {TrialState::kFailed, "failed"}};
+static_assert(InEnumOrder(kTrialStateNames));
+
+enum class Direction { kMinimize, kMaximize };
+inline constexpr EnumName<Direction> kDirectionNames[] = {{Direction::kMinimize, "minimize"},
+                                                          {Direction::kMaximize, "maximize"}};
+static_assert(InEnumOrder(kDirectionNames));
+
+// A trial as a sampler sees it.
+struct TrialRecord {
+  int64_t number = 0;
+  TrialState state = TrialState::kRunning;
+  double value = 0;                    // the objective, for a complete trial (may be ±inf)
+  run::ParameterValues values;         // its parameters so far
+  std::map<int64_t, double> reported;  // step -> intermediate value (ranks pruned trials)
+};
+
+class Sampler {
+ public:
+  virtual ~Sampler() = default;
+  // The values of trial `number`'s active parameters, in the space's order,
+  // given the study's other `trials` (any order; the current trial, if among
+  // them, is ignored). REQUIRES: `space` is valid (run::ValidateSearchSpace).
+  virtual run::ParameterValues Sample(const run::SearchSpace& space,
+                                      const std::vector<TrialRecord>& trials,
+                                      int64_t number) const = 0;
+};
+
+// Uniform sampling (§10): each active parameter uniform over its working space
+// (log ranges log-uniform, grids and integers uniform over their cells), a
+// categorical uniform over its choices.
+std::unique_ptr<Sampler> MakeRandomSampler(uint64_t seed);
+
+// One parameter drawn as the random sampler draws it.
+double RandomValue(const run::Distribution& distribution, Random& random);
+
+}  // namespace dcs::coordinator
+
+#endif  // DCS_COORDINATOR_SAMPLER_H_

@@ -1,0 +1,230 @@
+// Copyright 2026 The DCS Authors.
+#include "coordinator/tpe_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+#include <utility>
+
+namespace dcs::coordinator {
+namespace {
+
+bool IsFinished(const TrialRecord& trial) {
+  return trial.state == TrialState::kComplete || trial.state == TrialState::kPruned;
+}
+
+bool Has(const TrialRecord& trial, const std::vector<const run::SearchParameter*>& parameters) {
+  return std::all_of(parameters.begin(), parameters.end(),
+                     [&](const run::SearchParameter* p) { return trial.values.contains(p->name); });
+}
+
+// The rows of `parameters`' values of the trials that have them all, in trial
+// order.
+std::vector<std::vector<double>> Observations(
+    const std::vector<const TrialRecord*>& trials,
+    const std::vector<const run::SearchParameter*>& parameters) {
+  std::vector<std::vector<double>> rows;
+  for (const TrialRecord* trial : trials) {
+    if (!Has(*trial, parameters)) continue;
+    std::vector<double>& row = rows.emplace_back();
+    for (const run::SearchParameter* p : parameters) row.push_back(trial->values.at(p->name));
+  }
+  return rows;
+}
+
+const run::SearchParameter& Find(const run::SearchSpace& space, const std::string& name) {
+  return *std::find_if(space.parameters.begin(), space.parameters.end(),
+                       [&](const run::SearchParameter& p) { return p.name == name; });
+}
+
+class TpeSampler : public Sampler {
+ public:
+  TpeSampler(uint64_t seed, Direction direction, const TpeOptions& options)
+      : seed_(seed), direction_(direction), options_(options) {}
+
+  run::ParameterValues Sample(const run::SearchSpace& space, const std::vector<TrialRecord>& trials,
+                              int64_t number) const override {
+    Random random(StreamSeed(seed_, "trial", {static_cast<uint64_t>(number)}));
+    std::vector<const TrialRecord*> history;
+    std::vector<const TrialRecord*> finished;
+    for (const TrialRecord& trial : trials) {
+      if (trial.number == number) continue;
+      if (IsFinished(trial)) finished.push_back(&trial);
+      if (IsFinished(trial) || (options_.constant_liar && trial.state == TrialState::kRunning)) {
+        history.push_back(&trial);
+      }
+    }
+    const auto by_number = [](const TrialRecord* a, const TrialRecord* b) {
+      return a->number < b->number;
+    };
+    std::sort(history.begin(), history.end(), by_number);
+    std::sort(finished.begin(), finished.end(), by_number);
+
+    run::ParameterValues values;
+    if (static_cast<int>(finished.size()) < options_.startup_trials) {
+      for (const run::SearchParameter& parameter : space.parameters) {
+        if (run::IsActive(parameter, space, values)) {
+          values[parameter.name] = RandomValue(parameter.distribution, random);
+        }
+      }
+      return values;
+    }
+    const Split split = SplitTrials(history, Gamma(static_cast<int>(finished.size())), direction_);
+
+    run::ParameterValues joint;
+    if (options_.parzen.multivariate) {
+      for (const std::vector<std::string>& names : JointGroups(space, finished)) {
+        std::vector<const run::SearchParameter*> group;
+        for (const std::string& name : names) group.push_back(&Find(space, name));
+        const std::vector<double> drawn = SampleJointly(group, split, random);
+        for (size_t i = 0; i < group.size(); ++i) joint[group[i]->name] = drawn[i];
+      }
+    }
+    for (const run::SearchParameter& parameter : space.parameters) {
+      if (!run::IsActive(parameter, space, values)) continue;
+      const auto drawn = joint.find(parameter.name);
+      values[parameter.name] = drawn != joint.end() ? drawn->second
+                               : run::IsSingleValued(parameter.distribution)
+                                   ? RandomValue(parameter.distribution, random)
+                                   : SampleJointly({&parameter}, split, random)[0];
+    }
+    return values;
+  }
+
+ private:
+  // The parameters sampled jointly: those every finished trial has, or the
+  // groups of those that occur together; single-valued ones left out.
+  std::vector<std::vector<std::string>> JointGroups(
+      const run::SearchSpace& space, const std::vector<const TrialRecord*>& finished) const {
+    std::vector<std::vector<std::string>> groups;
+    if (options_.group) {
+      groups = GroupParameters(space, finished);
+    } else {
+      std::vector<std::string>& everywhere = groups.emplace_back();
+      for (const run::SearchParameter& p : space.parameters) {
+        if (std::all_of(finished.begin(), finished.end(),
+                        [&](const TrialRecord* t) { return t->values.contains(p.name); })) {
+          everywhere.push_back(p.name);
+        }
+      }
+    }
+    for (std::vector<std::string>& group : groups) {
+      std::erase_if(group, [&](const std::string& name) {
+        return run::IsSingleValued(Find(space, name).distribution);
+      });
+    }
+    std::erase_if(groups, [](const std::vector<std::string>& group) { return group.empty(); });
+    return groups;
+  }
+
+  // Values for `parameters` by TPE: the first candidate from l(x) that
+  // maximises l/g.
+  std::vector<double> SampleJointly(const std::vector<const run::SearchParameter*>& parameters,
+                                    const Split& split, Random& random) const {
+    const ParzenEstimator below(parameters, Observations(split.below, parameters), options_.parzen);
+    const ParzenEstimator above(parameters, Observations(split.above, parameters), options_.parzen);
+    std::vector<std::vector<double>> candidates = below.Sample(random, options_.ei_candidates);
+    const std::vector<double> log_l = below.LogPdf(candidates);
+    const std::vector<double> log_g = above.LogPdf(candidates);
+    size_t best = 0;
+    for (size_t i = 1; i < candidates.size(); ++i) {
+      if (log_l[i] - log_g[i] > log_l[best] - log_g[best]) best = i;
+    }
+    return std::move(candidates[best]);
+  }
+
+  uint64_t seed_;
+  Direction direction_;
+  TpeOptions options_;
+};
+
+}  // namespace
+
+int Gamma(int n) { return std::min(static_cast<int>(std::ceil(0.1 * n)), 25); }
+
+Split SplitTrials(const std::vector<const TrialRecord*>& history, int below, Direction direction) {
+  const double sign = direction == Direction::kMinimize ? 1.0 : -1.0;
+  std::vector<const TrialRecord*> complete;
+  std::vector<const TrialRecord*> pruned;
+  Split split;
+  for (const TrialRecord* trial : history) {
+    if (trial->state == TrialState::kComplete) complete.push_back(trial);
+    if (trial->state == TrialState::kPruned) pruned.push_back(trial);
+    if (trial->state == TrialState::kRunning) split.above.push_back(trial);
+  }
+  std::stable_sort(complete.begin(), complete.end(),
+                   [&](const TrialRecord* a, const TrialRecord* b) {
+                     return sign * a->value < sign * b->value;
+                   });
+  // Deeper-pruned first, then better last value; none reported ranks last.
+  const auto key = [&](const TrialRecord* t) {
+    if (t->reported.empty()) return std::make_pair(int64_t{1}, 0.0);
+    const auto& [step, value] = *t->reported.rbegin();
+    return std::make_pair(
+        -step, std::isnan(value) ? std::numeric_limits<double>::infinity() : sign * value);
+  };
+  std::stable_sort(pruned.begin(), pruned.end(),
+                   [&](const TrialRecord* a, const TrialRecord* b) { return key(a) < key(b); });
+  size_t places = static_cast<size_t>(std::max(below, 0));
+  for (const std::vector<const TrialRecord*>* ranked : {&complete, &pruned}) {
+    for (const TrialRecord* trial : *ranked) {
+      if (places > 0) {
+        split.below.push_back(trial);
+        --places;
+      } else {
+        split.above.push_back(trial);
+      }
+    }
+  }
+  const auto by_number = [](const TrialRecord* a, const TrialRecord* b) {
+    return a->number < b->number;
+  };
+  std::sort(split.below.begin(), split.below.end(), by_number);
+  std::sort(split.above.begin(), split.above.end(), by_number);
+  return split;
+}
+
+std::vector<std::vector<std::string>> GroupParameters(
+    const run::SearchSpace& space, const std::vector<const TrialRecord*>& finished) {
+  std::vector<std::set<std::string>> groups;
+  for (const TrialRecord* trial : finished) {
+    std::set<std::string> keys;
+    for (const auto& [name, value] : trial->values) keys.insert(name);
+    std::vector<std::set<std::string>> next;
+    for (const std::set<std::string>& group : groups) {
+      std::set<std::string> inside;
+      std::set<std::string> outside;
+      for (const std::string& name : group) (keys.contains(name) ? inside : outside).insert(name);
+      for (const std::string& name : inside) keys.erase(name);
+      if (!inside.empty()) next.push_back(std::move(inside));
+      if (!outside.empty()) next.push_back(std::move(outside));
+    }
+    if (!keys.empty()) next.push_back(std::move(keys));
+    groups = std::move(next);
+  }
+  std::vector<std::vector<std::string>> ordered;
+  for (const std::set<std::string>& group : groups) {
+    std::vector<std::string>& names = ordered.emplace_back();
+    for (const run::SearchParameter& p : space.parameters) {
+      if (group.contains(p.name)) names.push_back(p.name);
+    }
+  }
+  const auto position = [&](const std::string& name) {
+    return std::find_if(space.parameters.begin(), space.parameters.end(),
+                        [&](const run::SearchParameter& p) { return p.name == name; }) -
+           space.parameters.begin();
+  };
+  std::erase_if(ordered, [](const std::vector<std::string>& names) { return names.empty(); });
+  std::sort(ordered.begin(), ordered.end(), [&](const auto& a, const auto& b) {
+    return position(a.front()) < position(b.front());
+  });
+  return ordered;
+}
+
+std::unique_ptr<Sampler> MakeTpeSampler(uint64_t seed, Direction direction,
+                                        const TpeOptions& options) {
+  return std::make_unique<TpeSampler>(seed, direction, options);
+}
+
+}  // namespace dcs::coordinator
