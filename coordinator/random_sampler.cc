@@ -12,7 +12,7 @@ class RandomSampler : public Sampler {
  public:
   explicit RandomSampler(uint64_t seed) : seed_(seed) {}
 
-  run::ParameterValues Sample(const run::SearchSpace& space, const std::vector<TrialRecord>&,
+  run::ParameterValues Sample(const run::SearchSpace& space, const std::vector<StudyTrial>&,
                               int64_t number) const override {
     Random random(StreamSeed(seed_, "trial", {static_cast<uint64_t>(number)}));
     run::ParameterValues values;

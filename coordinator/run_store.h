@@ -37,7 +37,10 @@
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
 #include "absl/types/span.h"
+#include "common/enum_names.h"
 #include "coordinator/run_state.h"
+#include "coordinator/sampler.h"
+#include "coordinator/tpe_sampler.h"
 
 namespace SQLite {
 class Database;
@@ -202,6 +205,32 @@ struct SweepRecord {
   absl::Time updated_at;
 };
 
+// The samplers a study may use (coordinator/sampler.h).
+enum class SamplerKind { kTpe, kRandom };
+inline constexpr EnumName<SamplerKind> kSamplerKindNames[] = {{SamplerKind::kTpe, "tpe"},
+                                                              {SamplerKind::kRandom, "random"}};
+static_assert(InEnumOrder(kSamplerKindNames));
+
+// A study as created: a search space, an objective's direction and a sampler
+// (shared/spec/tpe.md).
+struct StudySubmission {
+  std::string request_id;  // client-chosen; a repeated id returns the study it created
+  std::string name;
+  std::string space;  // the search space's YAML (run/search_space_yaml.h)
+  SamplerKind sampler = SamplerKind::kTpe;
+  uint64_t seed = 0;
+  Direction direction = Direction::kMinimize;
+  TpeOptions tpe;  // for SamplerKind::kTpe (its ParzenOptions beyond `multivariate` are fixed)
+};
+
+struct StudyRecord {
+  std::string id;  // "study-<n>"
+  StudySubmission submission;
+  std::vector<std::pair<TrialState, int64_t>> trials_by_state;  // every state, zeros included
+  std::optional<StudyTrial> best;  // the best complete trial (the first of equals)
+  absl::Time created_at;
+};
+
 struct RunStoreOptions {
   absl::Duration lease_duration = absl::Seconds(10);
 };
@@ -249,6 +278,30 @@ class RunStore {
   // learner was lost does) and returns how many. NOT_FOUND; FAILED_PRECONDITION if none failed.
   absl::StatusOr<std::pair<SweepRecord, int>> RetrySweep(absl::string_view sweep_id,
                                                          absl::Time now);
+
+  // Studies (coordinator/study_store.cc): ask-and-tell, as Optuna's. Creates a study, or returns
+  // the one `submission.request_id` already created. INVALID_ARGUMENT for an empty request id,
+  // a space that does not parse or validate (naming the problem), or TPE options out of range.
+  absl::StatusOr<StudyRecord> CreateStudy(const StudySubmission& submission, absl::Time now);
+  // NOT_FOUND for an unknown id.
+  absl::StatusOr<StudyRecord> GetStudy(absl::string_view study_id);
+  // Every study, oldest first.
+  absl::StatusOr<std::vector<StudyRecord>> ListStudies();
+  // A new running trial, numbered after the study's others, with the values its sampler gives
+  // given every trial so far. NOT_FOUND for an unknown study.
+  absl::StatusOr<StudyTrial> AskTrial(absl::string_view study_id, absl::Time now);
+  // Finishes a running trial: complete with `value` (a NaN value fails it, as Optuna's tell
+  // does; ±inf is a value), pruned (its value, if any, is its last report), or failed.
+  // NOT_FOUND for an unknown study or trial; FAILED_PRECONDITION if the trial has finished
+  // (naming its state); INVALID_ARGUMENT for `state` running.
+  absl::StatusOr<StudyTrial> TellTrial(absl::string_view study_id, int64_t number,
+                                       TrialState state, double value, absl::Time now);
+  // Records a running trial's intermediate value at `step` (a repeated step keeps the first,
+  // as Optuna's report). NOT_FOUND; FAILED_PRECONDITION if the trial has finished.
+  absl::Status ReportTrial(absl::string_view study_id, int64_t number, int64_t step,
+                           double value);
+  // The study's trials, by number. NOT_FOUND for an unknown study.
+  absl::StatusOr<std::vector<StudyTrial>> ListStudyTrials(absl::string_view study_id);
 
   // A queued run a learner with `numerics` may take, leased to `holder` (listening at
   // `address`) until now + lease_duration; the run becomes running. Fair across sweeps: the

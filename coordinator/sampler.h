@@ -34,7 +34,7 @@ inline constexpr EnumName<Direction> kDirectionNames[] = {{Direction::kMinimize,
 static_assert(InEnumOrder(kDirectionNames));
 
 // A trial as a sampler sees it.
-struct TrialRecord {
+struct StudyTrial {
   int64_t number = 0;
   TrialState state = TrialState::kRunning;
   double value = 0;                    // the objective, for a complete trial (may be ±inf)
@@ -49,7 +49,7 @@ class Sampler {
   // given the study's other `trials` (any order; the current trial, if among
   // them, is ignored). REQUIRES: `space` is valid (run::ValidateSearchSpace).
   virtual run::ParameterValues Sample(const run::SearchSpace& space,
-                                      const std::vector<TrialRecord>& trials,
+                                      const std::vector<StudyTrial>& trials,
                                       int64_t number) const = 0;
 };
 

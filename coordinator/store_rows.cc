@@ -14,8 +14,22 @@
 namespace dcs::coordinator::store_rows {
 namespace {
 
-constexpr char kRunIdPrefix[] = "run-";
-constexpr char kSweepIdPrefix[] = "sweep-";
+// "<kind>-<n>" for row n of the kind's table ("run-3"), and back: NOT_FOUND naming the id for
+// anything that is not one.
+std::string RowId(absl::string_view kind, int64_t number) {
+  return absl::StrCat(kind, "-", number);
+}
+
+absl::StatusOr<int64_t> RowNumber(absl::string_view id, absl::string_view kind) {
+  int64_t number = 0;
+  absl::string_view digits = id;
+  if (!absl::ConsumePrefix(&digits, kind) || !absl::ConsumePrefix(&digits, "-") ||
+      !absl::SimpleAtoi(digits, &number)) {
+    return absl::NotFoundError(
+        absl::StrCat("no ", kind, " '", id, "' (", kind, " ids look like ", kind, "-1)"));
+  }
+  return number;
+}
 
 constexpr char kRunColumns[] =
     "number, request_id, config, seed, env, n_envs, total_timesteps, state, error, "
@@ -54,27 +68,15 @@ RunRecord ReadRun(SQLite::Statement& row) {
 
 }  // namespace
 
-std::string RunId(int64_t number) { return absl::StrCat(kRunIdPrefix, number); }
-
-absl::StatusOr<int64_t> RunNumber(absl::string_view run_id) {
-  int64_t number = 0;
-  absl::string_view digits = run_id;
-  if (!absl::ConsumePrefix(&digits, kRunIdPrefix) || !absl::SimpleAtoi(digits, &number)) {
-    return absl::NotFoundError(absl::StrCat("no run '", run_id, "' (run ids look like run-1)"));
-  }
-  return number;
-}
-
-std::string SweepId(int64_t number) { return absl::StrCat(kSweepIdPrefix, number); }
-
+std::string RunId(int64_t number) { return RowId("run", number); }
+absl::StatusOr<int64_t> RunNumber(absl::string_view run_id) { return RowNumber(run_id, "run"); }
+std::string SweepId(int64_t number) { return RowId("sweep", number); }
 absl::StatusOr<int64_t> SweepNumber(absl::string_view sweep_id) {
-  int64_t number = 0;
-  absl::string_view digits = sweep_id;
-  if (!absl::ConsumePrefix(&digits, kSweepIdPrefix) || !absl::SimpleAtoi(digits, &number)) {
-    return absl::NotFoundError(
-        absl::StrCat("no sweep '", sweep_id, "' (sweep ids look like sweep-1)"));
-  }
-  return number;
+  return RowNumber(sweep_id, "sweep");
+}
+std::string StudyId(int64_t number) { return RowId("study", number); }
+absl::StatusOr<int64_t> StudyNumber(absl::string_view study_id) {
+  return RowNumber(study_id, "study");
 }
 
 absl::StatusOr<RunRecord> FindRun(SQLite::Database& db, absl::string_view run_id) {

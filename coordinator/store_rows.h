@@ -34,6 +34,9 @@ absl::StatusOr<int64_t> RunNumber(absl::string_view run_id);
 // "sweep-<n>" for row n, and back; NOT_FOUND for anything that is not a sweep id.
 std::string SweepId(int64_t number);
 absl::StatusOr<int64_t> SweepNumber(absl::string_view sweep_id);
+// "study-<n>" for row n, and back; NOT_FOUND for anything that is not a study id.
+std::string StudyId(int64_t number);
+absl::StatusOr<int64_t> StudyNumber(absl::string_view study_id);
 
 // The run `run_id`. NOT_FOUND if there is none.
 absl::StatusOr<RunRecord> FindRun(SQLite::Database& db, absl::string_view run_id);

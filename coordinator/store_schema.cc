@@ -121,6 +121,50 @@ ALTER TABLE runs ADD COLUMN trial INTEGER;
 -- Fair queueing counts each sweep's running runs; a sweep's view lists its runs.
 CREATE INDEX runs_by_sweep ON runs(sweep, state);
 )sql",
+    // 3 -> 4: studies (a search space and a sampler), their trials, each trial's parameter
+    // values (internal representation) and intermediate values.
+    R"sql(
+CREATE TABLE studies (
+  number INTEGER PRIMARY KEY AUTOINCREMENT,
+  request_id TEXT NOT NULL UNIQUE,
+  name TEXT NOT NULL,
+  space TEXT NOT NULL,
+  sampler TEXT NOT NULL,
+  seed INTEGER NOT NULL,
+  direction TEXT NOT NULL CHECK (direction IN ('minimize', 'maximize')),
+  startup_trials INTEGER NOT NULL CHECK (startup_trials >= 0),
+  ei_candidates INTEGER NOT NULL CHECK (ei_candidates >= 1),
+  multivariate INTEGER NOT NULL,
+  grouped INTEGER NOT NULL,
+  constant_liar INTEGER NOT NULL,
+  created_at INTEGER NOT NULL
+);
+CREATE TABLE study_trials (
+  study INTEGER NOT NULL REFERENCES studies(number),
+  number INTEGER NOT NULL,
+  state TEXT NOT NULL CHECK (state IN ('running', 'complete', 'pruned', 'failed')),
+  value REAL,
+  created_at INTEGER NOT NULL,
+  finished_at INTEGER,
+  PRIMARY KEY (study, number)
+);
+CREATE TABLE study_trial_values (
+  study INTEGER NOT NULL,
+  trial INTEGER NOT NULL,
+  name TEXT NOT NULL,
+  value REAL NOT NULL,
+  PRIMARY KEY (study, trial, name),
+  FOREIGN KEY (study, trial) REFERENCES study_trials(study, number)
+);
+CREATE TABLE study_trial_reports (
+  study INTEGER NOT NULL,
+  trial INTEGER NOT NULL,
+  step INTEGER NOT NULL,
+  value REAL,
+  PRIMARY KEY (study, trial, step),
+  FOREIGN KEY (study, trial) REFERENCES study_trials(study, number)
+);
+)sql",
 };
 
 int UserVersion(SQLite::Database& db) {

@@ -10,11 +10,11 @@
 namespace dcs::coordinator {
 namespace {
 
-bool IsFinished(const TrialRecord& trial) {
+bool IsFinished(const StudyTrial& trial) {
   return trial.state == TrialState::kComplete || trial.state == TrialState::kPruned;
 }
 
-bool Has(const TrialRecord& trial, const std::vector<const run::SearchParameter*>& parameters) {
+bool Has(const StudyTrial& trial, const std::vector<const run::SearchParameter*>& parameters) {
   return std::all_of(parameters.begin(), parameters.end(),
                      [&](const run::SearchParameter* p) { return trial.values.contains(p->name); });
 }
@@ -22,10 +22,10 @@ bool Has(const TrialRecord& trial, const std::vector<const run::SearchParameter*
 // The rows of `parameters`' values of the trials that have them all, in trial
 // order.
 std::vector<std::vector<double>> Observations(
-    const std::vector<const TrialRecord*>& trials,
+    const std::vector<const StudyTrial*>& trials,
     const std::vector<const run::SearchParameter*>& parameters) {
   std::vector<std::vector<double>> rows;
-  for (const TrialRecord* trial : trials) {
+  for (const StudyTrial* trial : trials) {
     if (!Has(*trial, parameters)) continue;
     std::vector<double>& row = rows.emplace_back();
     for (const run::SearchParameter* p : parameters) row.push_back(trial->values.at(p->name));
@@ -43,19 +43,19 @@ class TpeSampler : public Sampler {
   TpeSampler(uint64_t seed, Direction direction, const TpeOptions& options)
       : seed_(seed), direction_(direction), options_(options) {}
 
-  run::ParameterValues Sample(const run::SearchSpace& space, const std::vector<TrialRecord>& trials,
+  run::ParameterValues Sample(const run::SearchSpace& space, const std::vector<StudyTrial>& trials,
                               int64_t number) const override {
     Random random(StreamSeed(seed_, "trial", {static_cast<uint64_t>(number)}));
-    std::vector<const TrialRecord*> history;
-    std::vector<const TrialRecord*> finished;
-    for (const TrialRecord& trial : trials) {
+    std::vector<const StudyTrial*> history;
+    std::vector<const StudyTrial*> finished;
+    for (const StudyTrial& trial : trials) {
       if (trial.number == number) continue;
       if (IsFinished(trial)) finished.push_back(&trial);
       if (IsFinished(trial) || (options_.constant_liar && trial.state == TrialState::kRunning)) {
         history.push_back(&trial);
       }
     }
-    const auto by_number = [](const TrialRecord* a, const TrialRecord* b) {
+    const auto by_number = [](const StudyTrial* a, const StudyTrial* b) {
       return a->number < b->number;
     };
     std::sort(history.begin(), history.end(), by_number);
@@ -96,7 +96,7 @@ class TpeSampler : public Sampler {
   // The parameters sampled jointly: those every finished trial has, or the
   // groups of those that occur together; single-valued ones left out.
   std::vector<std::vector<std::string>> JointGroups(
-      const run::SearchSpace& space, const std::vector<const TrialRecord*>& finished) const {
+      const run::SearchSpace& space, const std::vector<const StudyTrial*>& finished) const {
     std::vector<std::vector<std::string>> groups;
     if (options_.group) {
       groups = GroupParameters(space, finished);
@@ -104,7 +104,7 @@ class TpeSampler : public Sampler {
       std::vector<std::string>& everywhere = groups.emplace_back();
       for (const run::SearchParameter& p : space.parameters) {
         if (std::all_of(finished.begin(), finished.end(),
-                        [&](const TrialRecord* t) { return t->values.contains(p.name); })) {
+                        [&](const StudyTrial* t) { return t->values.contains(p.name); })) {
           everywhere.push_back(p.name);
         }
       }
@@ -143,32 +143,31 @@ class TpeSampler : public Sampler {
 
 int Gamma(int n) { return std::min(static_cast<int>(std::ceil(0.1 * n)), 25); }
 
-Split SplitTrials(const std::vector<const TrialRecord*>& history, int below, Direction direction) {
+Split SplitTrials(const std::vector<const StudyTrial*>& history, int below, Direction direction) {
   const double sign = direction == Direction::kMinimize ? 1.0 : -1.0;
-  std::vector<const TrialRecord*> complete;
-  std::vector<const TrialRecord*> pruned;
+  std::vector<const StudyTrial*> complete;
+  std::vector<const StudyTrial*> pruned;
   Split split;
-  for (const TrialRecord* trial : history) {
+  for (const StudyTrial* trial : history) {
     if (trial->state == TrialState::kComplete) complete.push_back(trial);
     if (trial->state == TrialState::kPruned) pruned.push_back(trial);
     if (trial->state == TrialState::kRunning) split.above.push_back(trial);
   }
-  std::stable_sort(complete.begin(), complete.end(),
-                   [&](const TrialRecord* a, const TrialRecord* b) {
-                     return sign * a->value < sign * b->value;
-                   });
+  std::stable_sort(complete.begin(), complete.end(), [&](const StudyTrial* a, const StudyTrial* b) {
+    return sign * a->value < sign * b->value;
+  });
   // Deeper-pruned first, then better last value; none reported ranks last.
-  const auto key = [&](const TrialRecord* t) {
+  const auto key = [&](const StudyTrial* t) {
     if (t->reported.empty()) return std::make_pair(int64_t{1}, 0.0);
     const auto& [step, value] = *t->reported.rbegin();
     return std::make_pair(
         -step, std::isnan(value) ? std::numeric_limits<double>::infinity() : sign * value);
   };
   std::stable_sort(pruned.begin(), pruned.end(),
-                   [&](const TrialRecord* a, const TrialRecord* b) { return key(a) < key(b); });
+                   [&](const StudyTrial* a, const StudyTrial* b) { return key(a) < key(b); });
   size_t places = static_cast<size_t>(std::max(below, 0));
-  for (const std::vector<const TrialRecord*>* ranked : {&complete, &pruned}) {
-    for (const TrialRecord* trial : *ranked) {
+  for (const std::vector<const StudyTrial*>* ranked : {&complete, &pruned}) {
+    for (const StudyTrial* trial : *ranked) {
       if (places > 0) {
         split.below.push_back(trial);
         --places;
@@ -177,7 +176,7 @@ Split SplitTrials(const std::vector<const TrialRecord*>& history, int below, Dir
       }
     }
   }
-  const auto by_number = [](const TrialRecord* a, const TrialRecord* b) {
+  const auto by_number = [](const StudyTrial* a, const StudyTrial* b) {
     return a->number < b->number;
   };
   std::sort(split.below.begin(), split.below.end(), by_number);
@@ -186,9 +185,9 @@ Split SplitTrials(const std::vector<const TrialRecord*>& history, int below, Dir
 }
 
 std::vector<std::vector<std::string>> GroupParameters(
-    const run::SearchSpace& space, const std::vector<const TrialRecord*>& finished) {
+    const run::SearchSpace& space, const std::vector<const StudyTrial*>& finished) {
   std::vector<std::set<std::string>> groups;
-  for (const TrialRecord* trial : finished) {
+  for (const StudyTrial* trial : finished) {
     std::set<std::string> keys;
     for (const auto& [name, value] : trial->values) keys.insert(name);
     std::vector<std::set<std::string>> next;

@@ -47,15 +47,15 @@ int Gamma(int n);
 // then pruned trials by (deepest step, last value) while places remain; running
 // trials above. Both in trial order.
 struct Split {
-  std::vector<const TrialRecord*> below;
-  std::vector<const TrialRecord*> above;
+  std::vector<const StudyTrial*> below;
+  std::vector<const StudyTrial*> above;
 };
-Split SplitTrials(const std::vector<const TrialRecord*>& history, int below, Direction direction);
+Split SplitTrials(const std::vector<const StudyTrial*>& history, int below, Direction direction);
 
 // The groups of parameters that always occur together in `finished` trials
 // (§8), each in the space's order, the groups ordered by their first parameter.
 std::vector<std::vector<std::string>> GroupParameters(
-    const run::SearchSpace& space, const std::vector<const TrialRecord*>& finished);
+    const run::SearchSpace& space, const std::vector<const StudyTrial*>& finished);
 
 }  // namespace dcs::coordinator
 

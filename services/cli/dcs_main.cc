@@ -19,6 +19,7 @@
 #include "services/cli/report_commands.h"
 #include "services/cli/runs_commands.h"
 #include "services/cli/schedule_commands.h"
+#include "services/cli/study_commands.h"
 #include "services/cli/summarize_command.h"
 #include "services/cli/sweep_commands.h"
 #include "services/cli/train_command.h"
@@ -34,7 +35,7 @@ namespace {
 constexpr AddCommandsFunction kCommandFiles[] = {
     AddClusterCommands, AddVersionCommand, AddEnvCommands,    AddScheduleCommands,
     AddTrainCommand,    AddRunsCommands,   AddSweepCommands,  AddReportCommands,
-    AddSummarizeCommand,
+    AddSummarizeCommand, AddStudyCommands,
 };
 
 int Main(int argc, char** argv) {

@@ -52,10 +52,10 @@ run::SearchSpace Stages() {
 
 // Runs `trials` sequential trials of `sampler` on Branin; the best value after each.
 std::vector<double> BestSoFar(const Sampler& sampler, int trials) {
-  std::vector<TrialRecord> history;
+  std::vector<StudyTrial> history;
   std::vector<double> best;
   for (int number = 0; number < trials; ++number) {
-    TrialRecord trial{.number = number, .state = TrialState::kComplete};
+    StudyTrial trial{.number = number, .state = TrialState::kComplete};
     trial.values = sampler.Sample(Branin(), history, number);
     trial.value = BraninValue(trial.values);
     history.push_back(trial);
@@ -67,7 +67,7 @@ std::vector<double> BestSoFar(const Sampler& sampler, int trials) {
 TEST(TpeSamplerTest, StartupTrialsAreTheRandomSamplersOnes) {
   const auto tpe = MakeTpeSampler(5, Direction::kMinimize, TpeOptions{});
   const auto random = MakeRandomSampler(5);
-  std::vector<TrialRecord> history;
+  std::vector<StudyTrial> history;
   for (int number = 0; number < 12; ++number) {
     const run::ParameterValues values = tpe->Sample(Branin(), history, number);
     if (number < 10) {
@@ -85,7 +85,7 @@ TEST(TpeSamplerTest, StartupTrialsAreTheRandomSamplersOnes) {
 TEST(TpeSamplerTest, FailedAndRunningTrialsDoNotCountTowardsStartup) {
   const auto tpe = MakeTpeSampler(5, Direction::kMinimize, TpeOptions{.startup_trials = 2});
   const auto random = MakeRandomSampler(5);
-  const std::vector<TrialRecord> history = {
+  const std::vector<StudyTrial> history = {
       {.number = 0, .state = TrialState::kComplete, .value = 3, .values = {{"x1", 1}, {"x2", 2}}},
       {.number = 1, .state = TrialState::kFailed, .values = {{"x1", 2}, {"x2", 2}}},
       {.number = 2, .state = TrialState::kRunning, .values = {{"x1", 3}, {"x2", 2}}}};
@@ -119,7 +119,7 @@ TEST(TpeSamplerTest, MaximisingPrefersTheHighValues) {
   const run::SearchSpace space{{{.name = "x", .distribution = run::FloatDistribution{0, 1}}}};
   for (const Direction direction : {Direction::kMinimize, Direction::kMaximize}) {
     const auto tpe = MakeTpeSampler(3, direction, TpeOptions{});
-    std::vector<TrialRecord> history;
+    std::vector<StudyTrial> history;
     double late_mean = 0;
     for (int number = 0; number < 40; ++number) {
       const run::ParameterValues values = tpe->Sample(space, history, number);
@@ -142,7 +142,7 @@ TEST(TpeSamplerTest, ConditionalParametersExistOnlyWithTheirParentsChoice) {
                                     TpeOptions{.parzen = {.multivariate = true}, .group = true}}) {
     const auto tpe = MakeTpeSampler(11, Direction::kMaximize, options);
     const run::SearchSpace space = Stages();
-    std::vector<TrialRecord> history;
+    std::vector<StudyTrial> history;
     for (int number = 0; number < 30; ++number) {
       const run::ParameterValues values = tpe->Sample(space, history, number);
       for (const std::string stage : {"stage0", "stage1"}) {
@@ -172,14 +172,14 @@ TEST(GammaTest, IsATenthRoundedUpAtMostTwentyFive) {
   EXPECT_EQ(Gamma(1000), 25);
 }
 
-std::vector<int64_t> Numbers(const std::vector<const TrialRecord*>& trials) {
+std::vector<int64_t> Numbers(const std::vector<const StudyTrial*>& trials) {
   std::vector<int64_t> numbers;
-  for (const TrialRecord* t : trials) numbers.push_back(t->number);
+  for (const StudyTrial* t : trials) numbers.push_back(t->number);
   return numbers;
 }
 
 TEST(SplitTrialsTest, BestCompleteThenDeepestPrunedBelowRunningAbove) {
-  const std::vector<TrialRecord> trials = {
+  const std::vector<StudyTrial> trials = {
       {.number = 0, .state = TrialState::kComplete, .value = 5},
       {.number = 1, .state = TrialState::kPruned, .reported = {{1, 0.5}, {3, 9.0}}},
       {.number = 2, .state = TrialState::kComplete, .value = 1},
@@ -187,8 +187,8 @@ TEST(SplitTrialsTest, BestCompleteThenDeepestPrunedBelowRunningAbove) {
       {.number = 4, .state = TrialState::kPruned, .reported = {{3, 2.0}}},
       {.number = 5, .state = TrialState::kPruned},
       {.number = 6, .state = TrialState::kPruned, .reported = {{1, 0.1}}}};
-  std::vector<const TrialRecord*> history;
-  for (const TrialRecord& t : trials) history.push_back(&t);
+  std::vector<const StudyTrial*> history;
+  for (const StudyTrial& t : trials) history.push_back(&t);
 
   Split split = SplitTrials(history, 1, Direction::kMinimize);
   EXPECT_THAT(Numbers(split.below), ElementsAre(2));
@@ -208,16 +208,16 @@ TEST(SplitTrialsTest, BestCompleteThenDeepestPrunedBelowRunningAbove) {
 
 TEST(GroupParametersTest, ParametersThatAlwaysOccurTogetherFormAGroup) {
   const auto trial = [](int64_t number, std::vector<std::string> names) {
-    TrialRecord t{.number = number, .state = TrialState::kComplete};
+    StudyTrial t{.number = number, .state = TrialState::kComplete};
     for (const std::string& name : names) t.values[name] = 0;
     return t;
   };
-  const std::vector<TrialRecord> trials = {
+  const std::vector<StudyTrial> trials = {
       trial(0, {"stage0.mode", "stage1.mode", "stage0.amplitude", "stage0.period"}),
       trial(1, {"stage0.mode", "stage1.mode", "stage1.amplitude", "stage1.period"}),
       trial(2, {"stage0.mode", "stage1.mode"})};
-  std::vector<const TrialRecord*> finished;
-  for (const TrialRecord& t : trials) finished.push_back(&t);
+  std::vector<const StudyTrial*> finished;
+  for (const StudyTrial& t : trials) finished.push_back(&t);
   EXPECT_THAT(GroupParameters(Stages(), finished),
               ElementsAre(ElementsAre("stage0.mode", "stage1.mode"),
                           ElementsAre("stage0.amplitude", "stage0.period"),
@@ -230,7 +230,7 @@ double SpreadOfTrialsRunningAtOnce(bool constant_liar) {
   const run::SearchSpace space{{{.name = "x", .distribution = run::FloatDistribution{0, 1}}}};
   const auto tpe =
       MakeTpeSampler(4, Direction::kMinimize, TpeOptions{.constant_liar = constant_liar});
-  std::vector<TrialRecord> history;
+  std::vector<StudyTrial> history;
   for (int number = 0; number < 10; ++number) {
     const double x = (number + 0.5) / 10;
     history.push_back({.number = number,

@@ -1,0 +1,304 @@
+// Copyright 2026 The DCS Authors.
+//
+// RunStore's studies (coordinator/run_store.h): a study's row, its trials, their parameter
+// values and intermediate values. Asking samples inside the transaction that stores the trial,
+// so trials asked at once from several clients see each other (the constant liar needs it).
+
+#include <SQLiteCpp/Database.h>
+#include <SQLiteCpp/Statement.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "common/enum_names.h"
+#include "common/status_macros.h"
+#include "coordinator/run_store.h"
+#include "coordinator/store_rows.h"
+#include "run/search_space_yaml.h"
+
+namespace dcs::coordinator {
+namespace {
+
+using namespace store_rows;  // NOLINT: the store's own rows
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A REAL column that may be NULL (SQLite keeps no NaN: it stores NULL).
+double OrNaN(const SQLite::Column& column) { return column.isNull() ? kNaN : column.getDouble(); }
+
+void BindOrNull(SQLite::Statement& statement, int index, double value) {
+  if (std::isnan(value)) {
+    statement.bind(index);
+  } else {
+    statement.bind(index, value);
+  }
+}
+
+std::vector<StudyTrial> ReadTrials(SQLite::Database& db, int64_t study) {
+  std::vector<StudyTrial> trials;
+  std::map<int64_t, size_t> index;
+  SQLite::Statement rows(
+      db, "SELECT number, state, value FROM study_trials WHERE study = ? ORDER BY number");
+  rows.bind(1, study);
+  while (rows.executeStep()) {
+    index[rows.getColumn(0).getInt64()] = trials.size();
+    trials.push_back({.number = rows.getColumn(0).getInt64(),
+                      .state = *FindByName(kTrialStateNames, rows.getColumn(1).getString()),
+                      .value = OrNaN(rows.getColumn(2))});
+  }
+  SQLite::Statement values(db, "SELECT trial, name, value FROM study_trial_values WHERE study = ?");
+  values.bind(1, study);
+  while (values.executeStep()) {
+    trials[index.at(values.getColumn(0).getInt64())].values[values.getColumn(1).getString()] =
+        values.getColumn(2).getDouble();
+  }
+  SQLite::Statement reports(db,
+                            "SELECT trial, step, value FROM study_trial_reports WHERE study = ?");
+  reports.bind(1, study);
+  while (reports.executeStep()) {
+    trials[index.at(reports.getColumn(0).getInt64())].reported[reports.getColumn(1).getInt64()] =
+        OrNaN(reports.getColumn(2));
+  }
+  return trials;
+}
+
+struct StudyRow {
+  StudyRecord record;
+  run::SearchSpace space;
+};
+
+absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study_id) {
+  DCS_ASSIGN_OR_RETURN(const int64_t number, StudyNumber(study_id));
+  SQLite::Statement query(db,
+                          "SELECT request_id, name, space, sampler, seed, direction, "
+                          "startup_trials, ei_candidates, multivariate, grouped, constant_liar, "
+                          "created_at FROM studies WHERE number = ?");
+  query.bind(1, number);
+  if (!query.executeStep()) return absl::NotFoundError(absl::StrCat("no study ", study_id));
+  StudyRow row;
+  StudySubmission& s = row.record.submission;
+  s.request_id = query.getColumn(0).getString();
+  s.name = query.getColumn(1).getString();
+  s.space = query.getColumn(2).getString();
+  s.sampler = *FindByName(kSamplerKindNames, query.getColumn(3).getString());
+  s.seed = static_cast<uint64_t>(query.getColumn(4).getInt64());
+  s.direction = *FindByName(kDirectionNames, query.getColumn(5).getString());
+  s.tpe.startup_trials = query.getColumn(6).getInt();
+  s.tpe.ei_candidates = query.getColumn(7).getInt();
+  s.tpe.parzen.multivariate = query.getColumn(8).getInt() != 0;
+  s.tpe.group = query.getColumn(9).getInt() != 0;
+  s.tpe.constant_liar = query.getColumn(10).getInt() != 0;
+  row.record.id = StudyId(number);
+  row.record.created_at = FromMicros(query.getColumn(11).getInt64());
+  // Validated when the study was created.
+  DCS_ASSIGN_OR_RETURN(row.space, run::ParseSearchSpaceYaml(s.space, row.record.id));
+
+  const std::vector<StudyTrial> trials = ReadTrials(db, number);
+  for (const auto& [state, name] : kTrialStateNames) {
+    row.record.trials_by_state.emplace_back(
+        state, std::count_if(trials.begin(), trials.end(),
+                             [state](const StudyTrial& t) { return t.state == state; }));
+  }
+  const double sign = s.direction == Direction::kMinimize ? 1 : -1;
+  for (const StudyTrial& trial : trials) {
+    if (trial.state == TrialState::kComplete &&
+        (!row.record.best.has_value() || sign * trial.value < sign * row.record.best->value)) {
+      row.record.best = trial;
+    }
+  }
+  return row;
+}
+
+std::unique_ptr<Sampler> MakeSampler(const StudySubmission& study) {
+  switch (study.sampler) {
+    case SamplerKind::kTpe:
+      return MakeTpeSampler(study.seed, study.direction, study.tpe);
+    case SamplerKind::kRandom:
+      return MakeRandomSampler(study.seed);
+  }
+  return nullptr;
+}
+
+// The trial `number` of study row `study`, with its state. NOT_FOUND naming both.
+absl::StatusOr<TrialState> TrialStateOf(SQLite::Database& db, absl::string_view study_id,
+                                        int64_t study, int64_t number) {
+  SQLite::Statement query(db, "SELECT state FROM study_trials WHERE study = ? AND number = ?");
+  query.bind(1, study);
+  query.bind(2, number);
+  if (!query.executeStep()) {
+    return absl::NotFoundError(absl::StrCat("study ", study_id, " has no trial ", number));
+  }
+  return *FindByName(kTrialStateNames, query.getColumn(0).getString());
+}
+
+absl::Status RequireRunning(TrialState state, absl::string_view study_id, int64_t number) {
+  if (state == TrialState::kRunning) return absl::OkStatus();
+  return absl::FailedPreconditionError(absl::StrCat("trial ", number, " of ", study_id,
+                                                    " has finished: it is ",
+                                                    NameOf(kTrialStateNames, state)));
+}
+
+}  // namespace
+
+absl::StatusOr<StudyRecord> RunStore::CreateStudy(const StudySubmission& submission,
+                                                  absl::Time now) {
+  if (submission.request_id.empty()) {
+    return absl::InvalidArgumentError("a study needs a request id");
+  }
+  DCS_RETURN_IF_ERROR(run::ParseSearchSpaceYaml(submission.space, "the search space").status());
+  const TpeOptions& tpe = submission.tpe;
+  if (tpe.startup_trials < 0 || tpe.ei_candidates < 1) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("TPE needs startup_trials >= 0 and ei_candidates >= 1, got ",
+                     tpe.startup_trials, " and ", tpe.ei_candidates));
+  }
+  if (tpe.group && !tpe.parzen.multivariate) {
+    return absl::InvalidArgumentError("TPE's group option needs multivariate");
+  }
+  return Transaction([&]() -> absl::StatusOr<StudyRecord> {
+    SQLite::Statement existing(*db_, "SELECT number FROM studies WHERE request_id = ?");
+    existing.bind(1, submission.request_id);
+    if (existing.executeStep()) {
+      DCS_ASSIGN_OR_RETURN(StudyRow row,
+                           FindStudy(*db_, StudyId(existing.getColumn(0).getInt64())));
+      return row.record;
+    }
+    SQLite::Statement insert(*db_,
+                             "INSERT INTO studies (request_id, name, space, sampler, seed, "
+                             "direction, startup_trials, ei_candidates, multivariate, grouped, "
+                             "constant_liar, created_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
+                             "?) RETURNING number");
+    insert.bind(1, submission.request_id);
+    insert.bind(2, submission.name);
+    insert.bind(3, submission.space);
+    insert.bind(4, std::string(NameOf(kSamplerKindNames, submission.sampler)));
+    insert.bind(5, static_cast<int64_t>(submission.seed));
+    insert.bind(6, std::string(NameOf(kDirectionNames, submission.direction)));
+    insert.bind(7, tpe.startup_trials);
+    insert.bind(8, tpe.ei_candidates);
+    insert.bind(9, tpe.parzen.multivariate ? 1 : 0);
+    insert.bind(10, tpe.group ? 1 : 0);
+    insert.bind(11, tpe.constant_liar ? 1 : 0);
+    insert.bind(12, Micros(now));
+    insert.executeStep();
+    const int64_t number = insert.getColumn(0).getInt64();
+    insert.reset();
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, StudyId(number)));
+    return row.record;
+  });
+}
+
+absl::StatusOr<StudyRecord> RunStore::GetStudy(absl::string_view study_id) {
+  return Transaction([&]() -> absl::StatusOr<StudyRecord> {
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, study_id));
+    return row.record;
+  });
+}
+
+absl::StatusOr<std::vector<StudyRecord>> RunStore::ListStudies() {
+  return Transaction([&]() -> absl::StatusOr<std::vector<StudyRecord>> {
+    std::vector<StudyRecord> studies;
+    SQLite::Statement numbers(*db_, "SELECT number FROM studies ORDER BY number");
+    while (numbers.executeStep()) {
+      DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, StudyId(numbers.getColumn(0).getInt64())));
+      studies.push_back(std::move(row.record));
+    }
+    return studies;
+  });
+}
+
+absl::StatusOr<StudyTrial> RunStore::AskTrial(absl::string_view study_id, absl::Time now) {
+  return Transaction([&]() -> absl::StatusOr<StudyTrial> {
+    DCS_ASSIGN_OR_RETURN(const StudyRow row, FindStudy(*db_, study_id));
+    const int64_t study = *StudyNumber(study_id);
+    const std::vector<StudyTrial> trials = ReadTrials(*db_, study);
+    StudyTrial trial{.number = trials.empty() ? 0 : trials.back().number + 1,
+                     .state = TrialState::kRunning,
+                     .value = kNaN};
+    trial.values = MakeSampler(row.record.submission)->Sample(row.space, trials, trial.number);
+
+    SQLite::Statement insert(*db_,
+                             "INSERT INTO study_trials (study, number, state, created_at) "
+                             "VALUES (?, ?, 'running', ?)");
+    insert.bind(1, study);
+    insert.bind(2, trial.number);
+    insert.bind(3, Micros(now));
+    insert.exec();
+    SQLite::Statement value(*db_,
+                            "INSERT INTO study_trial_values (study, trial, name, value) "
+                            "VALUES (?, ?, ?, ?)");
+    for (const auto& [name, v] : trial.values) {
+      value.bind(1, study);
+      value.bind(2, trial.number);
+      value.bind(3, name);
+      value.bind(4, v);
+      value.exec();
+      value.reset();
+    }
+    return trial;
+  });
+}
+
+absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64_t number,
+                                               TrialState state, double value, absl::Time now) {
+  if (state == TrialState::kRunning) {
+    return absl::InvalidArgumentError("a trial is told complete, pruned or failed, not running");
+  }
+  return Transaction([&]() -> absl::StatusOr<StudyTrial> {
+    DCS_ASSIGN_OR_RETURN(const int64_t study, StudyNumber(study_id));
+    DCS_RETURN_IF_ERROR(FindStudy(*db_, study_id).status());
+    DCS_ASSIGN_OR_RETURN(const TrialState current, TrialStateOf(*db_, study_id, study, number));
+    DCS_RETURN_IF_ERROR(RequireRunning(current, study_id, number));
+    std::vector<StudyTrial> trials = ReadTrials(*db_, study);
+    StudyTrial& trial = *std::find_if(trials.begin(), trials.end(),
+                                      [number](const StudyTrial& t) { return t.number == number; });
+    trial.state = state == TrialState::kComplete && std::isnan(value) ? TrialState::kFailed : state;
+    trial.value = trial.state == TrialState::kComplete ? value
+                  : trial.state == TrialState::kPruned && !trial.reported.empty()
+                      ? trial.reported.rbegin()->second
+                      : kNaN;
+    SQLite::Statement update(*db_,
+                             "UPDATE study_trials SET state = ?, value = ?, finished_at = ? "
+                             "WHERE study = ? AND number = ?");
+    update.bind(1, std::string(NameOf(kTrialStateNames, trial.state)));
+    BindOrNull(update, 2, trial.value);
+    update.bind(3, Micros(now));
+    update.bind(4, study);
+    update.bind(5, number);
+    update.exec();
+    return trial;
+  });
+}
+
+absl::Status RunStore::ReportTrial(absl::string_view study_id, int64_t number, int64_t step,
+                                   double value) {
+  return Transaction([&]() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(const int64_t study, StudyNumber(study_id));
+    DCS_RETURN_IF_ERROR(FindStudy(*db_, study_id).status());
+    DCS_ASSIGN_OR_RETURN(const TrialState current, TrialStateOf(*db_, study_id, study, number));
+    DCS_RETURN_IF_ERROR(RequireRunning(current, study_id, number));
+    SQLite::Statement insert(*db_,
+                             "INSERT OR IGNORE INTO study_trial_reports (study, trial, step, "
+                             "value) VALUES (?, ?, ?, ?)");
+    insert.bind(1, study);
+    insert.bind(2, number);
+    insert.bind(3, step);
+    BindOrNull(insert, 4, value);
+    insert.exec();
+    return absl::OkStatus();
+  });
+}
+
+absl::StatusOr<std::vector<StudyTrial>> RunStore::ListStudyTrials(absl::string_view study_id) {
+  return Transaction([&]() -> absl::StatusOr<std::vector<StudyTrial>> {
+    DCS_RETURN_IF_ERROR(FindStudy(*db_, study_id).status());
+    return ReadTrials(*db_, *StudyNumber(study_id));
+  });
+}
+
+}  // namespace dcs::coordinator

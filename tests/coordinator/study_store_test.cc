@@ -1,0 +1,179 @@
+// Copyright 2026 The DCS Authors.
+//
+// RunStore's studies (coordinator/study_store.cc) on a real SQLite file.
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/time/time.h"
+#include "coordinator/run_store.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::coordinator {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using ::testing::Pair;
+
+const absl::Time kStart = absl::FromUnixSeconds(1'800'000'000);
+
+constexpr char kSpace[] = R"(
+parameters:
+  - {name: x, type: float, low: 0, high: 1}
+  - {name: mode, type: categorical, choices: [a, b]}
+  - {name: k, type: int, low: 1, high: 9, when: {mode: b}}
+)";
+
+StudySubmission Study(std::string request_id, SamplerKind sampler = SamplerKind::kTpe) {
+  return {.request_id = std::move(request_id),
+          .name = "toy",
+          .space = kSpace,
+          .sampler = sampler,
+          .seed = 4,
+          .direction = Direction::kMinimize,
+          .tpe = {.startup_trials = 3}};
+}
+
+int64_t CountIn(const StudyRecord& study, TrialState wanted) {
+  for (const auto& [state, trials] : study.trials_by_state) {
+    if (state == wanted) return trials;
+  }
+  return -1;
+}
+
+class StudyStoreTest : public testing::TempDirTest {
+ protected:
+  std::unique_ptr<RunStore> Open(const std::string& file = "coordinator.db") {
+    absl::StatusOr<std::unique_ptr<RunStore>> store =
+        RunStore::Open(Path(file), RunStoreOptions{}, kStart);
+    EXPECT_TRUE(store.ok()) << store.status();
+    return std::move(*store);
+  }
+};
+
+// Asks `count` trials, telling each x² (x its parameter); returns their values.
+std::vector<run::ParameterValues> AskAndTell(RunStore& store, const std::string& study, int count) {
+  std::vector<run::ParameterValues> asked;
+  for (int i = 0; i < count; ++i) {
+    absl::StatusOr<StudyTrial> trial = store.AskTrial(study, kStart);
+    EXPECT_TRUE(trial.ok()) << trial.status();
+    asked.push_back(trial->values);
+    const double x = trial->values.at("x");
+    EXPECT_TRUE(store.TellTrial(study, trial->number, TrialState::kComplete, x * x, kStart).ok());
+  }
+  return asked;
+}
+
+TEST_F(StudyStoreTest, AskTellAndBestAsOptunas) {
+  std::unique_ptr<RunStore> store = Open();
+  absl::StatusOr<StudyRecord> study = store->CreateStudy(Study("r1"), kStart);
+  ASSERT_TRUE(study.ok()) << study.status();
+  EXPECT_EQ(study->id, "study-1");
+  EXPECT_FALSE(study->best.has_value());
+  AskAndTell(*store, study->id, 12);
+
+  study = store->GetStudy(study->id);
+  EXPECT_EQ(CountIn(*study, TrialState::kComplete), 12);
+  ASSERT_TRUE(study->best.has_value());
+  const absl::StatusOr<std::vector<StudyTrial>> trials = store->ListStudyTrials(study->id);
+  ASSERT_EQ(trials->size(), 12u);
+  for (size_t i = 0; i < trials->size(); ++i) {
+    const StudyTrial& trial = (*trials)[i];
+    EXPECT_EQ(trial.number, static_cast<int64_t>(i));
+    EXPECT_EQ(trial.values.contains("k"), trial.values.at("mode") == 1);
+    EXPECT_LE(study->best->value, trial.value);
+  }
+  // A repeated request returns the study it made.
+  EXPECT_EQ(store->CreateStudy(Study("r1"), kStart)->id, "study-1");
+  EXPECT_EQ(store->CreateStudy(Study("r2"), kStart)->id, "study-2");
+}
+
+// The sampler keeps nothing between trials: a store reopened (a coordinator restarted) asks the
+// same trials as one that never closed.
+TEST_F(StudyStoreTest, AReopenedStoreAsksWhatTheFirstWouldHave) {
+  std::vector<run::ParameterValues> uninterrupted;
+  {
+    std::unique_ptr<RunStore> store = Open();
+    const std::string study = store->CreateStudy(Study("same"), kStart)->id;
+    uninterrupted = AskAndTell(*store, study, 15);
+  }
+  std::vector<run::ParameterValues> reopened;
+  {
+    std::unique_ptr<RunStore> store = Open("reopened.db");
+    const std::string study = store->CreateStudy(Study("same"), kStart)->id;
+    reopened = AskAndTell(*store, study, 8);
+  }
+  std::unique_ptr<RunStore> store = Open("reopened.db");
+  const std::vector<run::ParameterValues> rest = AskAndTell(*store, "study-1", 7);
+  reopened.insert(reopened.end(), rest.begin(), rest.end());
+  EXPECT_EQ(reopened, uninterrupted);
+}
+
+TEST_F(StudyStoreTest, TellRefusesFinishedTrialsAndFailsNaN) {
+  std::unique_ptr<RunStore> store = Open();
+  const std::string study = store->CreateStudy(Study("r"), kStart)->id;
+  const int64_t first = store->AskTrial(study, kStart)->number;
+  const int64_t second = store->AskTrial(study, kStart)->number;
+  EXPECT_EQ(second, first + 1);
+
+  const absl::StatusOr<StudyTrial> nan = store->TellTrial(
+      study, first, TrialState::kComplete, std::numeric_limits<double>::quiet_NaN(), kStart);
+  ASSERT_TRUE(nan.ok()) << nan.status();
+  EXPECT_EQ(nan->state, TrialState::kFailed);
+
+  const absl::StatusOr<StudyTrial> again =
+      store->TellTrial(study, first, TrialState::kComplete, 1.0, kStart);
+  EXPECT_EQ(again.status().code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT(again.status().message(), HasSubstr("it is failed"));
+  EXPECT_EQ(store->TellTrial(study, 99, TrialState::kComplete, 1.0, kStart).status().code(),
+            absl::StatusCode::kNotFound);
+  EXPECT_EQ(store->TellTrial(study, second, TrialState::kRunning, 1.0, kStart).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(store->AskTrial("study-7", kStart).status().code(), absl::StatusCode::kNotFound);
+
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(store->TellTrial(study, second, TrialState::kComplete, inf, kStart)->value, inf);
+  EXPECT_EQ(store->GetStudy(study)->best->value, inf);  // ±inf is a value
+}
+
+TEST_F(StudyStoreTest, PrunedTrialsKeepTheirReportsAndLastValue) {
+  std::unique_ptr<RunStore> store = Open();
+  const std::string study = store->CreateStudy(Study("r"), kStart)->id;
+  const int64_t trial = store->AskTrial(study, kStart)->number;
+  ASSERT_TRUE(store->ReportTrial(study, trial, 1, 5.0).ok());
+  ASSERT_TRUE(store->ReportTrial(study, trial, 3, 4.0).ok());
+  ASSERT_TRUE(store->ReportTrial(study, trial, 3, 9.0).ok());  // a repeated step keeps the first
+  const absl::StatusOr<StudyTrial> pruned =
+      store->TellTrial(study, trial, TrialState::kPruned, 0.0, kStart);
+  ASSERT_TRUE(pruned.ok()) << pruned.status();
+  EXPECT_EQ(pruned->value, 4.0);
+  EXPECT_THAT(pruned->reported, ElementsAre(Pair(1, 5.0), Pair(3, 4.0)));
+  EXPECT_EQ(store->ReportTrial(study, trial, 4, 1.0).code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT((*store->ListStudyTrials(study))[0].reported,
+              ElementsAre(Pair(1, 5.0), Pair(3, 4.0)));
+}
+
+TEST_F(StudyStoreTest, BadStudiesAreRefusedAndStoreNothing) {
+  std::unique_ptr<RunStore> store = Open();
+  StudySubmission bad_space = Study("a");
+  bad_space.space = "parameters: [{name: x, type: float, low: 2, high: 1}]";
+  EXPECT_THAT(store->CreateStudy(bad_space, kStart).status().message(),
+              HasSubstr("parameter 'x': low 2 is above high 1"));
+  StudySubmission bad_group = Study("b");
+  bad_group.tpe.group = true;
+  EXPECT_EQ(store->CreateStudy(bad_group, kStart).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(store->CreateStudy(Study(""), kStart).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_TRUE(store->ListStudies()->empty());
+}
+
+}  // namespace
+}  // namespace dcs::coordinator

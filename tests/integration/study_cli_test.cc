@@ -1,0 +1,99 @@
+// Copyright 2026 The DCS Authors.
+//
+// `dcs study create/ask/tell/best` on a local --store file, as a user outside DCS runs them.
+
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
+
+#include <string>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/strip.h"
+#include "common/atomic_file.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "services/exit_codes.h"
+#include "tests/integration/test_util.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::integration {
+namespace {
+
+using ::testing::HasSubstr;
+
+RunResult Dcs(const std::vector<std::string>& args) { return RunProgram(BinaryPath("dcs"), args); }
+
+google::protobuf::Struct Json(const std::string& text) {
+  google::protobuf::Struct json;
+  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(text, &json).ok()) << text;
+  return json;
+}
+
+class StudyCliTest : public dcs::testing::TempDirTest {};
+
+TEST_F(StudyCliTest, AskTellAndBestThroughTheClient) {
+  const std::string store = Path("studies.db");
+  ASSERT_TRUE(WriteFileAtomically(Path("space.yaml"), R"(parameters:
+  - {name: x, type: float, low: -2, high: 2}
+  - {name: shape, type: categorical, choices: [bowl, ridge]}
+)")
+                  .ok());
+  const RunResult create = Dcs({"study", "create", "--space", Path("space.yaml"), "--seed", "1",
+                                "--sampler", "tpe", "--store", store});
+  ASSERT_EQ(create.exit_code, services::kExitOk) << create.output;
+  const std::string study(absl::StripAsciiWhitespace(create.output));
+  EXPECT_EQ(study, "study-1");
+
+  double best = 1e9;
+  int best_trial = -1;
+  for (int i = 0; i < 14; ++i) {
+    const RunResult ask = Dcs({"study", "ask", study, "--store", store});
+    ASSERT_EQ(ask.exit_code, services::kExitOk) << ask.output;
+    const google::protobuf::Struct trial = Json(ask.output);
+    const auto& params = trial.fields().at("params").struct_value().fields();
+    const std::string shape = params.at("shape").string_value();
+    ASSERT_TRUE(shape == "bowl" || shape == "ridge") << ask.output;
+    const double x = params.at("x").number_value();
+    const double value = shape == "bowl" ? x * x : 1 + x;
+    const int number = static_cast<int>(trial.fields().at("trial").number_value());
+    EXPECT_EQ(number, i);
+    const RunResult tell = Dcs({"study", "tell", study, absl::StrCat(number),
+                                absl::StrFormat("%.17g", value), "--store", store});
+    ASSERT_EQ(tell.exit_code, services::kExitOk) << tell.output;
+    if (value < best) {
+      best = value;
+      best_trial = number;
+    }
+  }
+  const RunResult best_run = Dcs({"study", "best", study, "--store", store});
+  ASSERT_EQ(best_run.exit_code, services::kExitOk) << best_run.output;
+  const google::protobuf::Struct answer = Json(best_run.output);
+  EXPECT_EQ(answer.fields().at("trial").number_value(), best_trial);
+  EXPECT_NEAR(answer.fields().at("value").number_value(), best, 1e-12 * (1 + std::abs(best)));
+
+  // A finished trial is not told again; an unknown study is named.
+  const RunResult again = Dcs({"study", "tell", study, "0", "1.0", "--store", store});
+  EXPECT_EQ(again.exit_code, services::kExitFailure);
+  EXPECT_THAT(again.output, HasSubstr("trial 0 of study-1 has finished"));
+  const RunResult unknown = Dcs({"study", "ask", "study-9", "--store", store});
+  EXPECT_THAT(unknown.output, HasSubstr("no study study-9"));
+}
+
+TEST_F(StudyCliTest, ABadSpaceIsRefusedNamingTheFileAndCreatesNothing) {
+  ASSERT_TRUE(WriteFileAtomically(Path("space.yaml"),
+                                  "parameters: [{name: x, type: float, low: 0, high: 1, "
+                                  "log: true}]\n")
+                  .ok());
+  const RunResult create =
+      Dcs({"study", "create", "--space", Path("space.yaml"), "--store", Path("s.db")});
+  EXPECT_EQ(create.exit_code, services::kExitDataError) << create.output;
+  EXPECT_THAT(create.output, HasSubstr(Path("space.yaml")));
+  EXPECT_THAT(create.output, HasSubstr("a log range needs low > 0"));
+  const RunResult value = Dcs({"study", "tell", "study-1", "0", "many", "--store", Path("s.db")});
+  EXPECT_EQ(value.exit_code, services::kExitDataError);
+  EXPECT_THAT(value.output, HasSubstr("VALUE must be a number"));
+}
+
+}  // namespace
+}  // namespace dcs::integration
