@@ -45,8 +45,7 @@ ParzenDimension Layout(const run::Distribution& distribution) {
 
 double ToWorking(const ParzenDimension& d, double value) { return d.log ? std::log(value) : value; }
 
-// The value a working-space draw stands for: snapped to the grid, inside the
-// bounds.
+// The value a working-space draw stands for: snapped to the grid, inside the bounds.
 double FromWorking(const ParzenDimension& d, double x) {
   double value;
   if (d.kind == Kind::kContinuous) {
@@ -65,8 +64,7 @@ std::pair<double, double> Cell(const ParzenDimension& d, double value) {
   return {value - d.step / 2, value + d.step / 2};
 }
 
-// Bandwidths of the observation kernels centred at `mus` (§5.3), before the
-// magic clip.
+// Bandwidths of the observation kernels centred at `mus` (§5.3), before the magic clip.
 std::vector<double> NeighbourSigmas(const std::vector<double>& mus, double low, double high,
                                     bool endpoints) {
   const size_t n = mus.size();
@@ -88,11 +86,26 @@ std::vector<double> NeighbourSigmas(const std::vector<double>& mus, double low, 
   return sigmas;
 }
 
-// Each kernel's mass inside the bounds, by which its density is divided.
-void SetLogMass(ParzenDimension& d) {
+// What the densities of the dimension's kernels are computed from, besides centres and
+// bandwidths (or choice probabilities).
+void SetLogConstants(ParzenDimension& d) {
+  if (d.kind == Kind::kCategorical) {
+    d.log_probabilities = d.probabilities;
+    for (std::vector<double>& row : d.log_probabilities) {
+      for (double& p : row) p = std::log(p);
+    }
+    return;
+  }
   d.log_mass.resize(d.mu.size());
+  d.log_sigma.resize(d.mu.size());
+  d.inverse_sigma.resize(d.mu.size());
+  d.log_scale.resize(d.mu.size());
   for (size_t k = 0; k < d.mu.size(); ++k) {
     d.log_mass[k] = LogNormalMass((d.low - d.mu[k]) / d.sigma[k], (d.high - d.mu[k]) / d.sigma[k]);
+    d.log_sigma[k] = std::log(d.sigma[k]);
+    d.inverse_sigma[k] = 1 / d.sigma[k];
+    d.log_scale[k] = -d.log_mass[k];
+    if (d.kind == Kind::kContinuous) d.log_scale[k] -= d.log_sigma[k] + kLogSqrt2Pi;
   }
 }
 
@@ -114,7 +127,6 @@ void FitNumerical(ParzenDimension& d, std::vector<double> mus, size_t dimensions
   sigmas.push_back(range);
   d.mu = std::move(mus);
   d.sigma = std::move(sigmas);
-  SetLogMass(d);
 }
 
 void FitCategorical(ParzenDimension& d, const std::vector<double>& observed, size_t choices,
@@ -134,23 +146,28 @@ void FitCategorical(ParzenDimension& d, const std::vector<double>& observed, siz
   }
 }
 
-// ln of kernel k's density (or mass) at `value` in dimension d.
-double KernelLogPdf(const ParzenDimension& d, size_t k, double value) {
-  switch (d.kind) {
-    case Kind::kCategorical:
-      return std::log(d.probabilities[k][static_cast<size_t>(value)]);
-    case Kind::kContinuous: {
-      const double z = (ToWorking(d, value) - d.mu[k]) / d.sigma[k];
-      return -0.5 * z * z - kLogSqrt2Pi - std::log(d.sigma[k]) - d.log_mass[k];
-    }
-    case Kind::kDiscrete: {
-      const auto [cell_low, cell_high] = Cell(d, value);
-      return LogNormalMass((std::max(cell_low, d.low) - d.mu[k]) / d.sigma[k],
-                           (std::min(cell_high, d.high) - d.mu[k]) / d.sigma[k]) -
-             d.log_mass[k];
-    }
-  }
-  return 0;
+// A kernel whose ln density falls this far below the mixture's largest term adds less than
+// e^-50 of it (times fewer than 10^5 kernels: under 10^-16, below double precision).
+constexpr double kNegligible = 50;
+
+// ln of kernel k's density at the working-space point x of a continuous dimension.
+double ContinuousLogPdf(const ParzenDimension& d, size_t k, double x) {
+  const double z = (x - d.mu[k]) * d.inverse_sigma[k];
+  return d.log_scale[k] - 0.5 * z * z;
+}
+
+// ln of kernel k's mass of the cell [low, high] (working space) of a discrete dimension.
+double DiscreteLogPdf(const ParzenDimension& d, size_t k, double low, double high) {
+  return d.log_scale[k] +
+         LogNormalMass((low - d.mu[k]) * d.inverse_sigma[k], (high - d.mu[k]) * d.inverse_sigma[k]);
+}
+
+// An upper bound of DiscreteLogPdf, without the normal CDF: the cell's width times the largest
+// density in it, and at most 1.
+double DiscreteLogPdfBound(const ParzenDimension& d, size_t k, double low, double high,
+                           double log_width) {
+  const double gap = std::max({low - d.mu[k], d.mu[k] - high, 0.0}) * d.inverse_sigma[k];
+  return d.log_scale[k] + std::min(0.0, log_width - d.log_sigma[k] - kLogSqrt2Pi - 0.5 * gap * gap);
 }
 
 }  // namespace
@@ -168,9 +185,9 @@ std::vector<double> DefaultWeights(int n) {
 }
 
 ParzenEstimator::ParzenEstimator(const std::vector<const run::SearchParameter*>& parameters,
-                                 const std::vector<std::vector<double>>& observations,
+                                 std::vector<std::vector<double>> columns,
                                  const ParzenOptions& options) {
-  const size_t n = observations.size();
+  const size_t n = columns.empty() ? 0 : columns[0].size();
   if (n == 0) {
     weights_ = {1.0};
   } else {
@@ -181,8 +198,7 @@ ParzenEstimator::ParzenEstimator(const std::vector<const run::SearchParameter*>&
   }
   for (size_t p = 0; p < parameters.size(); ++p) {
     ParzenDimension d = Layout(parameters[p]->distribution);
-    std::vector<double> column(n);
-    for (size_t i = 0; i < n; ++i) column[i] = observations[i][p];
+    std::vector<double>& column = columns[p];
     if (d.kind == Kind::kCategorical) {
       const auto& choices = std::get<run::CategoricalDistribution>(parameters[p]->distribution);
       FitCategorical(d, column, choices.choices.size(), options);
@@ -190,24 +206,24 @@ ParzenEstimator::ParzenEstimator(const std::vector<const run::SearchParameter*>&
       for (double& value : column) value = ToWorking(d, value);
       FitNumerical(d, std::move(column), parameters.size(), options);
     }
+    SetLogConstants(d);
     dimensions_.push_back(std::move(d));
   }
+  for (const double w : weights_) log_weights_.push_back(std::log(w));
 }
 
 ParzenEstimator ParzenEstimator::FromKernels(std::vector<double> weights,
                                              std::vector<ParzenDimension> dimensions) {
   ParzenEstimator estimator;
   estimator.weights_ = std::move(weights);
-  for (ParzenDimension& d : dimensions) {
-    if (d.kind != Kind::kCategorical) SetLogMass(d);
-  }
+  for (const double w : estimator.weights_) estimator.log_weights_.push_back(std::log(w));
+  for (ParzenDimension& d : dimensions) SetLogConstants(d);
   estimator.dimensions_ = std::move(dimensions);
   return estimator;
 }
 
 std::vector<std::vector<double>> ParzenEstimator::Sample(Random& random, int count) const {
-  // numpy's choice(p=weights): the first component whose cumulative weight
-  // exceeds a uniform.
+  // numpy's choice(p=weights): the first component whose cumulative weight exceeds a uniform.
   std::vector<double> cumulative(weights_.size());
   std::partial_sum(weights_.begin(), weights_.end(), cumulative.begin());
   std::vector<size_t> components(static_cast<size_t>(count));
@@ -241,16 +257,60 @@ std::vector<std::vector<double>> ParzenEstimator::Sample(Random& random, int cou
 }
 
 std::vector<double> ParzenEstimator::LogPdf(const std::vector<std::vector<double>>& points) const {
+  const size_t kernels = weights_.size();
   std::vector<double> result;
   result.reserve(points.size());
-  std::vector<double> terms(weights_.size());
-  for (const std::vector<double>& point : points) {
-    for (size_t k = 0; k < weights_.size(); ++k) {
-      double term = std::log(weights_[k]);
-      for (size_t p = 0; p < dimensions_.size(); ++p) {
-        term += KernelLogPdf(dimensions_[p], k, point[p]);
+  std::vector<double> terms(kernels);
+  std::vector<double> bounds(kernels);
+  // Per discrete dimension of the point: its cell, and ln of the cell's width.
+  struct PointCell {
+    const ParzenDimension* dimension;
+    double low, high, log_width;
+  };
+  std::vector<PointCell> cells;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const std::vector<double>& point = points[i];
+    // Candidates repeat (a categorical has few values): each distinct one is computed once.
+    if (const auto same = std::find(points.begin(), points.begin() + i, point);
+        same != points.begin() + i) {
+      result.push_back(result[same - points.begin()]);
+      continue;
+    }
+    terms = log_weights_;
+    cells.clear();
+    for (size_t p = 0; p < dimensions_.size(); ++p) {
+      const ParzenDimension& d = dimensions_[p];
+      if (d.kind == Kind::kCategorical) {
+        const auto choice = static_cast<size_t>(point[p]);
+        for (size_t k = 0; k < kernels; ++k) terms[k] += d.log_probabilities[k][choice];
+      } else if (d.kind == Kind::kContinuous) {
+        const double x = ToWorking(d, point[p]);
+        for (size_t k = 0; k < kernels; ++k) terms[k] += ContinuousLogPdf(d, k, x);
+      } else {
+        const auto [low, high] = Cell(d, point[p]);
+        cells.push_back({&d, std::max(low, d.low), std::min(high, d.high), 0.0});
+        cells.back().log_width = std::log(cells.back().high - cells.back().low);
       }
-      terms[k] = term;
+    }
+    if (!cells.empty()) {
+      // The cell masses cost two normal CDFs each, so only the kernels that can matter get
+      // them: those whose bound is within kNegligible of the exact term of the likeliest one.
+      for (size_t k = 0; k < kernels; ++k) {
+        bounds[k] = terms[k];
+        for (const PointCell& c : cells) {
+          bounds[k] += DiscreteLogPdfBound(*c.dimension, k, c.low, c.high, c.log_width);
+        }
+      }
+      const auto exact = [&](size_t k) {
+        double term = terms[k];
+        for (const PointCell& c : cells) term += DiscreteLogPdf(*c.dimension, k, c.low, c.high);
+        return term;
+      };
+      const size_t likeliest = std::max_element(bounds.begin(), bounds.end()) - bounds.begin();
+      const double floor = exact(likeliest) - kNegligible;
+      for (size_t k = 0; k < kernels; ++k) {
+        terms[k] = bounds[k] < floor ? -std::numeric_limits<double>::infinity() : exact(k);
+      }
     }
     const double top = *std::max_element(terms.begin(), terms.end());
     if (top == -std::numeric_limits<double>::infinity()) {
@@ -258,7 +318,9 @@ std::vector<double> ParzenEstimator::LogPdf(const std::vector<std::vector<double
       continue;
     }
     double sum = 0;
-    for (const double term : terms) sum += std::exp(term - top);
+    for (const double term : terms) {
+      if (term > top - kNegligible) sum += std::exp(term - top);
+    }
     result.push_back(top + std::log(sum));
   }
   return result;

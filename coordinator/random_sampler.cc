@@ -28,8 +28,7 @@ class RandomSampler : public Sampler {
   uint64_t seed_;
 };
 
-// A uniform draw over [low, high) snapped to the grid low + k·step, inside
-// [low, high].
+// A uniform draw over [low, high) snapped to the grid low + k·step, inside [low, high].
 double OnGrid(double low, double high, double step, Random& random) {
   const double x = random.Uniform(low - step / 2, high + step / 2);
   return std::clamp(low + std::nearbyint((x - low) / step) * step, low, high);

@@ -7,6 +7,8 @@
 #include <tuple>
 #include <utility>
 
+#include "absl/container/flat_hash_map.h"
+
 namespace dcs::coordinator {
 namespace {
 
@@ -14,28 +16,45 @@ bool IsFinished(const StudyTrial& trial) {
   return trial.state == TrialState::kComplete || trial.state == TrialState::kPruned;
 }
 
-bool Has(const StudyTrial& trial, const std::vector<const run::SearchParameter*>& parameters) {
-  return std::all_of(parameters.begin(), parameters.end(),
-                     [&](const run::SearchParameter* p) { return trial.values.contains(p->name); });
-}
+// Each trial's values by the parameter's position in the space, NaN where it has none: read
+// once per suggestion rather than by name for every parameter.
+using ValueTable = absl::flat_hash_map<const StudyTrial*, std::vector<double>>;
 
-// The rows of `parameters`' values of the trials that have them all, in trial
-// order.
-std::vector<std::vector<double>> Observations(
-    const std::vector<const StudyTrial*>& trials,
-    const std::vector<const run::SearchParameter*>& parameters) {
-  std::vector<std::vector<double>> rows;
+ValueTable Tabulate(const run::SearchSpace& space, const std::vector<const StudyTrial*>& trials) {
+  ValueTable table;
   for (const StudyTrial* trial : trials) {
-    if (!Has(*trial, parameters)) continue;
-    std::vector<double>& row = rows.emplace_back();
-    for (const run::SearchParameter* p : parameters) row.push_back(trial->values.at(p->name));
+    std::vector<double>& row = table[trial];
+    row.assign(space.parameters.size(), std::numeric_limits<double>::quiet_NaN());
+    for (size_t p = 0; p < space.parameters.size(); ++p) {
+      const auto value = trial->values.find(space.parameters[p].name);
+      if (value != trial->values.end()) row[p] = value->second;
+    }
   }
-  return rows;
+  return table;
 }
 
-const run::SearchParameter& Find(const run::SearchSpace& space, const std::string& name) {
-  return *std::find_if(space.parameters.begin(), space.parameters.end(),
-                       [&](const run::SearchParameter& p) { return p.name == name; });
+// The values at `positions` of the trials that have them all, in trial order: one column per
+// position.
+std::vector<std::vector<double>> Observations(const std::vector<const StudyTrial*>& trials,
+                                              const std::vector<size_t>& positions,
+                                              const ValueTable& table) {
+  std::vector<std::vector<double>> columns(positions.size());
+  for (const StudyTrial* trial : trials) {
+    const std::vector<double>& values = table.at(trial);
+    if (std::any_of(positions.begin(), positions.end(),
+                    [&](size_t p) { return std::isnan(values[p]); })) {
+      continue;
+    }
+    for (size_t i = 0; i < positions.size(); ++i) columns[i].push_back(values[positions[i]]);
+  }
+  return columns;
+}
+
+// The position of parameter `name` in the space.
+size_t Position(const run::SearchSpace& space, const std::string& name) {
+  return std::find_if(space.parameters.begin(), space.parameters.end(),
+                      [&](const run::SearchParameter& p) { return p.name == name; }) -
+         space.parameters.begin();
 }
 
 class TpeSampler : public Sampler {
@@ -71,30 +90,32 @@ class TpeSampler : public Sampler {
       return values;
     }
     const Split split = SplitTrials(history, Gamma(static_cast<int>(finished.size())), direction_);
+    const ValueTable table = Tabulate(space, history);
 
     run::ParameterValues joint;
     if (options_.parzen.multivariate) {
       for (const std::vector<std::string>& names : JointGroups(space, finished)) {
-        std::vector<const run::SearchParameter*> group;
-        for (const std::string& name : names) group.push_back(&Find(space, name));
-        const std::vector<double> drawn = SampleJointly(group, split, random);
-        for (size_t i = 0; i < group.size(); ++i) joint[group[i]->name] = drawn[i];
+        std::vector<size_t> group;
+        for (const std::string& name : names) group.push_back(Position(space, name));
+        const std::vector<double> drawn = SampleJointly(space, group, split, table, random);
+        for (size_t i = 0; i < group.size(); ++i) joint[names[i]] = drawn[i];
       }
     }
-    for (const run::SearchParameter& parameter : space.parameters) {
+    for (size_t p = 0; p < space.parameters.size(); ++p) {
+      const run::SearchParameter& parameter = space.parameters[p];
       if (!run::IsActive(parameter, space, values)) continue;
       const auto drawn = joint.find(parameter.name);
       values[parameter.name] = drawn != joint.end() ? drawn->second
                                : run::IsSingleValued(parameter.distribution)
                                    ? RandomValue(parameter.distribution, random)
-                                   : SampleJointly({&parameter}, split, random)[0];
+                                   : SampleJointly(space, {p}, split, table, random)[0];
     }
     return values;
   }
 
  private:
-  // The parameters sampled jointly: those every finished trial has, or the
-  // groups of those that occur together; single-valued ones left out.
+  // The parameters sampled jointly: those every finished trial has, or the groups of those that
+  // occur together; single-valued ones left out.
   std::vector<std::vector<std::string>> JointGroups(
       const run::SearchSpace& space, const std::vector<const StudyTrial*>& finished) const {
     std::vector<std::vector<std::string>> groups;
@@ -111,19 +132,24 @@ class TpeSampler : public Sampler {
     }
     for (std::vector<std::string>& group : groups) {
       std::erase_if(group, [&](const std::string& name) {
-        return run::IsSingleValued(Find(space, name).distribution);
+        return run::IsSingleValued(space.parameters[Position(space, name)].distribution);
       });
     }
     std::erase_if(groups, [](const std::vector<std::string>& group) { return group.empty(); });
     return groups;
   }
 
-  // Values for `parameters` by TPE: the first candidate from l(x) that
+  // Values for the parameters at `positions` by TPE: the first candidate from l(x) that
   // maximises l/g.
-  std::vector<double> SampleJointly(const std::vector<const run::SearchParameter*>& parameters,
-                                    const Split& split, Random& random) const {
-    const ParzenEstimator below(parameters, Observations(split.below, parameters), options_.parzen);
-    const ParzenEstimator above(parameters, Observations(split.above, parameters), options_.parzen);
+  std::vector<double> SampleJointly(const run::SearchSpace& space,
+                                    const std::vector<size_t>& positions, const Split& split,
+                                    const ValueTable& table, Random& random) const {
+    std::vector<const run::SearchParameter*> parameters;
+    for (const size_t p : positions) parameters.push_back(&space.parameters[p]);
+    const ParzenEstimator below(parameters, Observations(split.below, positions, table),
+                                options_.parzen);
+    const ParzenEstimator above(parameters, Observations(split.above, positions, table),
+                                options_.parzen);
     std::vector<std::vector<double>> candidates = below.Sample(random, options_.ei_candidates);
     const std::vector<double> log_l = below.LogPdf(candidates);
     const std::vector<double> log_g = above.LogPdf(candidates);

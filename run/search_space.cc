@@ -23,8 +23,7 @@ const SearchParameter* Find(const SearchSpace& space, const std::string& name) {
   return nullptr;
 }
 
-// Whether `steps` (a count of grid steps, as computed) is within rounding of an
-// integer.
+// Whether `steps` (a count of grid steps, as computed) is within rounding of an integer.
 bool IsWhole(double steps) { return std::abs(steps - std::round(steps)) <= 1e-8 * (1 + steps); }
 
 absl::Status CheckDistribution(const FloatDistribution& d) {

@@ -22,9 +22,8 @@ using google::protobuf::ListValue;
 using google::protobuf::Struct;
 using google::protobuf::Value;
 
-// shared/reference/tpe/parzen_vectors.json (shared/spec/tpe.md §15):
-// Optuna 4.9.0's Parzen estimators, fitted to below and above observations, and
-// their densities at 24 candidates.
+// shared/reference/tpe/parzen_vectors.json (shared/spec/tpe.md §15): Optuna 4.9.0's Parzen
+// estimators, fitted to below and above observations, and their densities at 24 candidates.
 Struct LoadVectors() {
   std::ifstream file(DCS_TEST_DATA_DIR "/parzen_vectors.json");
   std::stringstream text;
@@ -77,6 +76,14 @@ std::vector<std::vector<double>> Rows(const Struct& columns,
   return rows;
 }
 
+// The columns of the named parameters' values from {name: [values]}.
+std::vector<std::vector<double>> Columns(const Struct& columns,
+                                         const std::vector<std::string>& names) {
+  std::vector<std::vector<double>> result;
+  for (const std::string& name : names) result.push_back(Numbers(columns.fields().at(name)));
+  return result;
+}
+
 void ExpectNear(const std::vector<double>& actual, const std::vector<double>& expected,
                 double relative, const std::string& what) {
   ASSERT_EQ(actual.size(), expected.size()) << what;
@@ -87,8 +94,8 @@ void ExpectNear(const std::vector<double>& actual, const std::vector<double>& ex
 }
 
 // Kernels as (centre, bandwidth) pairs in centre order. Which of several equal centres gets which
-// bandwidth is a tie: Optuna breaks it by numpy's argsort, which is not stable, DCS by trial
-// order; the pairs are the same either way.
+// bandwidth is a tie: Optuna breaks it by numpy's argsort, which is not stable, DCS by trial order;
+// the pairs are the same either way.
 std::vector<std::pair<double, double>> Kernels(const std::vector<double>& mu,
                                                const std::vector<double>& sigma) {
   std::vector<std::pair<double, double>> kernels;
@@ -139,8 +146,8 @@ ParzenEstimator ReferenceMixture(const ParzenEstimator& fitted, const Struct& mi
                                       std::move(dimensions));
 }
 
-// Whether some equal observations carry different weights (25 or more observations, so the
-// oldest are ramped down): then the tie above changes the mixture.
+// Whether some equal observations carry different weights (25 or more observations, so the oldest
+// are ramped down): then the tie above changes the mixture.
 bool TiesChangeWeights(const std::vector<std::vector<double>>& rows) {
   if (rows.size() < 25) return false;
   std::vector<std::vector<double>> sorted = rows;
@@ -167,8 +174,8 @@ TEST(ParzenEstimatorTest, MatchesOptunasMixturesAndDensitiesOnTheReferenceVector
     const ParzenOptions options{.multivariate = c.at("multivariate").bool_value()};
     const auto below_rows = Rows(c.at("below_obs").struct_value(), names);
     const auto above_rows = Rows(c.at("above_obs").struct_value(), names);
-    const ParzenEstimator below(space, below_rows, options);
-    const ParzenEstimator above(space, above_rows, options);
+    const ParzenEstimator below(space, Columns(c.at("below_obs").struct_value(), names), options);
+    const ParzenEstimator above(space, Columns(c.at("above_obs").struct_value(), names), options);
     ExpectMixture(below, c.at("l_mixture").struct_value(), names, "l");
     ExpectMixture(above, c.at("g_mixture").struct_value(), names, "g");
 
@@ -177,8 +184,8 @@ TEST(ParzenEstimatorTest, MatchesOptunasMixturesAndDensitiesOnTheReferenceVector
     const std::vector<double> log_l = below.LogPdf(candidates);
     const std::vector<double> log_g = above.LogPdf(candidates);
     // Densities to the spec's 1e-9: of the reference's kernels always, and of the fitted ones
-    // wherever the tie above leaves the mixture alone (everywhere but the integer and grid
-    // cases, whose 27 "above" observations repeat values under ramped weights).
+    // wherever the tie above leaves the mixture alone (everywhere but the integer and grid cases,
+    // whose 27 "above" observations repeat values under ramped weights).
     const std::vector<double> expected_l = Numbers(c.at("log_l"));
     const std::vector<double> expected_g = Numbers(c.at("log_g"));
     const auto l_mixture = c.at("l_mixture").struct_value();
@@ -208,14 +215,13 @@ TEST(DefaultWeightsTest, RampsTheOldestBeyondTwentyFive) {
   EXPECT_DOUBLE_EQ(w[27], 1.0);
 }
 
-// Draws follow the mixture LogPdf describes: the share of 40,000 draws in each
-// of 10 cells of a log-uniform range, against the mixture's integral over the
-// cell.
+// Draws follow the mixture LogPdf describes: the share of 40,000 draws in each of 10 cells of a
+// log-uniform range, against the mixture's integral over the cell.
 TEST(ParzenEstimatorTest, DrawsFollowTheMixtureTheyScore) {
   const run::SearchParameter period{
       .name = "period",
       .distribution = run::FloatDistribution{.low = 10, .high = 500, .log = true}};
-  const ParzenEstimator estimator({&period}, {{20.0}, {25.0}, {300.0}}, ParzenOptions{});
+  const ParzenEstimator estimator({&period}, {{20.0, 25.0, 300.0}}, ParzenOptions{});
   Random random(7);
   const auto draws = estimator.Sample(random, 40000);
   const double low = std::log(10.0);
@@ -227,8 +233,7 @@ TEST(ParzenEstimatorTest, DrawsFollowTheMixtureTheyScore) {
     share[std::min(9, static_cast<int>((std::log(draw[0]) - low) / width))] += 1.0 / draws.size();
   }
   for (int cell = 0; cell < 10; ++cell) {
-    // The density is in ln(period): integrate it over the cell by the midpoint
-    // rule.
+    // The density is in ln(period): integrate it over the cell by the midpoint rule.
     double mass = 0;
     constexpr int kPoints = 200;
     for (int i = 0; i < kPoints; ++i) {
@@ -244,7 +249,7 @@ TEST(ParzenEstimatorTest, DiscreteDrawsLandOnTheGridInsideTheBounds) {
       .name = "s", .distribution = run::FloatDistribution{.low = 0, .high = 5, .step = 0.5}};
   const run::SearchParameter count{
       .name = "j", .distribution = run::IntDistribution{.low = 1, .high = 1000, .log = true}};
-  const ParzenEstimator estimator({&steps, &count}, {{0.0, 1.0}, {5.0, 1000.0}, {2.5, 30.0}},
+  const ParzenEstimator estimator({&steps, &count}, {{0.0, 5.0, 2.5}, {1.0, 1000.0, 30.0}},
                                   ParzenOptions{.multivariate = true});
   Random random(3);
   for (const auto& draw : estimator.Sample(random, 2000)) {
@@ -255,11 +260,28 @@ TEST(ParzenEstimatorTest, DiscreteDrawsLandOnTheGridInsideTheBounds) {
 
 TEST(TruncatedNormalTest, LogCdfIsAccurateInBothTails) {
   EXPECT_NEAR(LogNormalCdf(0), std::log(0.5), 1e-15);
-  // ln Φ(-30) and ln Φ(-40) (mpmath): where Φ itself is 4.9e-198 and 3.6e-350
-  // (underflow).
+  // ln Φ(-30) and ln Φ(-40) (mpmath): where Φ itself is 4.9e-198 and 3.6e-350 (underflow).
   EXPECT_NEAR(LogNormalCdf(-30), -454.3212439563432, 1e-9);
   EXPECT_NEAR(LogNormalCdf(-40), -804.6084420137538, 1e-9);
   EXPECT_NEAR(LogNormalCdf(8), -6.220960574271784e-16, 1e-28);
+}
+
+// Interval masses against mpmath at 60 digits: narrow ones (summed as a Hermite series), wide
+// ones (from the normal CDFs), in the middle and far in both tails.
+TEST(TruncatedNormalTest, MassesOfNarrowAndWideIntervalsAreAccurate) {
+  const struct {
+    double a, b, log_mass;
+  } cases[] = {
+      {0.1, 0.3, -2.5499754246125898808},   {-2, -1.9, -5.1216068777570823534},
+      {3, 3.01, -10.039087761156880471},    {-30, -29.99, -455.37037945483563641},
+      {0.5, 2.5, -1.1962431770139122147},   {-1, 1, -0.38171514630212607227},
+      {-0.2, 1.8, -0.61003953094415684545}, {-40, -39.9, -800.62947416012146008},
+      {12, 12.5, -75.412776310697438372},   {-3, -2.999999, -19.234447591028960336},
+  };
+  for (const auto& c : cases) {
+    EXPECT_NEAR(LogNormalMass(c.a, c.b), c.log_mass, 2e-15 * std::max(1.0, std::abs(c.log_mass)))
+        << "[" << c.a << ", " << c.b << "]";
+  }
 }
 
 TEST(TruncatedNormalTest, QuantilesInvertTheCdfInsideTheInterval) {
