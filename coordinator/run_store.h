@@ -288,12 +288,15 @@ class RunStore {
   // Every study, oldest first.
   absl::StatusOr<std::vector<StudyRecord>> ListStudies();
   // A new running trial, numbered after the study's others, with the values its sampler gives
-  // given every trial so far. NOT_FOUND for an unknown study.
-  absl::StatusOr<StudyTrial> AskTrial(absl::string_view study_id, absl::Time now);
+  // given every trial so far; or the trial `request_id` already asked for (a retry).
+  // NOT_FOUND for an unknown study; INVALID_ARGUMENT for an empty request id.
+  absl::StatusOr<StudyTrial> AskTrial(absl::string_view study_id, absl::string_view request_id,
+                                      absl::Time now);
   // Finishes a running trial: complete with `value` (a NaN value fails it, as Optuna's tell
   // does; ±inf is a value), pruned (its value, if any, is its last report), or failed.
-  // NOT_FOUND for an unknown study or trial; FAILED_PRECONDITION if the trial has finished
-  // (naming its state); INVALID_ARGUMENT for `state` running.
+  // Telling a finished trial what it was told (a retry) returns it unchanged. NOT_FOUND for an
+  // unknown study or trial; FAILED_PRECONDITION if the trial finished otherwise (naming its
+  // state); INVALID_ARGUMENT for `state` running.
   absl::StatusOr<StudyTrial> TellTrial(absl::string_view study_id, int64_t number,
                                        TrialState state, double value, absl::Time now);
   // Records a running trial's intermediate value at `step` (a repeated step keeps the first,

@@ -142,11 +142,13 @@ CREATE TABLE studies (
 CREATE TABLE study_trials (
   study INTEGER NOT NULL REFERENCES studies(number),
   number INTEGER NOT NULL,
+  request_id TEXT NOT NULL,
   state TEXT NOT NULL CHECK (state IN ('running', 'complete', 'pruned', 'failed')),
   value REAL,
   created_at INTEGER NOT NULL,
   finished_at INTEGER,
-  PRIMARY KEY (study, number)
+  PRIMARY KEY (study, number),
+  UNIQUE (study, request_id)
 );
 CREATE TABLE study_trial_values (
   study INTEGER NOT NULL,

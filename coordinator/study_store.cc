@@ -212,22 +212,34 @@ absl::StatusOr<std::vector<StudyRecord>> RunStore::ListStudies() {
   });
 }
 
-absl::StatusOr<StudyTrial> RunStore::AskTrial(absl::string_view study_id, absl::Time now) {
+absl::StatusOr<StudyTrial> RunStore::AskTrial(absl::string_view study_id,
+                                              absl::string_view request_id, absl::Time now) {
+  if (request_id.empty()) return absl::InvalidArgumentError("an ask needs a request id");
   return Transaction([&]() -> absl::StatusOr<StudyTrial> {
     DCS_ASSIGN_OR_RETURN(const StudyRow row, FindStudy(*db_, study_id));
     const int64_t study = *StudyNumber(study_id);
     const std::vector<StudyTrial> trials = ReadTrials(*db_, study);
+    SQLite::Statement asked(*db_,
+                            "SELECT number FROM study_trials WHERE study = ? AND request_id = ?");
+    asked.bind(1, study);
+    asked.bind(2, std::string(request_id));
+    if (asked.executeStep()) {
+      const int64_t number = asked.getColumn(0).getInt64();
+      return *std::find_if(trials.begin(), trials.end(),
+                           [number](const StudyTrial& t) { return t.number == number; });
+    }
     StudyTrial trial{.number = trials.empty() ? 0 : trials.back().number + 1,
                      .state = TrialState::kRunning,
                      .value = kNaN};
     trial.values = MakeSampler(row.record.submission)->Sample(row.space, trials, trial.number);
 
     SQLite::Statement insert(*db_,
-                             "INSERT INTO study_trials (study, number, state, created_at) "
-                             "VALUES (?, ?, 'running', ?)");
+                             "INSERT INTO study_trials (study, number, request_id, state, "
+                             "created_at) VALUES (?, ?, ?, 'running', ?)");
     insert.bind(1, study);
     insert.bind(2, trial.number);
-    insert.bind(3, Micros(now));
+    insert.bind(3, std::string(request_id));
+    insert.bind(4, Micros(now));
     insert.exec();
     SQLite::Statement value(*db_,
                             "INSERT INTO study_trial_values (study, trial, name, value) "
@@ -253,11 +265,15 @@ absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64
     DCS_ASSIGN_OR_RETURN(const int64_t study, StudyNumber(study_id));
     DCS_RETURN_IF_ERROR(FindStudy(*db_, study_id).status());
     DCS_ASSIGN_OR_RETURN(const TrialState current, TrialStateOf(*db_, study_id, study, number));
-    DCS_RETURN_IF_ERROR(RequireRunning(current, study_id, number));
     std::vector<StudyTrial> trials = ReadTrials(*db_, study);
     StudyTrial& trial = *std::find_if(trials.begin(), trials.end(),
                                       [number](const StudyTrial& t) { return t.number == number; });
-    trial.state = state == TrialState::kComplete && std::isnan(value) ? TrialState::kFailed : state;
+    const TrialState told =
+        state == TrialState::kComplete && std::isnan(value) ? TrialState::kFailed : state;
+    // Told again as it was (a retry whose first answer was lost): nothing changes.
+    if (current == told && (told != TrialState::kComplete || trial.value == value)) return trial;
+    DCS_RETURN_IF_ERROR(RequireRunning(current, study_id, number));
+    trial.state = told;
     trial.value = trial.state == TrialState::kComplete ? value
                   : trial.state == TrialState::kPruned && !trial.reported.empty()
                       ? trial.reported.rbegin()->second

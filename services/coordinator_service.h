@@ -99,6 +99,19 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   grpc::ServerUnaryReactor* ReleaseLease(grpc::CallbackServerContext* context,
                                          const v1::ReleaseLeaseRequest* request,
                                          v1::ReleaseLeaseResponse* response) override;
+  // Studies (services/coordinator_studies.cc).
+  grpc::ServerUnaryReactor* CreateStudy(grpc::CallbackServerContext* context,
+                                        const v1::CreateStudyRequest* request,
+                                        v1::CreateStudyResponse* response) override;
+  grpc::ServerUnaryReactor* GetStudy(grpc::CallbackServerContext* context,
+                                     const v1::GetStudyRequest* request,
+                                     v1::GetStudyResponse* response) override;
+  grpc::ServerUnaryReactor* AskTrial(grpc::CallbackServerContext* context,
+                                     const v1::AskTrialRequest* request,
+                                     v1::AskTrialResponse* response) override;
+  grpc::ServerUnaryReactor* TellTrial(grpc::CallbackServerContext* context,
+                                      const v1::TellTrialRequest* request,
+                                      v1::TellTrialResponse* response) override;
   grpc::ServerUnaryReactor* ReportProgress(grpc::CallbackServerContext* context,
                                            const v1::ReportProgressRequest* request,
                                            v1::ReportProgressResponse* response) override;

@@ -39,13 +39,13 @@ std::string EnumValueName(absl::string_view name, absl::string_view prefix) {
 
 std::string Peer(const std::string& address) { return absl::StrCat("coordinator ", address); }
 
+}  // namespace
+
 std::string NewRequestId() {
   absl::BitGen random;
   return absl::StrFormat("%016x%016x", absl::Uniform<uint64_t>(random),
                          absl::Uniform<uint64_t>(random));
 }
-
-}  // namespace
 
 absl::StatusOr<v1::Run> SubmitRun(const std::string& address, const std::string& config,
                                   const std::string& config_name, std::optional<uint64_t> seed,

@@ -21,6 +21,9 @@
 
 namespace dcs::services::cli {
 
+// A new random request id (32 hex digits), which makes a submission's retry idempotent.
+std::string NewRequestId();
+
 // Queues the run of `config` (named `config_name` in errors), with `seed` if given, under a
 // new random request id (resent as is if the call must be retried). INVALID_ARGUMENT from the
 // coordinator names the field, its path and line.

@@ -1,20 +1,22 @@
 // Copyright 2026 The DCS Authors.
 #include "services/cli/study_commands.h"
 
-#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
+#include <google/protobuf/wrappers.pb.h>
 
 #include <iostream>
 #include <memory>
 #include <string>
 
-#include "absl/random/random.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
 #include "coordinator/run_store.h"
-#include "dcs/proto_json.h"
+#include "services/cli/cluster_client.h"
+#include "services/cli/run_client.h"
+#include "services/cli/study_client.h"
 #include "run/search_space_yaml.h"
 #include "services/command_line.h"
 #include "services/exit_codes.h"
@@ -23,7 +25,6 @@ namespace dcs::services::cli {
 namespace {
 
 using coordinator::Direction;
-using coordinator::RunStore;
 using coordinator::SamplerKind;
 using coordinator::StudyTrial;
 using coordinator::TrialState;
@@ -44,67 +45,78 @@ struct TrialFlags {
   TrialState state = TrialState::kComplete;
 };
 
-absl::StatusOr<std::unique_ptr<RunStore>> OpenStore(const std::string& path) {
-  return RunStore::Open(path, coordinator::RunStoreOptions{}, absl::Now());
+// The studies of --store, or else of the coordinator (--addr, or the local cluster's).
+absl::StatusOr<std::unique_ptr<StudyClient>> Studies(const std::string& store,
+                                                     const GlobalFlags& flags) {
+  if (!store.empty()) return OpenLocalStudies(store);
+  return ConnectStudies(CoordinatorAddress(flags), flags.timeout);
 }
 
-// A trial as JSON: its number, its value once complete, its parameters by name (a categorical
-// by its choice's name).
+// A number or a string as a JSON literal, by protobuf's JSON printer (its escaping and number
+// format; ±inf as proto3's JSON spells it, "Infinity").
+template <typename Wrapper, typename T>
+std::string JsonLiteral(const T& value) {
+  Wrapper wrapper;
+  wrapper.set_value(value);
+  std::string text;
+  (void)google::protobuf::util::MessageToJsonString(wrapper, &text);
+  return text;
+}
+
+// A trial as one line of JSON, its keys in a fixed order: its number, its value once complete,
+// its parameters in the space's order (a categorical by its choice's name).
 std::string TrialJson(const StudyTrial& trial, const run::SearchSpace& space) {
-  google::protobuf::Struct json;
-  (*json.mutable_fields())["trial"].set_number_value(static_cast<double>(trial.number));
+  using google::protobuf::DoubleValue;
+  std::string json = absl::StrCat("{\"trial\": ", trial.number);
   if (trial.state == TrialState::kComplete) {
-    (*json.mutable_fields())["value"].set_number_value(trial.value);
+    absl::StrAppend(&json, ", \"value\": ", JsonLiteral<DoubleValue>(trial.value));
   }
-  auto& params = *(*json.mutable_fields())["params"].mutable_struct_value()->mutable_fields();
+  absl::StrAppend(&json, ", \"params\": {");
+  const char* separator = "";
   for (const run::SearchParameter& parameter : space.parameters) {
     const auto value = trial.values.find(parameter.name);
     if (value == trial.values.end()) continue;
-    if (const auto* choices = std::get_if<run::CategoricalDistribution>(&parameter.distribution)) {
-      params[parameter.name].set_string_value(choices->choices[static_cast<size_t>(value->second)]);
-    } else {
-      params[parameter.name].set_number_value(value->second);
-    }
+    const auto* choices = std::get_if<run::CategoricalDistribution>(&parameter.distribution);
+    absl::StrAppend(&json, separator, JsonLiteral<google::protobuf::StringValue>(parameter.name),
+                    ": ",
+                    choices == nullptr ? JsonLiteral<DoubleValue>(value->second)
+                                       : JsonLiteral<google::protobuf::StringValue>(
+                                             choices->choices[static_cast<size_t>(value->second)]));
+    separator = ", ";
   }
-  return ProtoToJson(json);
+  return absl::StrCat(json, "}}");
 }
 
 // The study's space, to name its parameters' values.
-absl::StatusOr<run::SearchSpace> SpaceOf(RunStore& store, const std::string& study) {
-  DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord record, store.GetStudy(study));
-  return run::ParseSearchSpaceYaml(record.submission.space, record.id);
+absl::StatusOr<run::SearchSpace> SpaceOf(const coordinator::StudyRecord& study) {
+  return run::ParseSearchSpaceYaml(study.submission.space, study.id);
 }
 
-absl::Status Create(const CreateFlags& flags, const std::string& store_path) {
+absl::Status Create(const CreateFlags& flags, StudyClient& studies) {
   DCS_ASSIGN_OR_RETURN(const std::string space, ReadFile(flags.space));
-  // Checked here too, to name the file rather than the store in errors.
+  // Checked here first, to name the file in errors.
   DCS_RETURN_IF_ERROR(run::ParseSearchSpaceYaml(space, flags.space).status());
-  DCS_ASSIGN_OR_RETURN(std::unique_ptr<RunStore> store, OpenStore(store_path));
-  absl::BitGen random;
-  const coordinator::StudySubmission submission{
-      .request_id = absl::StrFormat("%016x%016x", absl::Uniform<uint64_t>(random),
-                                    absl::Uniform<uint64_t>(random)),
-      .name = flags.name,
-      .space = space,
-      .sampler = flags.sampler,
-      .seed = flags.seed,
-      .direction = flags.direction,
-      .tpe = flags.tpe};
   DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study,
-                       store->CreateStudy(submission, absl::Now()));
+                       studies.Create({.request_id = NewRequestId(),
+                                       .name = flags.name,
+                                       .space = space,
+                                       .sampler = flags.sampler,
+                                       .seed = flags.seed,
+                                       .direction = flags.direction,
+                                       .tpe = flags.tpe}));
   std::cout << study.id << std::endl;
   return absl::OkStatus();
 }
 
-absl::Status Ask(const std::string& study, const std::string& store_path) {
-  DCS_ASSIGN_OR_RETURN(std::unique_ptr<RunStore> store, OpenStore(store_path));
-  DCS_ASSIGN_OR_RETURN(const run::SearchSpace space, SpaceOf(*store, study));
-  DCS_ASSIGN_OR_RETURN(const StudyTrial trial, store->AskTrial(study, absl::Now()));
+absl::Status Ask(const std::string& study_id, StudyClient& studies) {
+  DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study, studies.Get(study_id));
+  DCS_ASSIGN_OR_RETURN(const run::SearchSpace space, SpaceOf(study));
+  DCS_ASSIGN_OR_RETURN(const StudyTrial trial, studies.Ask(study_id, NewRequestId()));
   std::cout << TrialJson(trial, space) << std::endl;
   return absl::OkStatus();
 }
 
-absl::Status Tell(const TrialFlags& flags, const std::string& store_path) {
+absl::Status Tell(const TrialFlags& flags, StudyClient& studies) {
   double value = std::numeric_limits<double>::quiet_NaN();
   if (flags.state == TrialState::kComplete && !absl::SimpleAtod(flags.value, &value)) {
     return absl::InvalidArgumentError(
@@ -115,34 +127,39 @@ absl::Status Tell(const TrialFlags& flags, const std::string& store_path) {
   if (flags.state == TrialState::kRunning) {
     return absl::InvalidArgumentError("--state is complete, pruned or failed");
   }
-  DCS_ASSIGN_OR_RETURN(std::unique_ptr<RunStore> store, OpenStore(store_path));
-  return store->TellTrial(flags.study, flags.trial, flags.state, value, absl::Now()).status();
+  return studies.Tell(flags.study, flags.trial, flags.state, value).status();
 }
 
-absl::Status Best(const std::string& study, const std::string& store_path) {
-  DCS_ASSIGN_OR_RETURN(std::unique_ptr<RunStore> store, OpenStore(store_path));
-  DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord record, store->GetStudy(study));
-  if (!record.best.has_value()) {
-    return absl::FailedPreconditionError(absl::StrCat(study, " has no complete trial yet"));
+absl::Status Best(const std::string& study_id, StudyClient& studies) {
+  DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study, studies.Get(study_id));
+  if (!study.best.has_value()) {
+    return absl::FailedPreconditionError(absl::StrCat(study_id, " has no complete trial yet"));
   }
-  DCS_ASSIGN_OR_RETURN(const run::SearchSpace space,
-                       run::ParseSearchSpaceYaml(record.submission.space, record.id));
-  std::cout << TrialJson(*record.best, space) << std::endl;
+  DCS_ASSIGN_OR_RETURN(const run::SearchSpace space, SpaceOf(study));
+  std::cout << TrialJson(*study.best, space) << std::endl;
   return absl::OkStatus();
 }
 
-int Exit(const absl::Status& status) { return status.ok() ? kExitOk : FailCommand(status); }
+// Runs `command` on the studies of --store or the coordinator; the exit code.
+template <typename Command>
+int RunOn(const std::string& store, const GlobalFlags& flags, const Command& command) {
+  absl::StatusOr<std::unique_ptr<StudyClient>> studies = Studies(store, flags);
+  if (!studies.ok()) return FailCommand(studies.status());
+  const absl::Status status = command(**studies);
+  return status.ok() ? kExitOk : FailCommand(status);
+}
 
 }  // namespace
 
-std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags&) {
+std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags) {
   CLI::App* study =
       dcs.add_subcommand("study", "Ask-and-tell studies (TPE or random search), as Optuna's");
   study->require_subcommand(1);
   auto store = std::make_shared<std::string>();
   const auto add_store = [store](CLI::App* command) {
-    command->add_option("--store", *store, "the study's SQLite file (created if missing)")
-        ->required();
+    command->add_option("--store", *store,
+                        "keep the study in this SQLite file (created if missing) rather than on "
+                        "the coordinator");
   };
 
   auto create_flags = std::make_shared<CreateFlags>();
@@ -182,10 +199,14 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags&) {
   best->add_option("study", *study_id, "the study's id")->required();
   add_store(best);
 
-  return {{create, [=] { return Exit(Create(*create_flags, *store)); }},
-          {ask, [=] { return Exit(Ask(*study_id, *store)); }},
-          {tell, [=] { return Exit(Tell(*trial_flags, *store)); }},
-          {best, [=] { return Exit(Best(*study_id, *store)); }}};
+  // Each command runs on the studies of --store or of the coordinator.
+  const auto on_studies = [store, &flags](auto command) {
+    return [store, &flags, command] { return RunOn(*store, flags, command); };
+  };
+  return {{create, on_studies([=](StudyClient& s) { return Create(*create_flags, s); })},
+          {ask, on_studies([=](StudyClient& s) { return Ask(*study_id, s); })},
+          {tell, on_studies([=](StudyClient& s) { return Tell(*trial_flags, s); })},
+          {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); })}};
 }
 
 }  // namespace dcs::services::cli

@@ -6,14 +6,15 @@
 //
 //   dcs study create --space space.yaml [--sampler tpe|random] [--seed N]
 //                    [--direction minimize|maximize] [--multivariate [--group]]
-//                    [--constant-liar] [--startup-trials N] [--name NAME] --store FILE
-//   dcs study ask STUDY --store FILE          {"trial": 3, "params": {"x": 1.5, "mode": "a"}}
-//   dcs study tell STUDY TRIAL VALUE --store FILE   (or --state pruned|failed, no VALUE)
-//   dcs study best STUDY --store FILE         {"trial": 7, "value": 0.4, "params": {...}}
+//                    [--constant-liar] [--startup-trials N] [--name NAME]
+//   dcs study ask STUDY                {"trial": 3, "params": {"x": 1.5, "mode": "a"}}
+//   dcs study tell STUDY TRIAL VALUE   (or --state pruned|failed, and no VALUE)
+//   dcs study best STUDY               {"trial": 7, "value": 0.4, "params": {...}}
 //
-// `create` prints the study's id. The study lives in the SQLite file --store (created if
-// missing; the coordinator's schema, so a coordinator could open it), with no cluster running.
-// A categorical parameter prints its choice's name; a NaN value fails the trial.
+// `create` prints the study's id. A study lives on the coordinator (--addr, default the local
+// cluster of `dcs up`), or, with --store FILE on every command, in a local SQLite file with no
+// cluster running (the coordinator's schema). A categorical parameter prints its choice's name;
+// a NaN value fails the trial.
 
 #include <vector>
 

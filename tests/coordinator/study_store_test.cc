@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
 #include "absl/time/time.h"
 #include "coordinator/run_store.h"
 #include "gmock/gmock.h"
@@ -41,6 +42,12 @@ StudySubmission Study(std::string request_id, SamplerKind sampler = SamplerKind:
           .tpe = {.startup_trials = 3}};
 }
 
+// A request id no other ask of the test uses.
+std::string NextAsk() {
+  static int asks = 0;
+  return absl::StrCat("ask-", ++asks);
+}
+
 int64_t CountIn(const StudyRecord& study, TrialState wanted) {
   for (const auto& [state, trials] : study.trials_by_state) {
     if (state == wanted) return trials;
@@ -62,7 +69,7 @@ class StudyStoreTest : public testing::TempDirTest {
 std::vector<run::ParameterValues> AskAndTell(RunStore& store, const std::string& study, int count) {
   std::vector<run::ParameterValues> asked;
   for (int i = 0; i < count; ++i) {
-    absl::StatusOr<StudyTrial> trial = store.AskTrial(study, kStart);
+    absl::StatusOr<StudyTrial> trial = store.AskTrial(study, NextAsk(), kStart);
     EXPECT_TRUE(trial.ok()) << trial.status();
     asked.push_back(trial->values);
     const double x = trial->values.at("x");
@@ -116,11 +123,24 @@ TEST_F(StudyStoreTest, AReopenedStoreAsksWhatTheFirstWouldHave) {
   EXPECT_EQ(reopened, uninterrupted);
 }
 
+// A retried ask (its response lost) gets the trial the first made, not a second one.
+TEST_F(StudyStoreTest, ARepeatedAskReturnsTheTrialItMade) {
+  std::unique_ptr<RunStore> store = Open();
+  const std::string study = store->CreateStudy(Study("r"), kStart)->id;
+  const absl::StatusOr<StudyTrial> first = store->AskTrial(study, "same", kStart);
+  const absl::StatusOr<StudyTrial> again = store->AskTrial(study, "same", kStart);
+  ASSERT_TRUE(first.ok() && again.ok());
+  EXPECT_EQ(again->number, first->number);
+  EXPECT_EQ(again->values, first->values);
+  EXPECT_EQ(store->ListStudyTrials(study)->size(), 1u);
+  EXPECT_EQ(store->AskTrial(study, "", kStart).status().code(), absl::StatusCode::kInvalidArgument);
+}
+
 TEST_F(StudyStoreTest, TellRefusesFinishedTrialsAndFailsNaN) {
   std::unique_ptr<RunStore> store = Open();
   const std::string study = store->CreateStudy(Study("r"), kStart)->id;
-  const int64_t first = store->AskTrial(study, kStart)->number;
-  const int64_t second = store->AskTrial(study, kStart)->number;
+  const int64_t first = store->AskTrial(study, NextAsk(), kStart)->number;
+  const int64_t second = store->AskTrial(study, NextAsk(), kStart)->number;
   EXPECT_EQ(second, first + 1);
 
   const absl::StatusOr<StudyTrial> nan = store->TellTrial(
@@ -132,11 +152,17 @@ TEST_F(StudyStoreTest, TellRefusesFinishedTrialsAndFailsNaN) {
       store->TellTrial(study, first, TrialState::kComplete, 1.0, kStart);
   EXPECT_EQ(again.status().code(), absl::StatusCode::kFailedPrecondition);
   EXPECT_THAT(again.status().message(), HasSubstr("it is failed"));
+  // The same tell again (a retry) is answered as the first was.
+  const absl::StatusOr<StudyTrial> retried = store->TellTrial(
+      study, first, TrialState::kComplete, std::numeric_limits<double>::quiet_NaN(), kStart);
+  ASSERT_TRUE(retried.ok()) << retried.status();
+  EXPECT_EQ(retried->state, TrialState::kFailed);
   EXPECT_EQ(store->TellTrial(study, 99, TrialState::kComplete, 1.0, kStart).status().code(),
             absl::StatusCode::kNotFound);
   EXPECT_EQ(store->TellTrial(study, second, TrialState::kRunning, 1.0, kStart).status().code(),
             absl::StatusCode::kInvalidArgument);
-  EXPECT_EQ(store->AskTrial("study-7", kStart).status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(store->AskTrial("study-7", NextAsk(), kStart).status().code(),
+            absl::StatusCode::kNotFound);
 
   const double inf = std::numeric_limits<double>::infinity();
   EXPECT_EQ(store->TellTrial(study, second, TrialState::kComplete, inf, kStart)->value, inf);
@@ -146,7 +172,7 @@ TEST_F(StudyStoreTest, TellRefusesFinishedTrialsAndFailsNaN) {
 TEST_F(StudyStoreTest, PrunedTrialsKeepTheirReportsAndLastValue) {
   std::unique_ptr<RunStore> store = Open();
   const std::string study = store->CreateStudy(Study("r"), kStart)->id;
-  const int64_t trial = store->AskTrial(study, kStart)->number;
+  const int64_t trial = store->AskTrial(study, NextAsk(), kStart)->number;
   ASSERT_TRUE(store->ReportTrial(study, trial, 1, 5.0).ok());
   ASSERT_TRUE(store->ReportTrial(study, trial, 3, 4.0).ok());
   ASSERT_TRUE(store->ReportTrial(study, trial, 3, 9.0).ok());  // a repeated step keeps the first

@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 //
-// `dcs study create/ask/tell/best` on a local --store file, as a user outside DCS runs them.
+// `dcs study create/ask/tell/best` as a user outside DCS runs them: on a local --store file, and
+// on a coordinator that is killed (SIGKILL) and restarted mid-study.
 
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
@@ -14,6 +15,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "services/exit_codes.h"
+#include "tests/integration/cluster_processes.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/temp_dir.h"
 
@@ -93,6 +95,64 @@ TEST_F(StudyCliTest, ABadSpaceIsRefusedNamingTheFileAndCreatesNothing) {
   const RunResult value = Dcs({"study", "tell", "study-1", "0", "many", "--store", Path("s.db")});
   EXPECT_EQ(value.exit_code, services::kExitDataError);
   EXPECT_THAT(value.output, HasSubstr("VALUE must be a number"));
+}
+
+// Runs `trials` trials of the space.yaml study `study` (x², or 1 + x on the ridge) through
+// `dcs study` with `where` (--store FILE or --addr ADDRESS); returns each trial's JSON.
+std::vector<std::string> RunTrials(const std::string& study, int trials,
+                                   const std::vector<std::string>& where) {
+  std::vector<std::string> asked;
+  for (int i = 0; i < trials; ++i) {
+    std::vector<std::string> ask = {"study", "ask", study};
+    ask.insert(ask.end(), where.begin(), where.end());
+    const RunResult answer = Dcs(ask);
+    EXPECT_EQ(answer.exit_code, services::kExitOk) << answer.output;
+    asked.push_back(answer.output);
+    const google::protobuf::Struct trial = Json(answer.output);
+    const auto& params = trial.fields().at("params").struct_value().fields();
+    const double x = params.at("x").number_value();
+    const double value = params.at("shape").string_value() == "bowl" ? x * x : 1 + x;
+    std::vector<std::string> tell = {"study", "tell", study,
+                                     absl::StrCat(trial.fields().at("trial").number_value()),
+                                     absl::StrFormat("%.17g", value)};
+    tell.insert(tell.end(), where.begin(), where.end());
+    const RunResult told = Dcs(tell);
+    EXPECT_EQ(told.exit_code, services::kExitOk) << told.output;
+  }
+  return asked;
+}
+
+// A study on the coordinator survives the coordinator's death: restarted on its data directory,
+// it goes on from the trials it acknowledged, and asks what an uninterrupted study asks (the
+// same trials as a local store with the same seed: the sampler keeps no state between trials).
+TEST_F(StudyCliTest, AStudyOnTheCoordinatorSurvivesItsDeath) {
+  ASSERT_TRUE(WriteFileAtomically(Path("space.yaml"), R"(parameters:
+  - {name: x, type: float, low: -2, high: 2}
+  - {name: shape, type: categorical, choices: [bowl, ridge]}
+)")
+                  .ok());
+  const std::vector<std::string> local = {"--store", Path("local.db")};
+  const RunResult local_study = Dcs({"study", "create", "--space", Path("space.yaml"), "--seed",
+                                     "7", "--store", Path("local.db")});
+  ASSERT_EQ(local_study.exit_code, services::kExitOk) << local_study.output;
+  const std::vector<std::string> uninterrupted = RunTrials("study-1", 16, local);
+
+  ClusterProcesses cluster(absl::Seconds(5));
+  cluster.StartCoordinator();
+  const std::vector<std::string> remote = {"--addr", cluster.coordinator_address()};
+  const RunResult create = Dcs({"study", "create", "--space", Path("space.yaml"), "--seed", "7",
+                                "--addr", cluster.coordinator_address()});
+  ASSERT_EQ(create.exit_code, services::kExitOk) << create.output;
+  const std::string study(absl::StripAsciiWhitespace(create.output));
+  std::vector<std::string> asked = RunTrials(study, 9, remote);
+  cluster.Kill("coordinator");
+  const RunResult down =
+      Dcs({"study", "ask", study, "--addr", cluster.coordinator_address(), "--timeout", "1s"});
+  EXPECT_EQ(down.exit_code, services::kExitUnavailable) << down.output;
+  cluster.StartCoordinator();
+  const std::vector<std::string> rest = RunTrials(study, 7, remote);
+  asked.insert(asked.end(), rest.begin(), rest.end());
+  EXPECT_EQ(asked, uninterrupted);
 }
 
 }  // namespace

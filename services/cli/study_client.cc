@@ -1,0 +1,119 @@
+// Copyright 2026 The DCS Authors.
+#include "services/cli/study_client.h"
+
+#include <grpcpp/grpcpp.h>
+
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+#include "common/enum_names.h"
+#include "common/status_macros.h"
+#include "dcs/v1/coordinator_service.grpc.pb.h"
+#include "services/channel.h"
+#include "services/study_proto.h"
+#include "services/unary_call.h"
+
+namespace dcs::services::cli {
+namespace {
+
+using coordinator::StudyRecord;
+using coordinator::StudyTrial;
+
+class LocalStudies : public StudyClient {
+ public:
+  explicit LocalStudies(std::unique_ptr<coordinator::RunStore> store) : store_(std::move(store)) {}
+
+  absl::StatusOr<StudyRecord> Create(const coordinator::StudySubmission& submission) override {
+    return store_->CreateStudy(submission, absl::Now());
+  }
+  absl::StatusOr<StudyRecord> Get(const std::string& study_id) override {
+    return store_->GetStudy(study_id);
+  }
+  absl::StatusOr<StudyTrial> Ask(const std::string& study_id,
+                                 const std::string& request_id) override {
+    return store_->AskTrial(study_id, request_id, absl::Now());
+  }
+  absl::StatusOr<StudyTrial> Tell(const std::string& study_id, int64_t number,
+                                  coordinator::TrialState state, double value) override {
+    return store_->TellTrial(study_id, number, state, value, absl::Now());
+  }
+
+ private:
+  std::unique_ptr<coordinator::RunStore> store_;
+};
+
+class RemoteStudies : public StudyClient {
+ public:
+  RemoteStudies(std::string address, absl::Duration timeout)
+      : address_(std::move(address)),
+        timeout_(timeout),
+        stub_(v1::CoordinatorService::NewStub(OpenChannel(address_))) {}
+
+  absl::StatusOr<StudyRecord> Create(const coordinator::StudySubmission& submission) override {
+    v1::CreateStudyRequest request;
+    request.set_request_id(submission.request_id);
+    *request.mutable_study() = StudyToProto({.submission = submission});
+    v1::CreateStudyResponse response;
+    DCS_RETURN_IF_ERROR(Call(&v1::CoordinatorService::Stub::CreateStudy, request, response));
+    return StudyFromProto(response.study());
+  }
+  absl::StatusOr<StudyRecord> Get(const std::string& study_id) override {
+    v1::GetStudyRequest request;
+    request.set_study_id(study_id);
+    v1::GetStudyResponse response;
+    DCS_RETURN_IF_ERROR(Call(&v1::CoordinatorService::Stub::GetStudy, request, response));
+    return StudyFromProto(response.study());
+  }
+  absl::StatusOr<StudyTrial> Ask(const std::string& study_id,
+                                 const std::string& request_id) override {
+    v1::AskTrialRequest request;
+    request.set_study_id(study_id);
+    request.set_request_id(request_id);
+    v1::AskTrialResponse response;
+    DCS_RETURN_IF_ERROR(Call(&v1::CoordinatorService::Stub::AskTrial, request, response));
+    return StudyTrialFromProto(response.trial());
+  }
+  absl::StatusOr<StudyTrial> Tell(const std::string& study_id, int64_t number,
+                                  coordinator::TrialState state, double value) override {
+    v1::TellTrialRequest request;
+    request.set_study_id(study_id);
+    request.set_number(number);
+    request.set_state(std::string(NameOf(coordinator::kTrialStateNames, state)));
+    request.set_value(value);
+    v1::TellTrialResponse response;
+    DCS_RETURN_IF_ERROR(Call(&v1::CoordinatorService::Stub::TellTrial, request, response));
+    return StudyTrialFromProto(response.trial());
+  }
+
+ private:
+  // The call, tried three times with backoff while the coordinator is unreachable (every study
+  // call is idempotent: creating and asking by request id, telling the same value again).
+  template <typename Request, typename Response>
+  absl::Status Call(grpc::Status (v1::CoordinatorService::Stub::*method)(grpc::ClientContext*,
+                                                                         const Request&, Response*),
+                    const Request& request, Response& response) {
+    return CallWithRetries(*stub_, method, request, response, timeout_,
+                           absl::StrCat("coordinator ", address_), BackoffPolicy{},
+                           [attempts = 1](const absl::Status&) mutable { return ++attempts <= 3; });
+  }
+
+  const std::string address_;
+  const absl::Duration timeout_;
+  std::unique_ptr<v1::CoordinatorService::Stub> stub_;
+};
+
+}  // namespace
+
+absl::StatusOr<std::unique_ptr<StudyClient>> OpenLocalStudies(const std::string& path) {
+  DCS_ASSIGN_OR_RETURN(
+      std::unique_ptr<coordinator::RunStore> store,
+      coordinator::RunStore::Open(path, coordinator::RunStoreOptions{}, absl::Now()));
+  return std::make_unique<LocalStudies>(std::move(store));
+}
+
+std::unique_ptr<StudyClient> ConnectStudies(const std::string& address, absl::Duration timeout) {
+  return std::make_unique<RemoteStudies>(address, timeout);
+}
+
+}  // namespace dcs::services::cli
