@@ -533,11 +533,7 @@ absl::Status RunStore::ReportProgress(const LeaseKey& key, const RunProgress& pr
     update.bind(1, progress.timesteps);
     update.bind(2, progress.policy_version);
     update.bind(3, progress.steps_per_second);
-    if (std::isnan(progress.recent_return)) {
-      update.bind(4);
-    } else {
-      update.bind(4, progress.recent_return);
-    }
+    BindDoubleOrNull(update, 4, progress.recent_return);
     if (progress.avg_combined.has_value()) {
       update.bind(5, *progress.avg_combined);
     } else {

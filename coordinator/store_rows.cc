@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "coordinator/store_rows.h"
 
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -53,9 +54,7 @@ RunRecord ReadRun(SQLite::Statement& row) {
   run.progress = {.timesteps = row.getColumn(11).getInt64(),
                   .policy_version = row.getColumn(12).getInt64(),
                   .steps_per_second = row.getColumn(13).getDouble(),
-                  .recent_return = row.getColumn(14).isNull()
-                                       ? std::numeric_limits<double>::quiet_NaN()
-                                       : row.getColumn(14).getDouble()};
+                  .recent_return = DoubleOrNaN(row.getColumn(14))};
   if (!row.getColumn(15).isNull()) run.progress.avg_combined = row.getColumn(15).getDouble();
   if (!row.getColumn(16).isNull()) run.progress.evaluation_step = row.getColumn(16).getInt64();
   run.checkpoint = row.getColumn(17).getString();
@@ -67,6 +66,18 @@ RunRecord ReadRun(SQLite::Statement& row) {
 }
 
 }  // namespace
+
+double DoubleOrNaN(const SQLite::Column& column) {
+  return column.isNull() ? std::numeric_limits<double>::quiet_NaN() : column.getDouble();
+}
+
+void BindDoubleOrNull(SQLite::Statement& statement, int index, double value) {
+  if (std::isnan(value)) {
+    statement.bind(index);
+  } else {
+    statement.bind(index, value);
+  }
+}
 
 std::string RunId(int64_t number) { return RowId("run", number); }
 absl::StatusOr<int64_t> RunNumber(absl::string_view run_id) { return RowNumber(run_id, "run"); }

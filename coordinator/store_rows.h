@@ -28,6 +28,11 @@ namespace dcs::coordinator::store_rows {
 inline int64_t Micros(absl::Time time) { return absl::ToUnixMicros(time); }
 inline absl::Time FromMicros(int64_t micros) { return absl::FromUnixMicros(micros); }
 
+// SQLite keeps no NaN (it stores NULL): a REAL column that may hold one is read and bound
+// through these.
+double DoubleOrNaN(const SQLite::Column& column);
+void BindDoubleOrNull(SQLite::Statement& statement, int index, double value);
+
 // "run-<n>" for row n, and back; NOT_FOUND for anything that is not a run id.
 std::string RunId(int64_t number);
 absl::StatusOr<int64_t> RunNumber(absl::string_view run_id);

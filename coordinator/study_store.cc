@@ -28,17 +28,6 @@ using namespace store_rows;  // NOLINT: the store's own rows
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// A REAL column that may be NULL (SQLite keeps no NaN: it stores NULL).
-double OrNaN(const SQLite::Column& column) { return column.isNull() ? kNaN : column.getDouble(); }
-
-void BindOrNull(SQLite::Statement& statement, int index, double value) {
-  if (std::isnan(value)) {
-    statement.bind(index);
-  } else {
-    statement.bind(index, value);
-  }
-}
-
 std::vector<StudyTrial> ReadTrials(SQLite::Database& db, int64_t study) {
   std::vector<StudyTrial> trials;
   std::map<int64_t, size_t> index;
@@ -49,7 +38,7 @@ std::vector<StudyTrial> ReadTrials(SQLite::Database& db, int64_t study) {
     index[rows.getColumn(0).getInt64()] = trials.size();
     trials.push_back({.number = rows.getColumn(0).getInt64(),
                       .state = *FindByName(kTrialStateNames, rows.getColumn(1).getString()),
-                      .value = OrNaN(rows.getColumn(2))});
+                      .value = DoubleOrNaN(rows.getColumn(2))});
   }
   SQLite::Statement values(db, "SELECT trial, name, value FROM study_trial_values WHERE study = ?");
   values.bind(1, study);
@@ -62,7 +51,7 @@ std::vector<StudyTrial> ReadTrials(SQLite::Database& db, int64_t study) {
   reports.bind(1, study);
   while (reports.executeStep()) {
     trials[index.at(reports.getColumn(0).getInt64())].reported[reports.getColumn(1).getInt64()] =
-        OrNaN(reports.getColumn(2));
+        DoubleOrNaN(reports.getColumn(2));
   }
   return trials;
 }
@@ -282,7 +271,7 @@ absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64
                              "UPDATE study_trials SET state = ?, value = ?, finished_at = ? "
                              "WHERE study = ? AND number = ?");
     update.bind(1, std::string(NameOf(kTrialStateNames, trial.state)));
-    BindOrNull(update, 2, trial.value);
+    BindDoubleOrNull(update, 2, trial.value);
     update.bind(3, Micros(now));
     update.bind(4, study);
     update.bind(5, number);
@@ -304,7 +293,7 @@ absl::Status RunStore::ReportTrial(absl::string_view study_id, int64_t number, i
     insert.bind(1, study);
     insert.bind(2, number);
     insert.bind(3, step);
-    BindOrNull(insert, 4, value);
+    BindDoubleOrNull(insert, 4, value);
     insert.exec();
     return absl::OkStatus();
   });
