@@ -1,4 +1,7 @@
 // Copyright 2026 The DCS Authors.
+//
+// The random sampler of coordinator/sampler.h.
+
 #include <algorithm>
 #include <cmath>
 #include <variant>
@@ -15,13 +18,7 @@ class RandomSampler : public Sampler {
   run::ParameterValues Sample(const run::SearchSpace& space, const std::vector<StudyTrial>&,
                               int64_t number) const override {
     Random random(StreamSeed(seed_, "trial", {static_cast<uint64_t>(number)}));
-    run::ParameterValues values;
-    for (const run::SearchParameter& parameter : space.parameters) {
-      if (run::IsActive(parameter, space, values)) {
-        values[parameter.name] = RandomValue(parameter.distribution, random);
-      }
-    }
-    return values;
+    return RandomValues(space, random);
   }
 
  private:
@@ -42,7 +39,7 @@ double RandomValue(const run::Distribution& distribution, Random& random) {
     if (f->low == f->high) return f->low;
     const double x = f->log ? std::exp(random.Uniform(std::log(f->low), std::log(f->high)))
                             : random.Uniform(f->low, f->high);
-    return std::min(x, std::nextafter(f->high, f->low));  // below high, as Optuna's
+    return std::clamp(x, f->low, std::nextafter(f->high, f->low));  // below high, as Optuna's
   }
   if (const auto* i = std::get_if<run::IntDistribution>(&distribution)) {
     const double low = static_cast<double>(i->low);
@@ -53,6 +50,16 @@ double RandomValue(const run::Distribution& distribution, Random& random) {
   }
   const auto& choices = std::get<run::CategoricalDistribution>(distribution).choices;
   return static_cast<double>(random.Integers(0, static_cast<int64_t>(choices.size())));
+}
+
+run::ParameterValues RandomValues(const run::SearchSpace& space, Random& random) {
+  run::ParameterValues values;
+  for (const run::SearchParameter& parameter : space.parameters) {
+    if (run::IsActive(parameter, space, values)) {
+      values[parameter.name] = RandomValue(parameter.distribution, random);
+    }
+  }
+  return values;
 }
 
 std::unique_ptr<Sampler> MakeRandomSampler(uint64_t seed) {

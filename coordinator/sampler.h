@@ -58,6 +58,8 @@ std::unique_ptr<Sampler> MakeRandomSampler(uint64_t seed);
 
 // One parameter drawn as the random sampler draws it.
 double RandomValue(const run::Distribution& distribution, Random& random);
+// A trial's active parameters, in the space's order, drawn as the random sampler draws them.
+run::ParameterValues RandomValues(const run::SearchSpace& space, Random& random);
 
 }  // namespace dcs::coordinator
 

@@ -113,16 +113,18 @@ std::unique_ptr<Sampler> MakeSampler(const StudySubmission& study) {
   return nullptr;
 }
 
-// The trial `number` of study row `study`, with its state. NOT_FOUND naming both.
-absl::StatusOr<TrialState> TrialStateOf(SQLite::Database& db, absl::string_view study_id,
-                                        int64_t study, int64_t number) {
-  SQLite::Statement query(db, "SELECT state FROM study_trials WHERE study = ? AND number = ?");
-  query.bind(1, study);
-  query.bind(2, number);
-  if (!query.executeStep()) {
-    return absl::NotFoundError(absl::StrCat("study ", study_id, " has no trial ", number));
+// Study `study_id`'s row number and its trial `number`. NOT_FOUND naming what is missing.
+absl::StatusOr<std::pair<int64_t, StudyTrial>> FindTrial(SQLite::Database& db,
+                                                         absl::string_view study_id,
+                                                         int64_t number) {
+  DCS_ASSIGN_OR_RETURN(const int64_t study, StudyNumber(study_id));
+  SQLite::Statement exists(db, "SELECT 1 FROM studies WHERE number = ?");
+  exists.bind(1, study);
+  if (!exists.executeStep()) return absl::NotFoundError(absl::StrCat("no study ", study_id));
+  for (StudyTrial& trial : ReadTrials(db, study)) {
+    if (trial.number == number) return std::make_pair(study, std::move(trial));
   }
-  return *FindByName(kTrialStateNames, query.getColumn(0).getString());
+  return absl::NotFoundError(absl::StrCat("study ", study_id, " has no trial ", number));
 }
 
 absl::Status RequireRunning(TrialState state, absl::string_view study_id, int64_t number) {
@@ -251,12 +253,9 @@ absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64
     return absl::InvalidArgumentError("a trial is told complete, pruned or failed, not running");
   }
   return Transaction([&]() -> absl::StatusOr<StudyTrial> {
-    DCS_ASSIGN_OR_RETURN(const int64_t study, StudyNumber(study_id));
-    DCS_RETURN_IF_ERROR(FindStudy(*db_, study_id).status());
-    DCS_ASSIGN_OR_RETURN(const TrialState current, TrialStateOf(*db_, study_id, study, number));
-    std::vector<StudyTrial> trials = ReadTrials(*db_, study);
-    StudyTrial& trial = *std::find_if(trials.begin(), trials.end(),
-                                      [number](const StudyTrial& t) { return t.number == number; });
+    DCS_ASSIGN_OR_RETURN(auto found, FindTrial(*db_, study_id, number));
+    auto& [study, trial] = found;
+    const TrialState current = trial.state;
     const TrialState told =
         state == TrialState::kComplete && std::isnan(value) ? TrialState::kFailed : state;
     // Told again as it was (a retry whose first answer was lost): nothing changes.
@@ -283,10 +282,9 @@ absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64
 absl::Status RunStore::ReportTrial(absl::string_view study_id, int64_t number, int64_t step,
                                    double value) {
   return Transaction([&]() -> absl::Status {
-    DCS_ASSIGN_OR_RETURN(const int64_t study, StudyNumber(study_id));
-    DCS_RETURN_IF_ERROR(FindStudy(*db_, study_id).status());
-    DCS_ASSIGN_OR_RETURN(const TrialState current, TrialStateOf(*db_, study_id, study, number));
-    DCS_RETURN_IF_ERROR(RequireRunning(current, study_id, number));
+    DCS_ASSIGN_OR_RETURN(const auto found, FindTrial(*db_, study_id, number));
+    const auto& [study, trial] = found;
+    DCS_RETURN_IF_ERROR(RequireRunning(trial.state, study_id, number));
     SQLite::Statement insert(*db_,
                              "INSERT OR IGNORE INTO study_trial_reports (study, trial, step, "
                              "value) VALUES (?, ?, ?, ?)");

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <tuple>
 #include <utility>
 
 #include "absl/container/flat_hash_map.h"
@@ -80,18 +79,13 @@ class TpeSampler : public Sampler {
     std::sort(history.begin(), history.end(), by_number);
     std::sort(finished.begin(), finished.end(), by_number);
 
-    run::ParameterValues values;
     if (static_cast<int>(finished.size()) < options_.startup_trials) {
-      for (const run::SearchParameter& parameter : space.parameters) {
-        if (run::IsActive(parameter, space, values)) {
-          values[parameter.name] = RandomValue(parameter.distribution, random);
-        }
-      }
-      return values;
+      return RandomValues(space, random);
     }
     const Split split = SplitTrials(history, Gamma(static_cast<int>(finished.size())), direction_);
     const ValueTable table = Tabulate(space, history);
 
+    run::ParameterValues values;
     run::ParameterValues joint;
     if (options_.parzen.multivariate) {
       for (const std::vector<std::string>& names : JointGroups(space, finished)) {

@@ -5,19 +5,19 @@
 #include <google/protobuf/wrappers.pb.h>
 
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_format.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
 #include "coordinator/run_store.h"
+#include "run/search_space_yaml.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/run_client.h"
 #include "services/cli/study_client.h"
-#include "run/search_space_yaml.h"
 #include "services/command_line.h"
 #include "services/exit_codes.h"
 
