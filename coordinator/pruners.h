@@ -1,0 +1,68 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COORDINATOR_PRUNERS_H_
+#define DCS_COORDINATOR_PRUNERS_H_
+
+// Pruners decide, when a trial reports an intermediate value (for a multi-stage schedule, its
+// objective at a stage boundary), whether to stop it early, with Optuna 4.9's rules
+// (shared/spec/tpe.md §11). Pure functions of the study's trials: what a pruner must remember
+// (the rungs a trial reached in successive halving) is part of the trial, and the caller stores
+// it. Thread-safe.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "coordinator/sampler.h"
+
+namespace dcs::coordinator {
+
+// MedianPruner, that is PercentilePruner(50): after `startup_trials` trials completed and past
+// `warmup_steps`, at most once per `interval_steps`, prune a trial whose best value so far is
+// worse than the median of the complete trials' values at the same step (at least `min_trials`
+// of them reported it).
+struct MedianPrunerOptions {
+  double percentile = 50;  // PercentilePruner's; 50 is the median
+  int startup_trials = 5;
+  int64_t warmup_steps = 0;
+  int64_t interval_steps = 1;
+  int min_trials = 1;
+};
+
+// Whether `trial` (running, its reports so far; its highest step the one being checked) is
+// pruned, given the study's `trials` (only complete ones are compared with).
+bool MedianPrune(const StudyTrial& trial, const std::vector<StudyTrial>& trials,
+                 Direction direction, const MedianPrunerOptions& options);
+
+// SuccessiveHalvingPruner (asynchronous successive halving): rung r is reached at step
+// min_resource · reduction_factor^(min_early_stopping_rate + r); a trial that reaches it records
+// its value there and goes on only if that value is among the best 1/reduction_factor of every
+// value recorded at rung r so far (and there are more than `bootstrap_count` of them).
+struct SuccessiveHalvingOptions {
+  // Optuna's "auto": max(1, last step of the first trial to complete / 100); no trial is pruned
+  // before one completed. (Optuna fixes it from the trials complete at its first check; DCS from
+  // the first to complete, so that it does not depend on when checks happen.)
+  std::optional<int64_t> min_resource;
+  int reduction_factor = 4;
+  int min_early_stopping_rate = 0;
+  int bootstrap_count = 0;
+};
+
+struct HalvingDecision {
+  bool prune = false;
+  // The trial's rungs after the check: rung -> the value recorded there, to be stored with it.
+  std::map<int, double> rungs;
+};
+
+// The check when `trial` (running, with the rungs it reached so far) reports at its highest
+// step; `rungs` of `trials` are the other trials' recorded values (any state). REQUIRES:
+// reduction_factor >= 2.
+HalvingDecision SuccessiveHalvingPrune(const StudyTrial& trial,
+                                       const std::map<int, double>& trial_rungs,
+                                       const std::vector<std::map<int, double>>& other_rungs,
+                                       const std::vector<StudyTrial>& trials, Direction direction,
+                                       const SuccessiveHalvingOptions& options);
+
+}  // namespace dcs::coordinator
+
+#endif  // DCS_COORDINATOR_PRUNERS_H_
