@@ -5,6 +5,8 @@
 #include <cmath>
 #include <iterator>
 
+#include "absl/strings/str_cat.h"
+
 namespace dcs::coordinator {
 namespace {
 
@@ -115,6 +117,26 @@ HalvingDecision SuccessiveHalvingPrune(const StudyTrial& trial,
       return decision;
     }
   }
+}
+
+absl::Status ValidatePrunerOptions(const PrunerOptions& options) {
+  const MedianPrunerOptions& median = options.median;
+  const SuccessiveHalvingOptions& halving = options.halving;
+  const auto fail = [](absl::string_view what) {
+    return absl::InvalidArgumentError(absl::StrCat("pruner option out of range: ", what));
+  };
+  if (!(median.percentile >= 0 && median.percentile <= 100)) return fail("percentile in [0, 100]");
+  if (median.startup_trials < 0) return fail("startup_trials >= 0");
+  if (median.warmup_steps < 0) return fail("warmup_steps >= 0");
+  if (median.interval_steps < 1) return fail("interval_steps >= 1");
+  if (median.min_trials < 1) return fail("min_trials >= 1");
+  if (halving.min_resource.has_value() && *halving.min_resource < 1) {
+    return fail("min_resource >= 1");
+  }
+  if (halving.reduction_factor < 2) return fail("reduction_factor >= 2");
+  if (halving.min_early_stopping_rate < 0) return fail("min_early_stopping_rate >= 0");
+  if (halving.bootstrap_count < 0) return fail("bootstrap_count >= 0");
+  return absl::OkStatus();
 }
 
 }  // namespace dcs::coordinator

@@ -13,6 +13,8 @@
 #include <optional>
 #include <vector>
 
+#include "absl/status/status.h"
+#include "common/enum_names.h"
 #include "coordinator/sampler.h"
 
 namespace dcs::coordinator {
@@ -62,6 +64,24 @@ HalvingDecision SuccessiveHalvingPrune(const StudyTrial& trial,
                                        const std::vector<std::map<int, double>>& other_rungs,
                                        const std::vector<StudyTrial>& trials, Direction direction,
                                        const SuccessiveHalvingOptions& options);
+
+// A study's pruner: none (the default), or one of the two above with its options.
+enum class PrunerKind { kNone, kMedian, kSuccessiveHalving };
+inline constexpr EnumName<PrunerKind> kPrunerKindNames[] = {
+    {PrunerKind::kNone, "none"},
+    {PrunerKind::kMedian, "median"},
+    {PrunerKind::kSuccessiveHalving, "successive_halving"}};
+static_assert(InEnumOrder(kPrunerKindNames));
+
+struct PrunerOptions {
+  PrunerKind kind = PrunerKind::kNone;
+  MedianPrunerOptions median;
+  SuccessiveHalvingOptions halving;
+};
+
+// INVALID_ARGUMENT naming the option for options out of range (a percentile outside [0, 100],
+// a negative count or step, an interval or min_resource below 1, a reduction factor below 2).
+absl::Status ValidatePrunerOptions(const PrunerOptions& options);
 
 }  // namespace dcs::coordinator
 

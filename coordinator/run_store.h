@@ -38,6 +38,7 @@
 #include "absl/time/time.h"
 #include "absl/types/span.h"
 #include "common/enum_names.h"
+#include "coordinator/pruners.h"
 #include "coordinator/run_state.h"
 #include "coordinator/sampler.h"
 #include "coordinator/tpe_sampler.h"
@@ -221,6 +222,7 @@ struct StudySubmission {
   uint64_t seed = 0;
   Direction direction = Direction::kMinimize;
   TpeOptions tpe;  // for SamplerKind::kTpe (its ParzenOptions beyond `multivariate` are fixed)
+  PrunerOptions pruner;
 };
 
 struct StudyRecord {
@@ -281,7 +283,8 @@ class RunStore {
 
   // Studies (coordinator/study_store.cc): ask-and-tell, as Optuna's. Creates a study, or returns
   // the one `submission.request_id` already created. INVALID_ARGUMENT for an empty request id,
-  // a space that does not parse or validate (naming the problem), or TPE options out of range.
+  // a space that does not parse or validate (naming the problem), or TPE or pruner options out of
+  // range.
   absl::StatusOr<StudyRecord> CreateStudy(const StudySubmission& submission, absl::Time now);
   // NOT_FOUND for an unknown id.
   absl::StatusOr<StudyRecord> GetStudy(absl::string_view study_id);
@@ -300,9 +303,11 @@ class RunStore {
   absl::StatusOr<StudyTrial> TellTrial(absl::string_view study_id, int64_t number,
                                        TrialState state, double value, absl::Time now);
   // Records a running trial's intermediate value at `step` (a repeated step keeps the first,
-  // as Optuna's report). NOT_FOUND; FAILED_PRECONDITION if the trial has finished.
-  absl::Status ReportTrial(absl::string_view study_id, int64_t number, int64_t step,
-                           double value);
+  // as Optuna's report) and returns whether the study's pruner says to stop it (never with no
+  // pruner; the caller then tells it pruned). NOT_FOUND; FAILED_PRECONDITION if the trial has
+  // finished.
+  absl::StatusOr<bool> ReportTrial(absl::string_view study_id, int64_t number, int64_t step,
+                                   double value);
   // The study's trials, by number. NOT_FOUND for an unknown study.
   absl::StatusOr<std::vector<StudyTrial>> ListStudyTrials(absl::string_view study_id);
 

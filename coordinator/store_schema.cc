@@ -121,8 +121,9 @@ ALTER TABLE runs ADD COLUMN trial INTEGER;
 -- Fair queueing counts each sweep's running runs; a sweep's view lists its runs.
 CREATE INDEX runs_by_sweep ON runs(sweep, state);
 )sql",
-    // 3 -> 4: studies (a search space and a sampler), their trials, each trial's parameter
-    // values (internal representation) and intermediate values.
+    // 3 -> 4: studies (a search space, a sampler, a pruner), their trials, each trial's
+    // parameter values (internal representation), intermediate values and successive-halving
+    // rungs.
     R"sql(
 CREATE TABLE studies (
   number INTEGER PRIMARY KEY AUTOINCREMENT,
@@ -137,6 +138,16 @@ CREATE TABLE studies (
   multivariate INTEGER NOT NULL,
   grouped INTEGER NOT NULL,
   constant_liar INTEGER NOT NULL,
+  pruner TEXT NOT NULL CHECK (pruner IN ('none', 'median', 'successive_halving')),
+  median_percentile REAL NOT NULL,
+  median_startup_trials INTEGER NOT NULL,
+  median_warmup_steps INTEGER NOT NULL,
+  median_interval_steps INTEGER NOT NULL,
+  median_min_trials INTEGER NOT NULL,
+  halving_min_resource INTEGER,
+  halving_reduction_factor INTEGER NOT NULL,
+  halving_min_early_stopping_rate INTEGER NOT NULL,
+  halving_bootstrap_count INTEGER NOT NULL,
   created_at INTEGER NOT NULL
 );
 CREATE TABLE study_trials (
@@ -156,6 +167,14 @@ CREATE TABLE study_trial_values (
   name TEXT NOT NULL,
   value REAL NOT NULL,
   PRIMARY KEY (study, trial, name),
+  FOREIGN KEY (study, trial) REFERENCES study_trials(study, number)
+);
+CREATE TABLE study_trial_rungs (
+  study INTEGER NOT NULL,
+  trial INTEGER NOT NULL,
+  rung INTEGER NOT NULL,
+  value REAL NOT NULL,
+  PRIMARY KEY (study, trial, rung),
   FOREIGN KEY (study, trial) REFERENCES study_trials(study, number)
 );
 CREATE TABLE study_trial_reports (

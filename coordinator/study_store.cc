@@ -66,7 +66,11 @@ absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study
   SQLite::Statement query(db,
                           "SELECT request_id, name, space, sampler, seed, direction, "
                           "startup_trials, ei_candidates, multivariate, grouped, constant_liar, "
-                          "created_at FROM studies WHERE number = ?");
+                          "created_at, pruner, median_percentile, median_startup_trials, "
+                          "median_warmup_steps, median_interval_steps, median_min_trials, "
+                          "halving_min_resource, halving_reduction_factor, "
+                          "halving_min_early_stopping_rate, halving_bootstrap_count "
+                          "FROM studies WHERE number = ?");
   query.bind(1, number);
   if (!query.executeStep()) return absl::NotFoundError(absl::StrCat("no study ", study_id));
   StudyRow row;
@@ -84,6 +88,17 @@ absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study
   s.tpe.constant_liar = query.getColumn(10).getInt() != 0;
   row.record.id = StudyId(number);
   row.record.created_at = FromMicros(query.getColumn(11).getInt64());
+  PrunerOptions& pruner = s.pruner;
+  pruner.kind = *FindByName(kPrunerKindNames, query.getColumn(12).getString());
+  pruner.median = {.percentile = query.getColumn(13).getDouble(),
+                   .startup_trials = query.getColumn(14).getInt(),
+                   .warmup_steps = query.getColumn(15).getInt64(),
+                   .interval_steps = query.getColumn(16).getInt64(),
+                   .min_trials = query.getColumn(17).getInt()};
+  if (!query.getColumn(18).isNull()) pruner.halving.min_resource = query.getColumn(18).getInt64();
+  pruner.halving.reduction_factor = query.getColumn(19).getInt();
+  pruner.halving.min_early_stopping_rate = query.getColumn(20).getInt();
+  pruner.halving.bootstrap_count = query.getColumn(21).getInt();
   // Validated when the study was created.
   DCS_ASSIGN_OR_RETURN(row.space, run::ParseSearchSpaceYaml(s.space, row.record.id));
 
@@ -151,6 +166,7 @@ absl::StatusOr<StudyRecord> RunStore::CreateStudy(const StudySubmission& submiss
   if (tpe.group && !tpe.parzen.multivariate) {
     return absl::InvalidArgumentError("TPE's group option needs multivariate");
   }
+  DCS_RETURN_IF_ERROR(ValidatePrunerOptions(submission.pruner));
   return Transaction([&]() -> absl::StatusOr<StudyRecord> {
     SQLite::Statement existing(*db_, "SELECT number FROM studies WHERE request_id = ?");
     existing.bind(1, submission.request_id);
@@ -162,8 +178,12 @@ absl::StatusOr<StudyRecord> RunStore::CreateStudy(const StudySubmission& submiss
     SQLite::Statement insert(*db_,
                              "INSERT INTO studies (request_id, name, space, sampler, seed, "
                              "direction, startup_trials, ei_candidates, multivariate, grouped, "
-                             "constant_liar, created_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-                             "?) RETURNING number");
+                             "constant_liar, created_at, pruner, median_percentile, "
+                             "median_startup_trials, median_warmup_steps, median_interval_steps, "
+                             "median_min_trials, halving_min_resource, halving_reduction_factor, "
+                             "halving_min_early_stopping_rate, halving_bootstrap_count) VALUES "
+                             "(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) "
+                             "RETURNING number");
     insert.bind(1, submission.request_id);
     insert.bind(2, submission.name);
     insert.bind(3, submission.space);
@@ -176,6 +196,17 @@ absl::StatusOr<StudyRecord> RunStore::CreateStudy(const StudySubmission& submiss
     insert.bind(10, tpe.group ? 1 : 0);
     insert.bind(11, tpe.constant_liar ? 1 : 0);
     insert.bind(12, Micros(now));
+    const PrunerOptions& pruner = submission.pruner;
+    insert.bind(13, std::string(NameOf(kPrunerKindNames, pruner.kind)));
+    insert.bind(14, pruner.median.percentile);
+    insert.bind(15, pruner.median.startup_trials);
+    insert.bind(16, pruner.median.warmup_steps);
+    insert.bind(17, pruner.median.interval_steps);
+    insert.bind(18, pruner.median.min_trials);
+    if (pruner.halving.min_resource.has_value()) insert.bind(19, *pruner.halving.min_resource);
+    insert.bind(20, pruner.halving.reduction_factor);
+    insert.bind(21, pruner.halving.min_early_stopping_rate);
+    insert.bind(22, pruner.halving.bootstrap_count);
     insert.executeStep();
     const int64_t number = insert.getColumn(0).getInt64();
     insert.reset();
@@ -279,12 +310,12 @@ absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64
   });
 }
 
-absl::Status RunStore::ReportTrial(absl::string_view study_id, int64_t number, int64_t step,
-                                   double value) {
-  return Transaction([&]() -> absl::Status {
+absl::StatusOr<bool> RunStore::ReportTrial(absl::string_view study_id, int64_t number, int64_t step,
+                                           double value) {
+  return Transaction([&]() -> absl::StatusOr<bool> {
     DCS_ASSIGN_OR_RETURN(const auto found, FindTrial(*db_, study_id, number));
-    const auto& [study, trial] = found;
-    DCS_RETURN_IF_ERROR(RequireRunning(trial.state, study_id, number));
+    const int64_t study = found.first;
+    DCS_RETURN_IF_ERROR(RequireRunning(found.second.state, study_id, number));
     SQLite::Statement insert(*db_,
                              "INSERT OR IGNORE INTO study_trial_reports (study, trial, step, "
                              "value) VALUES (?, ?, ?, ?)");
@@ -293,7 +324,46 @@ absl::Status RunStore::ReportTrial(absl::string_view study_id, int64_t number, i
     insert.bind(3, step);
     BindDoubleOrNull(insert, 4, value);
     insert.exec();
-    return absl::OkStatus();
+
+    DCS_ASSIGN_OR_RETURN(const StudyRow row, FindStudy(*db_, study_id));
+    const StudySubmission& s = row.record.submission;
+    const std::vector<StudyTrial> trials = ReadTrials(*db_, study);
+    const StudyTrial& trial = *std::find_if(
+        trials.begin(), trials.end(), [number](const StudyTrial& t) { return t.number == number; });
+    switch (s.pruner.kind) {
+      case PrunerKind::kNone:
+        return false;
+      case PrunerKind::kMedian:
+        return MedianPrune(trial, trials, s.direction, s.pruner.median);
+      case PrunerKind::kSuccessiveHalving:
+        break;
+    }
+    std::map<int64_t, std::map<int, double>> rungs;
+    SQLite::Statement read(*db_,
+                           "SELECT trial, rung, value FROM study_trial_rungs WHERE study = ?");
+    read.bind(1, study);
+    while (read.executeStep()) {
+      rungs[read.getColumn(0).getInt64()][read.getColumn(1).getInt()] =
+          read.getColumn(2).getDouble();
+    }
+    std::vector<std::map<int, double>> others;
+    for (const auto& [other, recorded] : rungs) {
+      if (other != number) others.push_back(recorded);
+    }
+    const HalvingDecision decision =
+        SuccessiveHalvingPrune(trial, rungs[number], others, trials, s.direction, s.pruner.halving);
+    SQLite::Statement write(*db_,
+                            "INSERT OR IGNORE INTO study_trial_rungs (study, trial, rung, value) "
+                            "VALUES (?, ?, ?, ?)");
+    for (const auto& [rung, recorded] : decision.rungs) {
+      write.bind(1, study);
+      write.bind(2, number);
+      write.bind(3, rung);
+      write.bind(4, recorded);
+      write.exec();
+      write.reset();
+    }
+    return decision.prune;
   });
 }
 

@@ -112,6 +112,9 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   grpc::ServerUnaryReactor* TellTrial(grpc::CallbackServerContext* context,
                                       const v1::TellTrialRequest* request,
                                       v1::TellTrialResponse* response) override;
+  grpc::ServerUnaryReactor* ReportTrial(grpc::CallbackServerContext* context,
+                                        const v1::ReportTrialRequest* request,
+                                        v1::ReportTrialResponse* response) override;
   grpc::ServerUnaryReactor* ReportProgress(grpc::CallbackServerContext* context,
                                            const v1::ReportProgressRequest* request,
                                            v1::ReportProgressResponse* response) override;

@@ -66,4 +66,13 @@ grpc::ServerUnaryReactor* CoordinatorService::TellTrial(grpc::CallbackServerCont
   return Finish(context, tell());
 }
 
+grpc::ServerUnaryReactor* CoordinatorService::ReportTrial(grpc::CallbackServerContext* context,
+                                                          const v1::ReportTrialRequest* request,
+                                                          v1::ReportTrialResponse* response) {
+  absl::StatusOr<bool> prune = runs_.store->ReportTrial(request->study_id(), request->number(),
+                                                        request->step(), request->value());
+  if (prune.ok()) response->set_prune(*prune);
+  return Finish(context, prune.status());
+}
+
 }  // namespace dcs::services

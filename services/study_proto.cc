@@ -65,6 +65,18 @@ v1::Study StudyToProto(const coordinator::StudyRecord& study) {
   }
   if (study.best.has_value()) *proto.mutable_best() = StudyTrialToProto(*study.best);
   *proto.mutable_create_time() = TimeToProto(study.created_at);
+  const coordinator::PrunerOptions& pruner = s.pruner;
+  v1::PrunerOptions& wire = *proto.mutable_pruner();
+  wire.set_kind(std::string(NameOf(coordinator::kPrunerKindNames, pruner.kind)));
+  wire.set_percentile(pruner.median.percentile);
+  wire.set_startup_trials(pruner.median.startup_trials);
+  wire.set_warmup_steps(pruner.median.warmup_steps);
+  wire.set_interval_steps(pruner.median.interval_steps);
+  wire.set_min_trials(pruner.median.min_trials);
+  if (pruner.halving.min_resource.has_value()) wire.set_min_resource(*pruner.halving.min_resource);
+  wire.set_reduction_factor(pruner.halving.reduction_factor);
+  wire.set_min_early_stopping_rate(pruner.halving.min_early_stopping_rate);
+  wire.set_bootstrap_count(pruner.halving.bootstrap_count);
   return proto;
 }
 
@@ -92,6 +104,18 @@ absl::StatusOr<coordinator::StudyRecord> StudyFromProto(const v1::Study& proto) 
     DCS_ASSIGN_OR_RETURN(study.best, StudyTrialFromProto(proto.best()));
   }
   study.created_at = TimeFromProto(proto.create_time());
+  const v1::PrunerOptions& wire = proto.pruner();
+  coordinator::PrunerOptions& pruner = s.pruner;
+  DCS_ASSIGN_OR_RETURN(pruner.kind, FromName(coordinator::kPrunerKindNames, wire.kind(), "pruner"));
+  pruner.median = {.percentile = wire.percentile(),
+                   .startup_trials = wire.startup_trials(),
+                   .warmup_steps = wire.warmup_steps(),
+                   .interval_steps = wire.interval_steps(),
+                   .min_trials = wire.min_trials()};
+  if (wire.has_min_resource()) pruner.halving.min_resource = wire.min_resource();
+  pruner.halving.reduction_factor = wire.reduction_factor();
+  pruner.halving.min_early_stopping_rate = wire.min_early_stopping_rate();
+  pruner.halving.bootstrap_count = wire.bootstrap_count();
   return study;
 }
 

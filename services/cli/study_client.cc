@@ -38,6 +38,10 @@ class LocalStudies : public StudyClient {
                                   coordinator::TrialState state, double value) override {
     return store_->TellTrial(study_id, number, state, value, absl::Now());
   }
+  absl::StatusOr<bool> Report(const std::string& study_id, int64_t number, int64_t step,
+                              double value) override {
+    return store_->ReportTrial(study_id, number, step, value);
+  }
 
  private:
   std::unique_ptr<coordinator::RunStore> store_;
@@ -85,10 +89,22 @@ class RemoteStudies : public StudyClient {
     DCS_RETURN_IF_ERROR(Call(&v1::CoordinatorService::Stub::TellTrial, request, response));
     return StudyTrialFromProto(response.trial());
   }
+  absl::StatusOr<bool> Report(const std::string& study_id, int64_t number, int64_t step,
+                              double value) override {
+    v1::ReportTrialRequest request;
+    request.set_study_id(study_id);
+    request.set_number(number);
+    request.set_step(step);
+    request.set_value(value);
+    v1::ReportTrialResponse response;
+    DCS_RETURN_IF_ERROR(Call(&v1::CoordinatorService::Stub::ReportTrial, request, response));
+    return response.prune();
+  }
 
  private:
   // The call, tried three times with backoff while the coordinator is unreachable (every study
-  // call is idempotent: creating and asking by request id, telling the same value again).
+  // call is safe to repeat: creating and asking by request id, telling the same value again, a
+  // repeated report keeps its first value).
   template <typename Request, typename Response>
   absl::Status Call(grpc::Status (v1::CoordinatorService::Stub::*method)(grpc::ClientContext*,
                                                                          const Request&, Response*),

@@ -28,6 +28,9 @@ class StudyClient {
   virtual absl::StatusOr<coordinator::StudyTrial> Tell(const std::string& study_id, int64_t number,
                                                        coordinator::TrialState state,
                                                        double value) = 0;
+  // Whether the study's pruner stops the trial after its value at `step`.
+  virtual absl::StatusOr<bool> Report(const std::string& study_id, int64_t number, int64_t step,
+                                      double value) = 0;
 };
 
 // The study store in the SQLite file `path` (created if missing).

@@ -36,14 +36,26 @@ struct CreateFlags {
   uint64_t seed = 0;
   Direction direction = Direction::kMinimize;
   coordinator::TpeOptions tpe;
+  coordinator::PrunerOptions pruner;
 };
 
 struct TrialFlags {
   std::string study;
   int64_t trial = 0;
+  int64_t step = 0;  // for report
   std::string value;
   TrialState state = TrialState::kComplete;
 };
+
+// A value given on the command line: a number, inf, -inf or nan.
+absl::StatusOr<double> ParseValue(const std::string& text) {
+  double value = 0;
+  if (!absl::SimpleAtod(text, &value)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("VALUE must be a number (or inf, -inf, nan), got '", text, "'"));
+  }
+  return value;
+}
 
 // The studies of --store, or else of the coordinator (--addr, or the local cluster's).
 absl::StatusOr<std::unique_ptr<StudyClient>> Studies(const std::string& store,
@@ -103,7 +115,8 @@ absl::Status Create(const CreateFlags& flags, StudyClient& studies) {
                                        .sampler = flags.sampler,
                                        .seed = flags.seed,
                                        .direction = flags.direction,
-                                       .tpe = flags.tpe}));
+                                       .tpe = flags.tpe,
+                                       .pruner = flags.pruner}));
   std::cout << study.id << std::endl;
   return absl::OkStatus();
 }
@@ -117,17 +130,26 @@ absl::Status Ask(const std::string& study_id, StudyClient& studies) {
 }
 
 absl::Status Tell(const TrialFlags& flags, StudyClient& studies) {
-  double value = std::numeric_limits<double>::quiet_NaN();
-  if (flags.state == TrialState::kComplete && !absl::SimpleAtod(flags.value, &value)) {
-    return absl::InvalidArgumentError(
-        flags.value.empty()
-            ? "a complete trial needs its VALUE (or --state pruned|failed)"
-            : absl::StrCat("VALUE must be a number (or inf, -inf, nan), got '", flags.value, "'"));
-  }
   if (flags.state == TrialState::kRunning) {
     return absl::InvalidArgumentError("--state is complete, pruned or failed");
   }
+  double value = std::numeric_limits<double>::quiet_NaN();
+  if (flags.state == TrialState::kComplete) {
+    if (flags.value.empty()) {
+      return absl::InvalidArgumentError(
+          "a complete trial needs its VALUE (or --state pruned|failed)");
+    }
+    DCS_ASSIGN_OR_RETURN(value, ParseValue(flags.value));
+  }
   return studies.Tell(flags.study, flags.trial, flags.state, value).status();
+}
+
+absl::Status Report(const TrialFlags& flags, StudyClient& studies) {
+  DCS_ASSIGN_OR_RETURN(const double value, ParseValue(flags.value));
+  DCS_ASSIGN_OR_RETURN(const bool prune,
+                       studies.Report(flags.study, flags.trial, flags.step, value));
+  std::cout << (prune ? "prune" : "continue") << std::endl;
+  return absl::OkStatus();
 }
 
 absl::Status Best(const std::string& study_id, StudyClient& studies) {
@@ -179,6 +201,20 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
                    "TPE counts running trials as poor ones, to spread trials asked at once");
   create->add_option("--startup-trials", create_flags->tpe.startup_trials,
                      "random trials before TPE models (default 10)");
+  AddChoiceOption(*create, "--pruner", &create_flags->pruner.kind,
+                  ChoicesOf(coordinator::kPrunerKindNames),
+                  "stop poor trials early at their reports: none (default), median or "
+                  "successive_halving");
+  create->add_option("--pruner-startup-trials", create_flags->pruner.median.startup_trials,
+                     "median: complete trials before any is pruned (default 5)");
+  create->add_option("--pruner-warmup-steps", create_flags->pruner.median.warmup_steps,
+                     "median: steps before a trial may be pruned (default 0)");
+  create->add_option_function<int64_t>(
+      "--min-resource",
+      [create_flags](int64_t steps) { create_flags->pruner.halving.min_resource = steps; },
+      "successive_halving: the step of the first rung (default: auto)");
+  create->add_option("--reduction-factor", create_flags->pruner.halving.reduction_factor,
+                     "successive_halving: 1 in this many goes on at each rung (default 4)");
   add_store(create);
 
   auto study_id = std::make_shared<std::string>();
@@ -195,6 +231,14 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
                   "complete (default), pruned or failed");
   add_store(tell);
 
+  CLI::App* report = study->add_subcommand(
+      "report", "Record a running trial's intermediate value; print prune or continue");
+  report->add_option("study", trial_flags->study, "the study's id")->required();
+  report->add_option("trial", trial_flags->trial, "the trial's number")->required();
+  report->add_option("step", trial_flags->step, "the step it reports at")->required();
+  report->add_option("value", trial_flags->value, "its intermediate value")->required();
+  add_store(report);
+
   CLI::App* best = study->add_subcommand("best", "Print the best complete trial (JSON)");
   best->add_option("study", *study_id, "the study's id")->required();
   add_store(best);
@@ -206,6 +250,7 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
   return {{create, on_studies([=](StudyClient& s) { return Create(*create_flags, s); })},
           {ask, on_studies([=](StudyClient& s) { return Ask(*study_id, s); })},
           {tell, on_studies([=](StudyClient& s) { return Tell(*trial_flags, s); })},
+          {report, on_studies([=](StudyClient& s) { return Report(*trial_flags, s); })},
           {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); })}};
 }
 

@@ -7,7 +7,9 @@
 //   dcs study create --space space.yaml [--sampler tpe|random] [--seed N]
 //                    [--direction minimize|maximize] [--multivariate [--group]]
 //                    [--constant-liar] [--startup-trials N] [--name NAME]
+//                    [--pruner none|median|successive_halving] [pruner options]
 //   dcs study ask STUDY                {"trial": 3, "params": {"x": 1.5, "mode": "a"}}
+//   dcs study report STUDY TRIAL STEP VALUE   prune | continue (the study's pruner's answer)
 //   dcs study tell STUDY TRIAL VALUE   (or --state pruned|failed, and no VALUE)
 //   dcs study best STUDY               {"trial": 7, "value": 0.4, "params": {...}}
 //

@@ -181,9 +181,48 @@ TEST_F(StudyStoreTest, PrunedTrialsKeepTheirReportsAndLastValue) {
   ASSERT_TRUE(pruned.ok()) << pruned.status();
   EXPECT_EQ(pruned->value, 4.0);
   EXPECT_THAT(pruned->reported, ElementsAre(Pair(1, 5.0), Pair(3, 4.0)));
-  EXPECT_EQ(store->ReportTrial(study, trial, 4, 1.0).code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_EQ(store->ReportTrial(study, trial, 4, 1.0).status().code(),
+            absl::StatusCode::kFailedPrecondition);
   EXPECT_THAT((*store->ListStudyTrials(study))[0].reported,
               ElementsAre(Pair(1, 5.0), Pair(3, 4.0)));
+}
+
+// A study with the median pruner: once enough trials completed, a trial whose report is worse
+// than theirs at the same step is to be stopped; without a pruner none is.
+TEST_F(StudyStoreTest, TheStudysPrunerAnswersEachReport) {
+  std::unique_ptr<RunStore> store = Open();
+  StudySubmission with_pruner = Study("pruned");
+  with_pruner.pruner = {.kind = PrunerKind::kMedian, .median = {.startup_trials = 2}};
+  const std::string study = store->CreateStudy(with_pruner, kStart)->id;
+  const std::string plain = store->CreateStudy(Study("plain"), kStart)->id;
+  for (const std::string& id : {study, plain}) {
+    for (const double value : {1.0, 2.0, 3.0}) {
+      const int64_t trial = store->AskTrial(id, NextAsk(), kStart)->number;
+      ASSERT_TRUE(store->ReportTrial(id, trial, 10, value).ok());
+      ASSERT_TRUE(store->TellTrial(id, trial, TrialState::kComplete, value, kStart).ok());
+    }
+  }
+  EXPECT_EQ(store->GetStudy(study)->submission.pruner.kind, PrunerKind::kMedian);
+  const int64_t poor = store->AskTrial(study, NextAsk(), kStart)->number;
+  EXPECT_TRUE(*store->ReportTrial(study, poor, 10, 2.5));  // worse than the median, 2
+  const int64_t good = store->AskTrial(study, NextAsk(), kStart)->number;
+  EXPECT_FALSE(*store->ReportTrial(study, good, 10, 1.5));
+  const int64_t unpruned = store->AskTrial(plain, NextAsk(), kStart)->number;
+  EXPECT_FALSE(*store->ReportTrial(plain, unpruned, 10, 9.0));
+}
+
+// Successive halving keeps each trial's rungs in the store: the second trial to reach rung 0
+// with a worse value is stopped.
+TEST_F(StudyStoreTest, SuccessiveHalvingRemembersTheRungs) {
+  std::unique_ptr<RunStore> store = Open();
+  StudySubmission halving = Study("halving");
+  halving.pruner = {.kind = PrunerKind::kSuccessiveHalving,
+                    .halving = {.min_resource = 1, .reduction_factor = 2}};
+  const std::string study = store->CreateStudy(halving, kStart)->id;
+  const int64_t first = store->AskTrial(study, NextAsk(), kStart)->number;
+  EXPECT_FALSE(*store->ReportTrial(study, first, 1, 1.0));
+  const int64_t second = store->AskTrial(study, NextAsk(), kStart)->number;
+  EXPECT_TRUE(*store->ReportTrial(study, second, 1, 2.0));
 }
 
 TEST_F(StudyStoreTest, BadStudiesAreRefusedAndStoreNothing) {
@@ -196,6 +235,10 @@ TEST_F(StudyStoreTest, BadStudiesAreRefusedAndStoreNothing) {
   bad_group.tpe.group = true;
   EXPECT_EQ(store->CreateStudy(bad_group, kStart).status().code(),
             absl::StatusCode::kInvalidArgument);
+  StudySubmission bad_pruner = Study("c");
+  bad_pruner.pruner = {.kind = PrunerKind::kSuccessiveHalving, .halving = {.reduction_factor = 1}};
+  EXPECT_THAT(store->CreateStudy(bad_pruner, kStart).status().message(),
+              HasSubstr("reduction_factor >= 2"));
   EXPECT_EQ(store->CreateStudy(Study(""), kStart).status().code(),
             absl::StatusCode::kInvalidArgument);
   EXPECT_TRUE(store->ListStudies()->empty());

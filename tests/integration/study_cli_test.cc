@@ -155,5 +155,26 @@ TEST_F(StudyCliTest, AStudyOnTheCoordinatorSurvivesItsDeath) {
   EXPECT_EQ(asked, uninterrupted);
 }
 
+// Reports through the coordinator get its pruner's answer; a pruned trial is told so.
+TEST_F(StudyCliTest, ReportsGetThePrunersAnswer) {
+  ClusterProcesses cluster(absl::Seconds(5));
+  cluster.StartCoordinator();
+  const std::string addr = cluster.coordinator_address();
+  const RunResult create =
+      Dcs({"study", "create", "--space", DCS_SOURCE_DIR "/bench/study/branin.yaml", "--pruner",
+           "median", "--pruner-startup-trials", "1", "--addr", addr});
+  ASSERT_EQ(create.exit_code, services::kExitOk) << create.output;
+  const std::string study(absl::StripAsciiWhitespace(create.output));
+  ASSERT_EQ(Dcs({"study", "ask", study, "--addr", addr}).exit_code, services::kExitOk);
+  EXPECT_EQ(Dcs({"study", "report", study, "0", "1", "3.0", "--addr", addr}).output, "continue\n");
+  ASSERT_EQ(Dcs({"study", "tell", study, "0", "3.0", "--addr", addr}).exit_code, services::kExitOk);
+  ASSERT_EQ(Dcs({"study", "ask", study, "--addr", addr}).exit_code, services::kExitOk);
+  EXPECT_EQ(Dcs({"study", "report", study, "1", "1", "8.0", "--addr", addr}).output, "prune\n");
+  ASSERT_EQ(Dcs({"study", "tell", study, "1", "--state", "pruned", "--addr", addr}).exit_code,
+            services::kExitOk);
+  const google::protobuf::Struct best = Json(Dcs({"study", "best", study, "--addr", addr}).output);
+  EXPECT_EQ(best.fields().at("trial").number_value(), 0);
+}
+
 }  // namespace
 }  // namespace dcs::integration
