@@ -33,9 +33,18 @@ grpc::ServerUnaryReactor* CoordinatorService::CreateStudy(grpc::CallbackServerCo
 grpc::ServerUnaryReactor* CoordinatorService::GetStudy(grpc::CallbackServerContext* context,
                                                        const v1::GetStudyRequest* request,
                                                        v1::GetStudyResponse* response) {
-  absl::StatusOr<coordinator::StudyRecord> study = runs_.store->GetStudy(request->study_id());
-  if (study.ok()) *response->mutable_study() = StudyToProto(*study);
-  return Finish(context, study.status());
+  auto get = [&]() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study,
+                         runs_.store->GetStudy(request->study_id()));
+    DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::StudyTrial> trials,
+                         runs_.store->ListStudyTrials(request->study_id()));
+    *response->mutable_study() = StudyToProto(study);
+    for (const coordinator::StudyTrial& trial : trials) {
+      *response->add_trials() = StudyTrialToProto(trial);
+    }
+    return absl::OkStatus();
+  };
+  return Finish(context, get());
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::AskTrial(grpc::CallbackServerContext* context,

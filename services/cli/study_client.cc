@@ -30,6 +30,9 @@ class LocalStudies : public StudyClient {
   absl::StatusOr<StudyRecord> Get(const std::string& study_id) override {
     return store_->GetStudy(study_id);
   }
+  absl::StatusOr<std::vector<StudyTrial>> Trials(const std::string& study_id) override {
+    return store_->ListStudyTrials(study_id);
+  }
   absl::StatusOr<StudyTrial> Ask(const std::string& study_id,
                                  const std::string& request_id) override {
     return store_->AskTrial(study_id, request_id, absl::Now());
@@ -63,11 +66,16 @@ class RemoteStudies : public StudyClient {
     return StudyFromProto(response.study());
   }
   absl::StatusOr<StudyRecord> Get(const std::string& study_id) override {
-    v1::GetStudyRequest request;
-    request.set_study_id(study_id);
-    v1::GetStudyResponse response;
-    DCS_RETURN_IF_ERROR(Call(&v1::CoordinatorService::Stub::GetStudy, request, response));
+    DCS_ASSIGN_OR_RETURN(const v1::GetStudyResponse response, GetStudy(study_id));
     return StudyFromProto(response.study());
+  }
+  absl::StatusOr<std::vector<StudyTrial>> Trials(const std::string& study_id) override {
+    DCS_ASSIGN_OR_RETURN(const v1::GetStudyResponse response, GetStudy(study_id));
+    std::vector<StudyTrial> trials;
+    for (const v1::StudyTrial& trial : response.trials()) {
+      DCS_ASSIGN_OR_RETURN(trials.emplace_back(), StudyTrialFromProto(trial));
+    }
+    return trials;
   }
   absl::StatusOr<StudyTrial> Ask(const std::string& study_id,
                                  const std::string& request_id) override {
@@ -102,6 +110,14 @@ class RemoteStudies : public StudyClient {
   }
 
  private:
+  absl::StatusOr<v1::GetStudyResponse> GetStudy(const std::string& study_id) {
+    v1::GetStudyRequest request;
+    request.set_study_id(study_id);
+    v1::GetStudyResponse response;
+    DCS_RETURN_IF_ERROR(Call(&v1::CoordinatorService::Stub::GetStudy, request, response));
+    return response;
+  }
+
   // The call, tried three times with backoff while the coordinator is unreachable (every study
   // call is safe to repeat: creating and asking by request id, telling the same value again, a
   // repeated report keeps its first value).

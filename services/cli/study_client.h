@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
@@ -23,6 +24,9 @@ class StudyClient {
   virtual absl::StatusOr<coordinator::StudyRecord> Create(
       const coordinator::StudySubmission& submission) = 0;
   virtual absl::StatusOr<coordinator::StudyRecord> Get(const std::string& study_id) = 0;
+  // The study's trials, by number.
+  virtual absl::StatusOr<std::vector<coordinator::StudyTrial>> Trials(
+      const std::string& study_id) = 0;
   virtual absl::StatusOr<coordinator::StudyTrial> Ask(const std::string& study_id,
                                                       const std::string& request_id) = 0;
   virtual absl::StatusOr<coordinator::StudyTrial> Tell(const std::string& study_id, int64_t number,

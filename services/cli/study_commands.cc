@@ -4,6 +4,7 @@
 #include <google/protobuf/util/json_util.h>
 #include <google/protobuf/wrappers.pb.h>
 
+#include <cmath>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -11,8 +12,10 @@
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
+#include "common/text_table.h"
 #include "coordinator/run_store.h"
 #include "run/search_space_yaml.h"
 #include "services/cli/cluster_client.h"
@@ -75,11 +78,12 @@ std::string JsonLiteral(const T& value) {
   return text;
 }
 
-// A trial as one line of JSON, its keys in a fixed order: its number, its value once complete,
-// its parameters in the space's order (a categorical by its choice's name).
+// A trial as one line of JSON, its keys in a fixed order: its number, its state, its value once
+// complete, its parameters in the space's order (a categorical by its choice's name).
 std::string TrialJson(const StudyTrial& trial, const run::SearchSpace& space) {
   using google::protobuf::DoubleValue;
-  std::string json = absl::StrCat("{\"trial\": ", trial.number);
+  std::string json = absl::StrCat("{\"trial\": ", trial.number, ", \"state\": \"",
+                                  NameOf(coordinator::kTrialStateNames, trial.state), "\"");
   if (trial.state == TrialState::kComplete) {
     absl::StrAppend(&json, ", \"value\": ", JsonLiteral<DoubleValue>(trial.value));
   }
@@ -162,6 +166,38 @@ absl::Status Best(const std::string& study_id, StudyClient& studies) {
   return absl::OkStatus();
 }
 
+// The study's trials: a table (a column per parameter, in the space's order), or with -o json one
+// JSON line per trial.
+absl::Status Trials(const std::string& study_id, const GlobalFlags& flags, StudyClient& studies) {
+  DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study, studies.Get(study_id));
+  DCS_ASSIGN_OR_RETURN(const run::SearchSpace space, SpaceOf(study));
+  DCS_ASSIGN_OR_RETURN(const std::vector<StudyTrial> trials, studies.Trials(study_id));
+  if (flags.output == OutputFormat::kJson) {
+    for (const StudyTrial& trial : trials) std::cout << TrialJson(trial, space) << "\n";
+    std::cout << std::flush;
+    return absl::OkStatus();
+  }
+  std::vector<std::vector<std::string>> rows = {{"TRIAL", "STATE", "VALUE"}};
+  for (const run::SearchParameter& parameter : space.parameters) {
+    rows[0].push_back(parameter.name);
+  }
+  for (const StudyTrial& trial : trials) {
+    std::vector<std::string>& row = rows.emplace_back();
+    row = {absl::StrCat(trial.number),
+           std::string(NameOf(coordinator::kTrialStateNames, trial.state)),
+           std::isnan(trial.value) ? "-" : absl::StrFormat("%.6g", trial.value)};
+    for (const run::SearchParameter& parameter : space.parameters) {
+      const auto value = trial.values.find(parameter.name);
+      const auto* choices = std::get_if<run::CategoricalDistribution>(&parameter.distribution);
+      row.push_back(value == trial.values.end() ? "-"
+                    : choices != nullptr ? choices->choices[static_cast<size_t>(value->second)]
+                                         : absl::StrFormat("%.6g", value->second));
+    }
+  }
+  std::cout << RenderTable(rows) << std::endl;
+  return absl::OkStatus();
+}
+
 // Runs `command` on the studies of --store or the coordinator; the exit code.
 template <typename Command>
 int RunOn(const std::string& store, const GlobalFlags& flags, const Command& command) {
@@ -239,6 +275,10 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
   report->add_option("value", trial_flags->value, "its intermediate value")->required();
   add_store(report);
 
+  CLI::App* list = study->add_subcommand("trials", "List the study's trials and their values");
+  list->add_option("study", *study_id, "the study's id")->required();
+  add_store(list);
+
   CLI::App* best = study->add_subcommand("best", "Print the best complete trial (JSON)");
   best->add_option("study", *study_id, "the study's id")->required();
   add_store(best);
@@ -251,6 +291,7 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
           {ask, on_studies([=](StudyClient& s) { return Ask(*study_id, s); })},
           {tell, on_studies([=](StudyClient& s) { return Tell(*trial_flags, s); })},
           {report, on_studies([=](StudyClient& s) { return Report(*trial_flags, s); })},
+          {list, on_studies([=, &flags](StudyClient& s) { return Trials(*study_id, flags, s); })},
           {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); })}};
 }
 

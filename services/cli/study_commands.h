@@ -8,10 +8,11 @@
 //                    [--direction minimize|maximize] [--multivariate [--group]]
 //                    [--constant-liar] [--startup-trials N] [--name NAME]
 //                    [--pruner none|median|successive_halving] [pruner options]
-//   dcs study ask STUDY                {"trial": 3, "params": {"x": 1.5, "mode": "a"}}
+//   dcs study ask STUDY      {"trial": 3, "state": "running", "params": {"x": 1.5, "mode": "a"}}
 //   dcs study report STUDY TRIAL STEP VALUE   prune | continue (the study's pruner's answer)
 //   dcs study tell STUDY TRIAL VALUE   (or --state pruned|failed, and no VALUE)
-//   dcs study best STUDY               {"trial": 7, "value": 0.4, "params": {...}}
+//   dcs study best STUDY     {"trial": 7, "state": "complete", "value": 0.4, "params": {...}}
+//   dcs study trials STUDY   a table of every trial (-o json: a JSON line per trial)
 //
 // `create` prints the study's id. A study lives on the coordinator (--addr, default the local
 // cluster of `dcs up`), or, with --store FILE on every command, in a local SQLite file with no

@@ -10,6 +10,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_split.h"
 #include "absl/strings/strip.h"
 #include "common/atomic_file.h"
 #include "gmock/gmock.h"
@@ -73,6 +74,16 @@ TEST_F(StudyCliTest, AskTellAndBestThroughTheClient) {
   const google::protobuf::Struct answer = Json(best_run.output);
   EXPECT_EQ(answer.fields().at("trial").number_value(), best_trial);
   EXPECT_NEAR(answer.fields().at("value").number_value(), best, 1e-12 * (1 + std::abs(best)));
+
+  // Every trial, one JSON line each, complete.
+  const RunResult trials = Dcs({"study", "trials", study, "--store", store, "-o", "json"});
+  ASSERT_EQ(trials.exit_code, services::kExitOk) << trials.output;
+  const std::vector<std::string> lines =
+      absl::StrSplit(absl::StripTrailingAsciiWhitespace(trials.output), '\n');
+  ASSERT_EQ(lines.size(), 14u) << trials.output;
+  for (const std::string& line : lines) {
+    EXPECT_EQ(Json(line).fields().at("state").string_value(), "complete") << line;
+  }
 
   // A finished trial is not told again; an unknown study is named.
   const RunResult again = Dcs({"study", "tell", study, "0", "1.0", "--store", store});
