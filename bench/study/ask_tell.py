@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Branin and Hartmann-6 through `dcs study ask/tell` (shared/spec/tpe.md §16).
 
-For each sampler (tpe, random) and problem, SEEDS studies of TRIALS sequential trials, each
+For each sampler (tpe; tpe_mvg, TPE with --multivariate --group; random) and problem, SEEDS studies of TRIALS sequential trials, each
 asked and told through the `dcs` client on a local --store file, as a user outside DCS would.
 Prints, per sampler, problem and checkpoint trial (10, 25, 50, 100), the median best-so-far over
 the seeds with its 90 % percentile-bootstrap interval (2000 resamples), q25/q75 (linear
-interpolation) and the mean, beside Optuna 4.9.0's TPE and random-search medians and TPE's
-90 % interval (spec §16.3), and the wall time per ask + tell.
+interpolation) and the mean, beside Optuna 4.9.0's median and 90 % interval for the same sampler
+(spec §16.3), and the wall time per ask + tell.
 
-Usage: bench/study/ask_tell.py [--seeds 20] [--trials 100] [--dcs build/services/dcs]
+Usage: bench/study/ask_tell.py [--seeds 20] [--trials 100] [--samplers tpe,tpe_mvg,random]
+       [--dcs build/services/dcs]
 """
 import argparse
 import json
@@ -24,6 +25,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 # shared/spec/tpe.md §16.3: (median, CI low, CI high) of Optuna's best-so-far at each trial.
 OPTUNA = {
+    ("branin", "tpe_mvg"): {10: (5.80074, 3.46402, 8.26807), 25: (0.851146, 0.616406, 1.5081),
+                            50: (0.540049, 0.509283, 0.583169), 100: (0.48202, 0.421005, 0.513129)},
+    ("hartmann6", "tpe_mvg"): {10: (-0.707472, -1.10664, -0.582384),
+                               25: (-2.23802, -2.38807, -1.62016),
+                               50: (-2.72735, -2.9122, -2.62099), 100: (-3.00403, -3.11436, -2.8669)},
     ("branin", "tpe"): {10: (5.80074, 3.46402, 8.26807), 25: (1.57498, 0.840607, 2.29761),
                         50: (0.824282, 0.591755, 1.09868), 100: (0.447925, 0.428963, 0.489277)},
     ("branin", "random"): {10: (5.80074, 3.46402, 8.26807), 25: (1.86007, 1.00696, 3.89394),
@@ -67,8 +73,10 @@ def dcs(binary, *args):
 
 def study(binary, store, problem, sampler, seed, trials):
     """The best-so-far after each trial, and the seconds spent in ask + tell."""
+    options = {"tpe": ["--sampler", "tpe"], "random": ["--sampler", "random"],
+               "tpe_mvg": ["--sampler", "tpe", "--multivariate", "--group"]}[sampler]
     study_id = dcs(binary, "study", "create", "--space", os.path.join(HERE, f"{problem}.yaml"),
-                   "--sampler", sampler, "--seed", str(seed), "--store", store).strip()
+                   *options, "--seed", str(seed), "--store", store).strip()
     best, seconds = [], 0.0
     for _ in range(trials):
         start = time.perf_counter()
@@ -100,16 +108,17 @@ def main():
     parser.add_argument("--seeds", type=int, default=20)
     parser.add_argument("--trials", type=int, default=100)
     parser.add_argument("--dcs", default="build/services/dcs")
+    parser.add_argument("--samplers", default="tpe,tpe_mvg,random")
     args = parser.parse_args()
     rng = random.Random(0)
     print("| problem | sampler | trial | median best | 90 % CI of median | q25 | q75 | mean | "
-          "Optuna 4.9 TPE median [90 % CI] | Optuna random median |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "Optuna 4.9, same sampler: median [90 % CI] |")
+    print("|---|---|---|---|---|---|---|---|---|")
     timings = []
     with tempfile.TemporaryDirectory() as scratch:
         store = os.path.join(scratch, "studies.db")
         for problem in PROBLEMS:
-            for sampler in ("tpe", "random"):
+            for sampler in args.samplers.split(","):
                 runs = []
                 for seed in range(args.seeds):
                     best, seconds = study(args.dcs, store, problem, sampler, seed, args.trials)
@@ -120,12 +129,11 @@ def main():
                         continue
                     values = sorted(run[trial - 1] for run in runs)
                     low, high = median_interval(values, rng)
-                    tpe = OPTUNA[(problem, "tpe")][trial]
+                    optuna = OPTUNA[(problem, sampler)][trial]
                     print(f"| {problem} | {sampler} | {trial} | {statistics.median(values):.6g} | "
                           f"[{low:.6g}, {high:.6g}] | {quantile(values, 0.25):.6g} | "
                           f"{quantile(values, 0.75):.6g} | {statistics.mean(values):.6g} | "
-                          f"{tpe[0]:.6g} [{tpe[1]:.6g}, {tpe[2]:.6g}] | "
-                          f"{OPTUNA[(problem, 'random')][trial][0]:.6g} |", flush=True)
+                          f"{optuna[0]:.6g} [{optuna[1]:.6g}, {optuna[2]:.6g}] |", flush=True)
     for sampler, problem in {(s, p) for s, p, _ in timings}:
         per_trial = [t for s, p, t in timings if s == sampler and p == problem]
         print(f"{problem} {sampler}: {1000 * statistics.mean(per_trial):.1f} ms per ask + tell "
