@@ -2,8 +2,9 @@
 //
 // One TPE suggestion (Sampler::Sample: the split, the Parzen estimators of every parameter the
 // trial has, 24 candidates each) after N finished trials, the sampler alone (no store):
-//   BM_SuggestFourStages/N           the paper's 4-stage schedule search (bench/study/
-//                                    four_stages.yaml: a mode per stage, the mode's parameters)
+//   BM_SuggestFourStages/N           the paper's 4-stage schedule search (configs/paper/
+//                                    cartpole_multistage_space.yaml: a mode per stage, the
+//                                    mode's parameters)
 //   BM_SuggestFourStagesGrouped/N    the same with multivariate TPE by groups
 //   BM_SuggestHartmann6/N            6 floats, for comparison with Optuna 4.9's 6.9 ms per trial
 //                                    at trials 91-100 (shared/spec/tpe.md §16.3)
@@ -22,11 +23,11 @@
 namespace dcs::coordinator {
 namespace {
 
-run::SearchSpace LoadSpace(const std::string& name) {
-  std::ifstream file(std::string(DCS_STUDY_DIR) + "/" + name);
+run::SearchSpace LoadSpace(const std::string& path) {
+  std::ifstream file(path);
   std::stringstream text;
   text << file.rdbuf();
-  return *run::ParseSearchSpaceYaml(text.str(), name);
+  return *run::ParseSearchSpaceYaml(text.str(), path);
 }
 
 // A value that prefers sinusoidal early stages and cosine annealing late ones, or for floats a
@@ -59,13 +60,14 @@ void Suggest(benchmark::State& state, const std::string& space_file, const TpeOp
 }
 
 void BM_SuggestFourStages(benchmark::State& state) {
-  Suggest(state, "four_stages.yaml", TpeOptions{});
+  Suggest(state, DCS_SOURCE_DIR "/configs/paper/cartpole_multistage_space.yaml", TpeOptions{});
 }
 void BM_SuggestFourStagesGrouped(benchmark::State& state) {
-  Suggest(state, "four_stages.yaml", TpeOptions{.parzen = {.multivariate = true}, .group = true});
+  Suggest(state, DCS_SOURCE_DIR "/configs/paper/cartpole_multistage_space.yaml",
+          TpeOptions{.parzen = {.multivariate = true}, .group = true});
 }
 void BM_SuggestHartmann6(benchmark::State& state) {
-  Suggest(state, "hartmann6.yaml", TpeOptions{});
+  Suggest(state, DCS_SOURCE_DIR "/bench/study/hartmann6.yaml", TpeOptions{});
 }
 
 BENCHMARK(BM_SuggestFourStages)

@@ -7,6 +7,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "run/search_space.h"
+#include "tests/run/source_files.h"
 
 namespace dcs::run {
 namespace {
@@ -38,6 +39,14 @@ TEST(SearchSpaceYamlTest, ReadsEveryKindOfParameterInOrder) {
               ElementsAre("constant", "sinusoidal", "cosine"));
   EXPECT_EQ(space->parameters[5].condition->parent, "mode");
   EXPECT_THAT(space->parameters[6].condition->choices, ElementsAre("sinusoidal", "cosine"));
+}
+
+TEST(SearchSpaceYamlTest, TheHeadersExampleParses) {
+  const std::string example = HeaderExample("run/search_space_yaml.h");
+  ASSERT_THAT(example, HasSubstr("parameters:"));
+  const absl::StatusOr<SearchSpace> space = ParseSearchSpaceYaml(example, "example");
+  ASSERT_TRUE(space.ok()) << space.status();
+  EXPECT_EQ(space->parameters.size(), 6u);
 }
 
 TEST(SearchSpaceYamlTest, ConditionsFollowTheParentsChoice) {

@@ -25,9 +25,10 @@ std::vector<ConfigFile> ConfigFiles() {
     std::stringstream text;
     text << file.rdbuf();
     const YAML::Node root = YAML::Load(text.str());
-    files.push_back({.path = path,
-                     .text = text.str(),
-                     .sweep = root.IsMap() && static_cast<bool>(root["conditions"])});
+    ConfigFile::Kind kind = ConfigFile::Kind::kRun;
+    if (root.IsMap() && root["conditions"]) kind = ConfigFile::Kind::kSweep;
+    if (root.IsMap() && root["parameters"]) kind = ConfigFile::Kind::kSearchSpace;
+    files.push_back({.path = path, .text = text.str(), .kind = kind});
   }
   return files;
 }

@@ -14,9 +14,14 @@ namespace dcs::run {
 
 // A YAML file of configs/ (subfolders included), but the coordinator's settings file.
 struct ConfigFile {
+  enum class Kind {
+    kRun,          // a run config
+    kSweep,        // a sweep spec: a mapping with `conditions`
+    kSearchSpace,  // a study's search space: a mapping with `parameters`
+  };
   std::filesystem::path path;
   std::string text;
-  bool sweep = false;  // a sweep spec (a mapping with `conditions`), else a run config
+  Kind kind = Kind::kRun;
 };
 std::vector<ConfigFile> ConfigFiles();
 

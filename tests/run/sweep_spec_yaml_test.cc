@@ -509,7 +509,7 @@ TEST(SweepSpecYamlTest, EveryConfigWithConditionsParses) {
   int parsed = 0;
   std::optional<ConfigFile> quickstart_file;
   for (const ConfigFile& config : ConfigFiles()) {
-    if (!config.sweep) continue;
+    if (config.kind != ConfigFile::Kind::kSweep) continue;
     absl::StatusOr<SweepSpec> spec = ParseSweepSpecYaml(config.text, config.path.string());
     EXPECT_TRUE(spec.ok()) << spec.status();
     parsed += spec.ok();
