@@ -163,7 +163,9 @@ std::string PanelKeyCommand(const LinePanel& panel) {
 
 std::string LineStyle(const ChartLine& line, size_t index) {
   const std::string color = line.color.empty() ? SeriesColor(static_cast<int>(index)) : line.color;
-  if (line.x.size() == 1) return absl::StrCat("with points pt 7 ps 0.6 lc rgb '", color, "'");
+  if (line.points || line.x.size() == 1) {
+    return absl::StrCat("with points pt 7 ps 0.6 lc rgb '", color, "'");
+  }
   return absl::StrCat("with ", line.steps ? "steps" : "lines", " lc rgb '", color,
                       "' lw 1.5 dt ", line.dashed ? "2" : "1");
 }

@@ -34,6 +34,7 @@ struct ChartLine {
   std::string color;  // "#rrggbb"; empty: SeriesColor(the line's index in its panel)
   bool dashed = false;
   bool steps = false;  // a step function: y[i] holds from x[i] up to x[i + 1]
+  bool points = false;  // dots at the points, not joined (a scatter)
 };
 
 // A tick mark on an axis, with its label (empty: the number, as gnuplot writes it).

@@ -17,8 +17,10 @@
 #include "common/status_macros.h"
 #include "common/text_table.h"
 #include "coordinator/run_store.h"
+#include "coordinator/study_figures.h"
 #include "run/search_space_yaml.h"
 #include "services/cli/cluster_client.h"
+#include "services/cli/figure_render.h"
 #include "services/cli/run_client.h"
 #include "services/cli/study_client.h"
 #include "services/command_line.h"
@@ -198,6 +200,25 @@ absl::Status Trials(const std::string& study_id, const GlobalFlags& flags, Study
   return absl::OkStatus();
 }
 
+struct PlotFlags {
+  std::string study;
+  std::string out;
+  coordinator::FigureFormat format = coordinator::FigureFormat::kSvg;
+};
+
+// The study's optimisation history drawn by gnuplot into --out, beside its data and script.
+absl::Status Plot(const PlotFlags& flags, StudyClient& studies) {
+  DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study, studies.Get(flags.study));
+  DCS_ASSIGN_OR_RETURN(const std::vector<StudyTrial> trials, studies.Trials(flags.study));
+  DCS_ASSIGN_OR_RETURN(const coordinator::GnuplotFigure figure,
+                       coordinator::StudyHistoryFigure(study, trials));
+  DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
+                       RenderFigure(figure, flags.format, flags.out));
+  if (!rendered.gnuplot_output.empty()) std::cerr << rendered.gnuplot_output << std::endl;
+  std::cout << rendered.path << std::endl;
+  return absl::OkStatus();
+}
+
 // Runs `command` on the studies of --store or the coordinator; the exit code.
 template <typename Command>
 int RunOn(const std::string& store, const GlobalFlags& flags, const Command& command) {
@@ -279,6 +300,15 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
   list->add_option("study", *study_id, "the study's id")->required();
   add_store(list);
 
+  auto plot_flags = std::make_shared<PlotFlags>();
+  CLI::App* plot = study->add_subcommand(
+      "plot", "Draw the study's optimisation history with gnuplot; print the image's path");
+  plot->add_option("study", plot_flags->study, "the study's id")->required();
+  plot->add_option("--out", plot_flags->out, "the directory to write")->required();
+  AddChoiceOption(*plot, "--format", &plot_flags->format,
+                  ChoicesOf(coordinator::kFigureFormatNames), "svg, png or pdf");
+  add_store(plot);
+
   CLI::App* best = study->add_subcommand("best", "Print the best complete trial (JSON)");
   best->add_option("study", *study_id, "the study's id")->required();
   add_store(best);
@@ -292,6 +322,7 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
           {tell, on_studies([=](StudyClient& s) { return Tell(*trial_flags, s); })},
           {report, on_studies([=](StudyClient& s) { return Report(*trial_flags, s); })},
           {list, on_studies([=, &flags](StudyClient& s) { return Trials(*study_id, flags, s); })},
+          {plot, on_studies([=](StudyClient& s) { return Plot(*plot_flags, s); })},
           {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); })}};
 }
 

@@ -16,6 +16,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "services/exit_codes.h"
+#include "tests/integration/browser.h"
 #include "tests/integration/cluster_processes.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/temp_dir.h"
@@ -84,6 +85,24 @@ TEST_F(StudyCliTest, AskTellAndBestThroughTheClient) {
   for (const std::string& line : lines) {
     EXPECT_EQ(Json(line).fields().at("state").string_value(), "complete") << line;
   }
+
+  // The optimisation history, drawn by gnuplot and looked at in Chromium: the Okabe-Ito blue
+  // dots (each value) and vermillion steps (the best so far) are on the page.
+  const RunResult plot = Dcs({"study", "plot", study, "--out", Path("figures"), "--store", store});
+  ASSERT_EQ(plot.exit_code, services::kExitOk) << plot.output;
+  const std::string svg = Path("figures/study-1_history.svg");
+  EXPECT_EQ(absl::StripAsciiWhitespace(plot.output), svg);
+  EXPECT_THAT(ReadFile(svg).value_or(""), HasSubstr("<text>trial</text>"));
+  const Screenshot image = TakeScreenshot(svg, Path("figures/shot.png"), 700, 450);
+  int blue = 0;
+  int vermillion = 0;
+  for (size_t i = 0; i + 2 < image.rgb.size(); i += 3) {
+    const int r = image.rgb[i], g = image.rgb[i + 1], b = image.rgb[i + 2];
+    if (std::abs(r - 0) < 30 && std::abs(g - 114) < 30 && std::abs(b - 178) < 30) ++blue;
+    if (std::abs(r - 213) < 30 && std::abs(g - 94) < 30 && std::abs(b - 0) < 30) ++vermillion;
+  }
+  EXPECT_GT(blue, 14 * 10) << "the dots";
+  EXPECT_GT(vermillion, 300) << "the steps";
 
   // A finished trial is not told again; an unknown study is named.
   const RunResult again = Dcs({"study", "tell", study, "0", "1.0", "--store", store});
