@@ -147,6 +147,10 @@ bool Contains(const Distribution& distribution, double value) {
                     distribution);
 }
 
+const std::string& ChoiceOf(const CategoricalDistribution& choices, double value) {
+  return choices.choices[static_cast<size_t>(value)];
+}
+
 bool IsSingleValued(const Distribution& distribution) {
   return std::visit(
       Overloaded{[](const FloatDistribution& d) { return d.low == d.high; },

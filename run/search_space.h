@@ -80,6 +80,9 @@ bool IsActive(const SearchParameter& parameter, const SearchSpace& space,
 // an integer where it must be.
 bool Contains(const Distribution& distribution, double value);
 
+// The choice a categorical's value (its index) stands for. REQUIRES: Contains(choices, value).
+const std::string& ChoiceOf(const CategoricalDistribution& choices, double value);
+
 // Whether the distribution has a single value (nothing to sample).
 bool IsSingleValued(const Distribution& distribution);
 

@@ -19,7 +19,7 @@ namespace {
 // choice written as a number is one), an int in digits, a float with 17 significant digits.
 std::string ValueText(const SearchParameter& parameter, double value) {
   if (const auto* choices = std::get_if<CategoricalDistribution>(&parameter.distribution)) {
-    return choices->choices[static_cast<size_t>(value)];
+    return ChoiceOf(*choices, value);
   }
   if (std::holds_alternative<IntDistribution>(parameter.distribution)) {
     return absl::StrCat(static_cast<int64_t>(value));
@@ -73,9 +73,9 @@ absl::StatusOr<std::string> TrialRunConfig(absl::string_view base, absl::string_
     // quoted number is a string to the run config's reader.
     const YAML::Node scalar = YAML::Load(ValueText(parameter, value->second));
     if (!scalar.IsScalar()) {
-      return absl::InvalidArgumentError(absl::StrCat(
-          "parameter '", parameter.name, "': '", ValueText(parameter, value->second),
-          "' is not a plain YAML scalar"));
+      return absl::InvalidArgumentError(absl::StrCat("parameter '", parameter.name, "': '",
+                                                     ValueText(parameter, value->second),
+                                                     "' is not a plain YAML scalar"));
     }
     absl::StatusOr<YAML::Node> with =
         WithValueAt(arena, *config, *ParseKeyPath(parameter.name), scalar);

@@ -95,11 +95,11 @@ std::string TrialJson(const StudyTrial& trial, const run::SearchSpace& space) {
     const auto value = trial.values.find(parameter.name);
     if (value == trial.values.end()) continue;
     const auto* choices = std::get_if<run::CategoricalDistribution>(&parameter.distribution);
-    absl::StrAppend(&json, separator, JsonLiteral<google::protobuf::StringValue>(parameter.name),
-                    ": ",
-                    choices == nullptr ? JsonLiteral<DoubleValue>(value->second)
-                                       : JsonLiteral<google::protobuf::StringValue>(
-                                             choices->choices[static_cast<size_t>(value->second)]));
+    absl::StrAppend(
+        &json, separator, JsonLiteral<google::protobuf::StringValue>(parameter.name), ": ",
+        choices == nullptr
+            ? JsonLiteral<DoubleValue>(value->second)
+            : JsonLiteral<google::protobuf::StringValue>(run::ChoiceOf(*choices, value->second)));
     separator = ", ";
   }
   return absl::StrCat(json, "}}");
@@ -192,8 +192,8 @@ absl::Status Trials(const std::string& study_id, const GlobalFlags& flags, Study
       const auto value = trial.values.find(parameter.name);
       const auto* choices = std::get_if<run::CategoricalDistribution>(&parameter.distribution);
       row.push_back(value == trial.values.end() ? "-"
-                    : choices != nullptr ? choices->choices[static_cast<size_t>(value->second)]
-                                         : absl::StrFormat("%.6g", value->second));
+                    : choices != nullptr        ? run::ChoiceOf(*choices, value->second)
+                                                : absl::StrFormat("%.6g", value->second));
     }
   }
   std::cout << RenderTable(rows) << std::endl;
