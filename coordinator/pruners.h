@@ -5,8 +5,8 @@
 // Pruners decide, when a trial reports an intermediate value (for a multi-stage schedule, its
 // objective at a stage boundary), whether to stop it early, with Optuna 4.9's rules
 // (shared/spec/tpe.md §11). Pure functions of the study's trials: what a pruner must remember
-// (the rungs a trial reached in successive halving) is part of the trial, and the caller stores
-// it. Thread-safe.
+// (the rungs each trial reached in successive halving) is passed in and returned, and the caller
+// stores it. Thread-safe.
 
 #include <cstdint>
 #include <map>
@@ -41,9 +41,10 @@ bool MedianPrune(const StudyTrial& trial, const std::vector<StudyTrial>& trials,
 // its value there and goes on only if that value is among the best 1/reduction_factor of every
 // value recorded at rung r so far (and there are more than `bootstrap_count` of them).
 struct SuccessiveHalvingOptions {
-  // Optuna's "auto": max(1, last step of the first trial to complete / 100); no trial is pruned
-  // before one completed. (Optuna fixes it from the trials complete at its first check; DCS from
-  // the first to complete, so that it does not depend on when checks happen.)
+  // Absent, Optuna's "auto": max(1, last step of a complete trial / 100); no trial is pruned before
+  // one completed. Optuna takes the trials complete at its first check; DCS the lowest-numbered
+  // complete trial (the first to complete in a sequential study), so that the value does not
+  // depend on when checks happen.
   std::optional<int64_t> min_resource;
   int reduction_factor = 4;
   int min_early_stopping_rate = 0;
@@ -56,9 +57,9 @@ struct HalvingDecision {
   std::map<int, double> rungs;
 };
 
-// The check when `trial` (running, with the rungs it reached so far) reports at its highest
-// step; `rungs` of `trials` are the other trials' recorded values (any state). REQUIRES:
-// reduction_factor >= 2.
+// The check when `trial` (running) reports at its highest step: `trial_rungs` are the rungs it
+// reached so far, `other_rungs` those of every other trial (any state), `trials` the study's (for
+// the automatic min_resource). REQUIRES: reduction_factor >= 2.
 HalvingDecision SuccessiveHalvingPrune(const StudyTrial& trial,
                                        const std::map<int, double>& trial_rungs,
                                        const std::vector<std::map<int, double>>& other_rungs,
