@@ -293,8 +293,9 @@ std::vector<double> ParzenEstimator::LogPdf(const std::vector<std::vector<double
       }
     }
     if (!cells.empty()) {
-      // The cell masses cost two normal CDFs each, so only the kernels that can matter get
-      // them: those whose bound is within kNegligible of the exact term of the likeliest one.
+      // Cell masses cost far more than their bounds (a series, or two normal CDFs), so only the
+      // kernels that can matter get them: those whose bound is within kNegligible of the exact
+      // term of the likeliest one.
       for (size_t k = 0; k < kernels; ++k) {
         bounds[k] = terms[k];
         for (const PointCell& c : cells) {
@@ -307,9 +308,12 @@ std::vector<double> ParzenEstimator::LogPdf(const std::vector<std::vector<double
         return term;
       };
       const size_t likeliest = std::max_element(bounds.begin(), bounds.end()) - bounds.begin();
-      const double floor = exact(likeliest) - kNegligible;
+      const double likeliest_term = exact(likeliest);
       for (size_t k = 0; k < kernels; ++k) {
-        terms[k] = bounds[k] < floor ? -std::numeric_limits<double>::infinity() : exact(k);
+        terms[k] = k == likeliest ? likeliest_term
+                   : bounds[k] < likeliest_term - kNegligible
+                       ? -std::numeric_limits<double>::infinity()
+                       : exact(k);
       }
     }
     const double top = *std::max_element(terms.begin(), terms.end());

@@ -6,19 +6,16 @@
 #include <iterator>
 
 #include "absl/strings/str_cat.h"
+#include "coordinator/iqm.h"
 
 namespace dcs::coordinator {
 namespace {
 
-// numpy.nanpercentile(values, q) with linear interpolation; NaN if every value is NaN.
+// numpy.nanpercentile(values, q): Quantile's rule over the values that are not NaN; NaN if none.
 double NanPercentile(std::vector<double> values, double q) {
   std::erase_if(values, [](double v) { return std::isnan(v); });
   if (values.empty()) return std::nan("");
-  std::sort(values.begin(), values.end());
-  const double position = q / 100 * static_cast<double>(values.size() - 1);
-  const size_t low = static_cast<size_t>(std::floor(position));
-  const size_t high = std::min(low + 1, values.size() - 1);
-  return values[low] + (values[high] - values[low]) * (position - static_cast<double>(low));
+  return Quantile(values, q / 100).value_or(std::nan(""));
 }
 
 // Whether `value` is among the best 1/reduction_factor of `competing` (it included).

@@ -56,9 +56,13 @@ std::vector<StudyTrial> ReadTrials(SQLite::Database& db, int64_t study) {
   return trials;
 }
 
+// A study as the store holds it: its record, its space parsed, its row number and its trials
+// (read once per call).
 struct StudyRow {
   StudyRecord record;
   run::SearchSpace space;
+  int64_t number = 0;
+  std::vector<StudyTrial> trials;  // by number
 };
 
 absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study_id) {
@@ -102,7 +106,9 @@ absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study
   // Validated when the study was created.
   DCS_ASSIGN_OR_RETURN(row.space, run::ParseSearchSpaceYaml(s.space, row.record.id));
 
-  const std::vector<StudyTrial> trials = ReadTrials(db, number);
+  row.number = number;
+  row.trials = ReadTrials(db, number);
+  const std::vector<StudyTrial>& trials = row.trials;
   for (const auto& [state, name] : kTrialStateNames) {
     row.record.trials_by_state.emplace_back(
         state, std::count_if(trials.begin(), trials.end(),
@@ -128,18 +134,12 @@ std::unique_ptr<Sampler> MakeSampler(const StudySubmission& study) {
   return nullptr;
 }
 
-// Study `study_id`'s row number and its trial `number`. NOT_FOUND naming what is missing.
-absl::StatusOr<std::pair<int64_t, StudyTrial>> FindTrial(SQLite::Database& db,
-                                                         absl::string_view study_id,
-                                                         int64_t number) {
-  DCS_ASSIGN_OR_RETURN(const int64_t study, StudyNumber(study_id));
-  SQLite::Statement exists(db, "SELECT 1 FROM studies WHERE number = ?");
-  exists.bind(1, study);
-  if (!exists.executeStep()) return absl::NotFoundError(absl::StrCat("no study ", study_id));
-  for (StudyTrial& trial : ReadTrials(db, study)) {
-    if (trial.number == number) return std::make_pair(study, std::move(trial));
+// The study's trial `number`. NOT_FOUND naming both.
+absl::StatusOr<StudyTrial*> FindTrial(StudyRow& row, int64_t number) {
+  for (StudyTrial& trial : row.trials) {
+    if (trial.number == number) return &trial;
   }
-  return absl::NotFoundError(absl::StrCat("study ", study_id, " has no trial ", number));
+  return absl::NotFoundError(absl::StrCat("study ", row.record.id, " has no trial ", number));
 }
 
 absl::Status RequireRunning(TrialState state, absl::string_view study_id, int64_t number) {
@@ -238,17 +238,17 @@ absl::StatusOr<StudyTrial> RunStore::AskTrial(absl::string_view study_id,
                                               absl::string_view request_id, absl::Time now) {
   if (request_id.empty()) return absl::InvalidArgumentError("an ask needs a request id");
   return Transaction([&]() -> absl::StatusOr<StudyTrial> {
-    DCS_ASSIGN_OR_RETURN(const StudyRow row, FindStudy(*db_, study_id));
-    const int64_t study = *StudyNumber(study_id);
-    const std::vector<StudyTrial> trials = ReadTrials(*db_, study);
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, study_id));
+    const int64_t study = row.number;
+    const std::vector<StudyTrial>& trials = row.trials;
     SQLite::Statement asked(*db_,
                             "SELECT number FROM study_trials WHERE study = ? AND request_id = ?");
     asked.bind(1, study);
     asked.bind(2, std::string(request_id));
     if (asked.executeStep()) {
-      const int64_t number = asked.getColumn(0).getInt64();
-      return *std::find_if(trials.begin(), trials.end(),
-                           [number](const StudyTrial& t) { return t.number == number; });
+      DCS_ASSIGN_OR_RETURN(const StudyTrial* asked_before,
+                           FindTrial(row, asked.getColumn(0).getInt64()));
+      return *asked_before;
     }
     StudyTrial trial{.number = trials.empty() ? 0 : trials.back().number + 1,
                      .state = TrialState::kRunning,
@@ -284,8 +284,9 @@ absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64
     return absl::InvalidArgumentError("a trial is told complete, pruned or failed, not running");
   }
   return Transaction([&]() -> absl::StatusOr<StudyTrial> {
-    DCS_ASSIGN_OR_RETURN(auto found, FindTrial(*db_, study_id, number));
-    auto& [study, trial] = found;
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, study_id));
+    DCS_ASSIGN_OR_RETURN(StudyTrial* const found, FindTrial(row, number));
+    StudyTrial& trial = *found;
     const TrialState current = trial.state;
     const TrialState told =
         state == TrialState::kComplete && std::isnan(value) ? TrialState::kFailed : state;
@@ -303,7 +304,7 @@ absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64
     update.bind(1, std::string(NameOf(kTrialStateNames, trial.state)));
     BindDoubleOrNull(update, 2, trial.value);
     update.bind(3, Micros(now));
-    update.bind(4, study);
+    update.bind(4, row.number);
     update.bind(5, number);
     update.exec();
     return trial;
@@ -313,9 +314,11 @@ absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64
 absl::StatusOr<bool> RunStore::ReportTrial(absl::string_view study_id, int64_t number, int64_t step,
                                            double value) {
   return Transaction([&]() -> absl::StatusOr<bool> {
-    DCS_ASSIGN_OR_RETURN(const auto found, FindTrial(*db_, study_id, number));
-    const int64_t study = found.first;
-    DCS_RETURN_IF_ERROR(RequireRunning(found.second.state, study_id, number));
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, study_id));
+    DCS_ASSIGN_OR_RETURN(StudyTrial* const found, FindTrial(row, number));
+    StudyTrial& trial = *found;
+    DCS_RETURN_IF_ERROR(RequireRunning(trial.state, study_id, number));
+    const int64_t study = row.number;
     SQLite::Statement insert(*db_,
                              "INSERT OR IGNORE INTO study_trial_reports (study, trial, step, "
                              "value) VALUES (?, ?, ?, ?)");
@@ -324,12 +327,10 @@ absl::StatusOr<bool> RunStore::ReportTrial(absl::string_view study_id, int64_t n
     insert.bind(3, step);
     BindDoubleOrNull(insert, 4, value);
     insert.exec();
+    trial.reported.try_emplace(step, value);  // as stored: a repeated step keeps the first
 
-    DCS_ASSIGN_OR_RETURN(const StudyRow row, FindStudy(*db_, study_id));
     const StudySubmission& s = row.record.submission;
-    const std::vector<StudyTrial> trials = ReadTrials(*db_, study);
-    const StudyTrial& trial = *std::find_if(
-        trials.begin(), trials.end(), [number](const StudyTrial& t) { return t.number == number; });
+    const std::vector<StudyTrial>& trials = row.trials;
     switch (s.pruner.kind) {
       case PrunerKind::kNone:
         return false;
@@ -369,8 +370,8 @@ absl::StatusOr<bool> RunStore::ReportTrial(absl::string_view study_id, int64_t n
 
 absl::StatusOr<std::vector<StudyTrial>> RunStore::ListStudyTrials(absl::string_view study_id) {
   return Transaction([&]() -> absl::StatusOr<std::vector<StudyTrial>> {
-    DCS_RETURN_IF_ERROR(FindStudy(*db_, study_id).status());
-    return ReadTrials(*db_, *StudyNumber(study_id));
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, study_id));
+    return std::move(row.trials);
   });
 }
 

@@ -64,10 +64,16 @@ std::string RestartWith(const std::vector<KernelVariable>& unpinned) {
   return std::strerror(errno);
 }
 
+// OpenBLAS's function `name`, or null if the BLAS is not OpenBLAS. Looked up rather than linked:
+// libtorch reaches OpenBLAS through the libblas.so.3 alternative, which may be another BLAS.
+template <typename Function>
+Function* OpenBlasFunction(const char* name) {
+  return reinterpret_cast<Function*>(dlsym(RTLD_DEFAULT, name));
+}
+
 // OpenBLAS's build: "serial", "pthread" or "openmp"; empty if the BLAS is not OpenBLAS.
 std::string BlasBuild() {
-  using Parallel = int (*)();  // 0 serial, 1 pthread, 2 OpenMP
-  const auto parallel = reinterpret_cast<Parallel>(dlsym(RTLD_DEFAULT, "openblas_get_parallel"));
+  const auto parallel = OpenBlasFunction<int()>("openblas_get_parallel");  // 0, 1 or 2
   if (parallel == nullptr) return "";
   switch (parallel()) {
     case 0:
@@ -129,15 +135,15 @@ void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note) {
 
 absl::Mutex* BlasMutex() {
   ABSL_CONST_INIT static absl::Mutex mutex(absl::kConstInit);
-  static const bool locks_itself = BlasBuild() == "pthread" || BlasBuild() == "openmp";
+  static const bool locks_itself = [] {
+    const std::string build = BlasBuild();
+    return build == "pthread" || build == "openmp";
+  }();
   return locks_itself ? nullptr : &mutex;
 }
 
 std::string BlasCoreName() {
-  // Looked up rather than linked: libtorch reaches OpenBLAS through the libblas.so.3
-  // alternative, which may be another BLAS.
-  using CoreName = char* (*)();
-  const auto core_name = reinterpret_cast<CoreName>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
+  const auto core_name = OpenBlasFunction<char*()>("openblas_get_corename");
   return core_name == nullptr ? "" : core_name();
 }
 
@@ -166,10 +172,9 @@ std::vector<LibraryVersion> LibraryVersions() {
   std::vector<LibraryVersion> versions = {{"libtorch", TORCH_VERSION}};
   if (const std::string core = BlasCoreName(); !core.empty()) {
     versions.push_back({"openblas core", core});
-    using Threads = int (*)();
-    const auto threads = reinterpret_cast<Threads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    versions.push_back({"openblas build", absl::StrCat(BlasBuild(), ", ", threads(), " thread",
-                                                       threads() == 1 ? "" : "s")});
+    const int threads = OpenBlasFunction<int()>("openblas_get_num_threads")();
+    versions.push_back({"openblas build", absl::StrCat(BlasBuild(), ", ", threads, " thread",
+                                                       threads == 1 ? "" : "s")});
   }
   if (const std::string capability = AtenCpuCapability(); !capability.empty()) {
     versions.push_back({"aten cpu capability", capability});
