@@ -49,11 +49,9 @@ std::vector<std::vector<double>> Observations(const std::vector<const StudyTrial
   return columns;
 }
 
-// The position of parameter `name` in the space.
+// The position of parameter `name` in the space. REQUIRES: the space has it.
 size_t Position(const run::SearchSpace& space, const std::string& name) {
-  return std::find_if(space.parameters.begin(), space.parameters.end(),
-                      [&](const run::SearchParameter& p) { return p.name == name; }) -
-         space.parameters.begin();
+  return run::FindParameter(space, name) - space.parameters.data();
 }
 
 class TpeSampler : public Sampler {
@@ -229,14 +227,9 @@ std::vector<std::vector<std::string>> GroupParameters(
       if (group.contains(p.name)) names.push_back(p.name);
     }
   }
-  const auto position = [&](const std::string& name) {
-    return std::find_if(space.parameters.begin(), space.parameters.end(),
-                        [&](const run::SearchParameter& p) { return p.name == name; }) -
-           space.parameters.begin();
-  };
   std::erase_if(ordered, [](const std::vector<std::string>& names) { return names.empty(); });
   std::sort(ordered.begin(), ordered.end(), [&](const auto& a, const auto& b) {
-    return position(a.front()) < position(b.front());
+    return Position(space, a.front()) < Position(space, b.front());
   });
   return ordered;
 }

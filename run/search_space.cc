@@ -16,13 +16,6 @@ struct Overloaded : Ts... {
   using Ts::operator()...;
 };
 
-const SearchParameter* Find(const SearchSpace& space, const std::string& name) {
-  for (const SearchParameter& parameter : space.parameters) {
-    if (parameter.name == name) return &parameter;
-  }
-  return nullptr;
-}
-
 // Whether `steps` (a count of grid steps, as computed) is within rounding of an integer.
 bool IsWhole(double steps) { return std::abs(steps - std::round(steps)) <= 1e-8 * (1 + steps); }
 
@@ -91,7 +84,7 @@ absl::Status ValidateSearchSpace(const SearchSpace& space) {
     if (parameter.condition.has_value()) {
       const ParameterCondition& condition = *parameter.condition;
       const SearchParameter* parent =
-          earlier.contains(condition.parent) ? Find(space, condition.parent) : nullptr;
+          earlier.contains(condition.parent) ? FindParameter(space, condition.parent) : nullptr;
       const auto* choices =
           parent == nullptr ? nullptr : std::get_if<CategoricalDistribution>(&parent->distribution);
       if (choices == nullptr) {
@@ -113,12 +106,19 @@ absl::Status ValidateSearchSpace(const SearchSpace& space) {
   return absl::OkStatus();
 }
 
+const SearchParameter* FindParameter(const SearchSpace& space, const std::string& name) {
+  for (const SearchParameter& parameter : space.parameters) {
+    if (parameter.name == name) return &parameter;
+  }
+  return nullptr;
+}
+
 bool IsActive(const SearchParameter& parameter, const SearchSpace& space,
               const ParameterValues& values) {
   if (!parameter.condition.has_value()) return true;
   const ParameterCondition& condition = *parameter.condition;
   const auto value = values.find(condition.parent);
-  const SearchParameter* parent = Find(space, condition.parent);
+  const SearchParameter* parent = FindParameter(space, condition.parent);
   if (value == values.end() || parent == nullptr) return false;
   const auto& choices = std::get<CategoricalDistribution>(parent->distribution).choices;
   const auto index = static_cast<size_t>(value->second);

@@ -72,6 +72,9 @@ using ParameterValues = std::map<std::string, double>;
 // is not an earlier categorical or whose choice is not one of the parent's.
 absl::Status ValidateSearchSpace(const SearchSpace& space);
 
+// The parameter called `name`, or null if the space has none.
+const SearchParameter* FindParameter(const SearchSpace& space, const std::string& name);
+
 // Whether `parameter` exists in a trial whose earlier parameters took `values`.
 bool IsActive(const SearchParameter& parameter, const SearchSpace& space,
               const ParameterValues& values);
