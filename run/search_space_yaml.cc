@@ -13,6 +13,16 @@ namespace {
 constexpr absl::string_view kParameterKeys[] = {"name", "type", "low",     "high",
                                                 "log",  "step", "choices", "when"};
 
+// Appends the words of the list `node` at `path` to `choices`.
+absl::Status ReadChoices(YamlReader& reader, const YAML::Node& node, const std::string& path,
+                         std::vector<std::string>& choices) {
+  return reader.ForEachItem(
+      node, path, "a list of choices", [&](const YAML::Node& item, const std::string& item_path) {
+        DCS_ASSIGN_OR_RETURN(choices.emplace_back(), reader.Word(item, item_path));
+        return absl::OkStatus();
+      });
+}
+
 absl::StatusOr<SearchParameter> ReadParameter(YamlReader& reader, const YAML::Node& node,
                                               const std::string& path) {
   SearchParameter parameter;
@@ -38,12 +48,7 @@ absl::StatusOr<SearchParameter> ReadParameter(YamlReader& reader, const YAML::No
         } else if (key == "log") {
           DCS_ASSIGN_OR_RETURN(log, reader.Bool(value, key_path));
         } else if (key == "choices") {
-          return reader.ForEachItem(value, key_path, "a list of choices",
-                                    [&](const YAML::Node& item, const std::string& item_path) {
-                                      DCS_ASSIGN_OR_RETURN(choices.emplace_back(),
-                                                           reader.Word(item, item_path));
-                                      return absl::OkStatus();
-                                    });
+          return ReadChoices(reader, value, key_path, choices);
         } else {  // when: {parent: choice or [choices]}
           ParameterCondition condition;
           DCS_RETURN_IF_ERROR(reader.ForEachEntry(
@@ -54,17 +59,12 @@ absl::StatusOr<SearchParameter> ReadParameter(YamlReader& reader, const YAML::No
                   return reader.Error(key_path, value, "a condition names one parent");
                 }
                 condition.parent = parent;
-                if (!chosen.IsSequence()) {
-                  DCS_ASSIGN_OR_RETURN(condition.choices.emplace_back(),
-                                       reader.Word(chosen, parent_path));
-                  return absl::OkStatus();
+                if (chosen.IsSequence()) {
+                  return ReadChoices(reader, chosen, parent_path, condition.choices);
                 }
-                return reader.ForEachItem(chosen, parent_path, "a list of choices",
-                                          [&](const YAML::Node& item, const std::string& at) {
-                                            DCS_ASSIGN_OR_RETURN(condition.choices.emplace_back(),
-                                                                 reader.Word(item, at));
-                                            return absl::OkStatus();
-                                          });
+                DCS_ASSIGN_OR_RETURN(condition.choices.emplace_back(),
+                                     reader.Word(chosen, parent_path));
+                return absl::OkStatus();
               }));
           parameter.condition = std::move(condition);
         }
