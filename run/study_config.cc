@@ -71,14 +71,15 @@ absl::StatusOr<std::string> TrialRunConfig(absl::string_view base, absl::string_
     }
     // Loaded rather than constructed: yaml-cpp marks a constructed string as quoted, and a
     // quoted number is a string to the run config's reader.
-    const YAML::Node scalar = YAML::Load(ValueText(parameter, value->second));
-    if (!scalar.IsScalar()) {
-      return absl::InvalidArgumentError(absl::StrCat("parameter '", parameter.name, "': '",
-                                                     ValueText(parameter, value->second),
+    const std::string text = ValueText(parameter, value->second);
+    const absl::StatusOr<YAML::Node> scalar =
+        YamlReader(absl::StrCat("parameter '", parameter.name, "'")).Load(text);
+    if (!scalar.ok() || !scalar->IsScalar()) {
+      return absl::InvalidArgumentError(absl::StrCat("parameter '", parameter.name, "': '", text,
                                                      "' is not a plain YAML scalar"));
     }
     absl::StatusOr<YAML::Node> with =
-        WithValueAt(arena, *config, *ParseKeyPath(parameter.name), scalar);
+        WithValueAt(arena, *config, *ParseKeyPath(parameter.name), *scalar);
     if (!with.ok()) {
       return absl::InvalidArgumentError(
           absl::StrCat(where, ": parameter '", parameter.name, "': ", with.status().message()));

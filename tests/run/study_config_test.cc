@@ -100,6 +100,11 @@ TEST(TrialRunConfigTest, BadPathsAndValuesAreRefusedNamingTheParameter) {
                 .status()
                 .code(),
             absl::StatusCode::kInvalidArgument);
+  // A choice that YAML would not read back as one plain scalar.
+  const SearchSpace unplain = *ParseSearchSpaceYaml(
+      "parameters: [{name: observe, type: categorical, choices: [\"[a\"]}]", "s");
+  EXPECT_THAT(TrialRunConfig(kBase, "study.yaml", unplain, {{"observe", 0}}).status().message(),
+              HasSubstr("'[a' is not a plain YAML scalar"));
   // A value of no parameter.
   EXPECT_THAT(
       TrialRunConfig(kBase, "study.yaml", learning_rate, {{"ppo.gamma", 0.9}}).status().message(),
