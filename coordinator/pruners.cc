@@ -51,7 +51,7 @@ bool MedianPrune(const StudyTrial& trial, const std::vector<StudyTrial>& trials,
   double best = std::nan("");
   for (const auto& [reported_step, value] : trial.reported) {
     if (std::isnan(value)) continue;
-    if (std::isnan(best) || (direction == Direction::kMinimize ? value < best : value > best)) {
+    if (std::isnan(best) || IsBetter(direction, value, best)) {
       best = value;
     }
   }

@@ -31,6 +31,11 @@ inline constexpr EnumName<Direction> kDirectionNames[] = {{Direction::kMinimize,
                                                           {Direction::kMaximize, "maximize"}};
 static_assert(InEnumOrder(kDirectionNames));
 
+// Whether objective value `a` is better than `b` in `direction` (strictly: equal is not better).
+inline bool IsBetter(Direction direction, double a, double b) {
+  return direction == Direction::kMinimize ? a < b : a > b;
+}
+
 // A trial as a sampler sees it.
 struct StudyTrial {
   int64_t number = 0;

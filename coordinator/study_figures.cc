@@ -20,7 +20,7 @@ absl::StatusOr<GnuplotFigure> StudyHistoryFigure(const StudyRecord& study,
     values.x.push_back(number);
     values.y.push_back(trial.value);
     const bool better =
-        best.y.empty() || (minimize ? trial.value < best.y.back() : trial.value > best.y.back());
+        best.y.empty() || IsBetter(study.submission.direction, trial.value, best.y.back());
     best.x.push_back(number);
     best.y.push_back(better ? trial.value : best.y.back());
   }

@@ -114,10 +114,10 @@ absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study
         state, std::count_if(trials.begin(), trials.end(),
                              [state](const StudyTrial& t) { return t.state == state; }));
   }
-  const double sign = s.direction == Direction::kMinimize ? 1 : -1;
   for (const StudyTrial& trial : trials) {
     if (trial.state == TrialState::kComplete &&
-        (!row.record.best.has_value() || sign * trial.value < sign * row.record.best->value)) {
+        (!row.record.best.has_value() ||
+         IsBetter(s.direction, trial.value, row.record.best->value))) {
       row.record.best = trial;
     }
   }
