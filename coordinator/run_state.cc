@@ -35,7 +35,7 @@ absl::Status CheckTransition(absl::string_view run_id, RunState from, RunState t
 }
 
 SweepState SweepStateOf(std::span<const std::pair<RunState, int64_t>> runs_by_state,
-                        bool cancelled) {
+                        bool cancelled, bool open) {
   int64_t total = 0;
   auto count = [&](RunState wanted) {
     int64_t n = 0;
@@ -44,8 +44,8 @@ SweepState SweepStateOf(std::span<const std::pair<RunState, int64_t>> runs_by_st
   };
   for (const auto& [state, runs] : runs_by_state) total += runs;
   const int64_t queued = count(RunState::kQueued);
-  if (total > 0 && queued == total) return SweepState::kQueued;
-  if (queued + count(RunState::kRunning) > 0) return SweepState::kRunning;
+  if (queued == total && (total > 0 || open)) return SweepState::kQueued;
+  if (open || queued + count(RunState::kRunning) > 0) return SweepState::kRunning;
   if (cancelled) return SweepState::kCancelled;
   return count(RunState::kFailed) > 0 ? SweepState::kFailed : SweepState::kCompleted;
 }

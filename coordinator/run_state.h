@@ -50,11 +50,12 @@ inline constexpr EnumName<SweepState> kSweepStateNames[] = {
     {SweepState::kCancelled, "cancelled"}};
 static_assert(InEnumOrder(kSweepStateNames));
 
-// A sweep of runs counted by state (`runs_by_state`): queued while every run is; running while
-// any is queued or running; then cancelled if the sweep was (`cancelled`), failed if any run
+// A sweep of runs counted by state (`runs_by_state`): queued while every run is (or, `open`,
+// while it has none); running while any is queued or running, or while it is `open` (a study
+// sweep that will add runs); then cancelled if the sweep was (`cancelled`), failed if any run
 // failed, else completed.
 SweepState SweepStateOf(std::span<const std::pair<RunState, int64_t>> runs_by_state,
-                        bool cancelled);
+                        bool cancelled, bool open);
 
 }  // namespace dcs::coordinator
 

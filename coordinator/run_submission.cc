@@ -22,4 +22,13 @@ absl::StatusOr<run::RunRequest> CheckSubmittedRun(std::string config_text,
   return request;
 }
 
+RunSubmission SubmissionOf(const run::RunRequest& request, std::string request_id) {
+  return {.request_id = std::move(request_id),
+          .config = request.config_text,
+          .seed = request.spec.seed,
+          .env = request.spec.env,
+          .n_envs = request.spec.n_envs,
+          .total_timesteps = request.spec.total_timesteps};
+}
+
 }  // namespace dcs::coordinator

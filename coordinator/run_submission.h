@@ -12,6 +12,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "coordinator/run_store.h"
 #include "run/run_directory.h"
 
 namespace dcs::coordinator {
@@ -22,6 +23,9 @@ namespace dcs::coordinator {
 absl::StatusOr<run::RunRequest> CheckSubmittedRun(std::string config_text,
                                                   const std::string& config_name,
                                                   std::optional<uint64_t> seed);
+
+// The store's submission of the checked run `request`, named `request_id`.
+RunSubmission SubmissionOf(const run::RunRequest& request, std::string request_id);
 
 }  // namespace dcs::coordinator
 

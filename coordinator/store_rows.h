@@ -70,6 +70,15 @@ void DropEvaluationWeights(SQLite::Database& db, int64_t number);
 absl::Status CancelRunRow(SQLite::Database& db, const RunRecord& run, absl::string_view reason,
                           absl::Time now);
 
+// Studies (coordinator/study_store.cc). INVALID_ARGUMENT if CreateStudy would refuse
+// `submission` (checked before its transaction).
+absl::Status CheckStudySubmission(const StudySubmission& submission);
+// Inserts a checked study, driven by sweep `sweep` or by none; returns its row number.
+int64_t InsertStudy(SQLite::Database& db, const StudySubmission& submission,
+                    std::optional<int64_t> sweep, absl::Time now);
+// Fails the running trials of the study sweep `sweep` drives (it was cancelled).
+void FailRunningStudyTrials(SQLite::Database& db, int64_t sweep, absl::Time now);
+
 }  // namespace dcs::coordinator::store_rows
 
 namespace dcs::coordinator {

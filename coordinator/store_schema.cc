@@ -186,6 +186,18 @@ CREATE TABLE study_trial_reports (
   FOREIGN KEY (study, trial) REFERENCES study_trials(study, number)
 );
 )sql",
+    // 4 -> 5: study sweeps. A sweep may drive a study (its trials are the study's, added as the
+    // study asks for them, and its best ones again with more seeds): `open` while it will add
+    // trials; each trial names the study trial it trains and whether it is a retrain.
+    R"sql(
+ALTER TABLE sweeps ADD COLUMN open INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE studies ADD COLUMN sweep INTEGER REFERENCES sweeps(number);
+CREATE UNIQUE INDEX studies_by_sweep ON studies(sweep) WHERE sweep IS NOT NULL;
+ALTER TABLE trials ADD COLUMN study_trial INTEGER;
+ALTER TABLE trials ADD COLUMN retrain INTEGER NOT NULL DEFAULT 0;
+CREATE UNIQUE INDEX trials_by_study_trial ON trials(sweep, study_trial, retrain)
+  WHERE study_trial IS NOT NULL;
+)sql",
 };
 
 int UserVersion(SQLite::Database& db) {

@@ -73,7 +73,7 @@ absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study
                           "created_at, pruner, median_percentile, median_startup_trials, "
                           "median_warmup_steps, median_interval_steps, median_min_trials, "
                           "halving_min_resource, halving_reduction_factor, "
-                          "halving_min_early_stopping_rate, halving_bootstrap_count "
+                          "halving_min_early_stopping_rate, halving_bootstrap_count, sweep "
                           "FROM studies WHERE number = ?");
   query.bind(1, number);
   if (!query.executeStep()) return absl::NotFoundError(absl::StrCat("no study ", study_id));
@@ -103,6 +103,7 @@ absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study
   pruner.halving.reduction_factor = query.getColumn(19).getInt();
   pruner.halving.min_early_stopping_rate = query.getColumn(20).getInt();
   pruner.halving.bootstrap_count = query.getColumn(21).getInt();
+  if (!query.getColumn(22).isNull()) row.record.sweep_id = SweepId(query.getColumn(22).getInt64());
   // Validated when the study was created.
   DCS_ASSIGN_OR_RETURN(row.space, run::ParseSearchSpaceYaml(s.space, row.record.id));
 
@@ -151,65 +152,77 @@ absl::Status RequireRunning(TrialState state, absl::string_view study_id, int64_
 
 }  // namespace
 
-absl::StatusOr<StudyRecord> RunStore::CreateStudy(const StudySubmission& submission,
-                                                  absl::Time now) {
+namespace store_rows {
+
+absl::Status CheckStudySubmission(const StudySubmission& submission) {
   if (submission.request_id.empty()) {
     return absl::InvalidArgumentError("a study needs a request id");
   }
   DCS_RETURN_IF_ERROR(run::ParseSearchSpaceYaml(submission.space, "the search space").status());
+  DCS_RETURN_IF_ERROR(ValidateTpeOptions(submission.tpe));
+  return ValidatePrunerOptions(submission.pruner);
+}
+
+int64_t InsertStudy(SQLite::Database& db, const StudySubmission& submission,
+                    std::optional<int64_t> sweep, absl::Time now) {
+  SQLite::Statement insert(db,
+                           "INSERT INTO studies (request_id, name, space, sampler, seed, "
+                           "direction, startup_trials, ei_candidates, multivariate, grouped, "
+                           "constant_liar, created_at, pruner, median_percentile, "
+                           "median_startup_trials, median_warmup_steps, median_interval_steps, "
+                           "median_min_trials, halving_min_resource, halving_reduction_factor, "
+                           "halving_min_early_stopping_rate, halving_bootstrap_count, sweep) "
+                           "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
+                           "?, ?, ?) RETURNING number");
+  insert.bind(1, submission.request_id);
+  insert.bind(2, submission.name);
+  insert.bind(3, submission.space);
+  insert.bind(4, std::string(NameOf(kSamplerKindNames, submission.sampler)));
+  insert.bind(5, static_cast<int64_t>(submission.seed));
+  insert.bind(6, std::string(NameOf(kDirectionNames, submission.direction)));
   const TpeOptions& tpe = submission.tpe;
-  if (tpe.startup_trials < 0 || tpe.ei_candidates < 1) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("TPE needs startup_trials >= 0 and ei_candidates >= 1, got ",
-                     tpe.startup_trials, " and ", tpe.ei_candidates));
-  }
-  if (tpe.group && !tpe.parzen.multivariate) {
-    return absl::InvalidArgumentError("TPE's group option needs multivariate");
-  }
-  DCS_RETURN_IF_ERROR(ValidatePrunerOptions(submission.pruner));
+  insert.bind(7, tpe.startup_trials);
+  insert.bind(8, tpe.ei_candidates);
+  insert.bind(9, tpe.parzen.multivariate ? 1 : 0);
+  insert.bind(10, tpe.group ? 1 : 0);
+  insert.bind(11, tpe.constant_liar ? 1 : 0);
+  insert.bind(12, Micros(now));
+  const PrunerOptions& pruner = submission.pruner;
+  insert.bind(13, std::string(NameOf(kPrunerKindNames, pruner.kind)));
+  insert.bind(14, pruner.median.percentile);
+  insert.bind(15, pruner.median.startup_trials);
+  insert.bind(16, pruner.median.warmup_steps);
+  insert.bind(17, pruner.median.interval_steps);
+  insert.bind(18, pruner.median.min_trials);
+  if (pruner.halving.min_resource.has_value()) insert.bind(19, *pruner.halving.min_resource);
+  insert.bind(20, pruner.halving.reduction_factor);
+  insert.bind(21, pruner.halving.min_early_stopping_rate);
+  insert.bind(22, pruner.halving.bootstrap_count);
+  if (sweep.has_value()) insert.bind(23, *sweep);
+  insert.executeStep();
+  return insert.getColumn(0).getInt64();
+}
+
+void FailRunningStudyTrials(SQLite::Database& db, int64_t sweep, absl::Time now) {
+  SQLite::Statement fail(db, "UPDATE study_trials SET state = 'failed', finished_at = ? "
+                             "WHERE state = 'running' AND study = "
+                             "(SELECT number FROM studies WHERE sweep = ?)");
+  fail.bind(1, Micros(now));
+  fail.bind(2, sweep);
+  fail.exec();
+}
+
+}  // namespace store_rows
+
+absl::StatusOr<StudyRecord> RunStore::CreateStudy(const StudySubmission& submission,
+                                                  absl::Time now) {
+  DCS_RETURN_IF_ERROR(CheckStudySubmission(submission));
   return Transaction([&]() -> absl::StatusOr<StudyRecord> {
     SQLite::Statement existing(*db_, "SELECT number FROM studies WHERE request_id = ?");
     existing.bind(1, submission.request_id);
-    if (existing.executeStep()) {
-      DCS_ASSIGN_OR_RETURN(StudyRow row,
-                           FindStudy(*db_, StudyId(existing.getColumn(0).getInt64())));
-      return row.record;
-    }
-    SQLite::Statement insert(*db_,
-                             "INSERT INTO studies (request_id, name, space, sampler, seed, "
-                             "direction, startup_trials, ei_candidates, multivariate, grouped, "
-                             "constant_liar, created_at, pruner, median_percentile, "
-                             "median_startup_trials, median_warmup_steps, median_interval_steps, "
-                             "median_min_trials, halving_min_resource, halving_reduction_factor, "
-                             "halving_min_early_stopping_rate, halving_bootstrap_count) VALUES "
-                             "(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) "
-                             "RETURNING number");
-    insert.bind(1, submission.request_id);
-    insert.bind(2, submission.name);
-    insert.bind(3, submission.space);
-    insert.bind(4, std::string(NameOf(kSamplerKindNames, submission.sampler)));
-    insert.bind(5, static_cast<int64_t>(submission.seed));
-    insert.bind(6, std::string(NameOf(kDirectionNames, submission.direction)));
-    insert.bind(7, tpe.startup_trials);
-    insert.bind(8, tpe.ei_candidates);
-    insert.bind(9, tpe.parzen.multivariate ? 1 : 0);
-    insert.bind(10, tpe.group ? 1 : 0);
-    insert.bind(11, tpe.constant_liar ? 1 : 0);
-    insert.bind(12, Micros(now));
-    const PrunerOptions& pruner = submission.pruner;
-    insert.bind(13, std::string(NameOf(kPrunerKindNames, pruner.kind)));
-    insert.bind(14, pruner.median.percentile);
-    insert.bind(15, pruner.median.startup_trials);
-    insert.bind(16, pruner.median.warmup_steps);
-    insert.bind(17, pruner.median.interval_steps);
-    insert.bind(18, pruner.median.min_trials);
-    if (pruner.halving.min_resource.has_value()) insert.bind(19, *pruner.halving.min_resource);
-    insert.bind(20, pruner.halving.reduction_factor);
-    insert.bind(21, pruner.halving.min_early_stopping_rate);
-    insert.bind(22, pruner.halving.bootstrap_count);
-    insert.executeStep();
-    const int64_t number = insert.getColumn(0).getInt64();
-    insert.reset();
+    const int64_t number = existing.executeStep()
+                               ? existing.getColumn(0).getInt64()
+                               : InsertStudy(*db_, submission, std::nullopt, now);
     DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, StudyId(number)));
     return row.record;
   });

@@ -25,7 +25,8 @@ using namespace store_rows;  // NOLINT: the store's own rows
 absl::StatusOr<SweepRecord> FindSweep(SQLite::Database& db, absl::string_view sweep_id) {
   DCS_ASSIGN_OR_RETURN(const int64_t number, SweepNumber(sweep_id));
   SQLite::Statement query(db, "SELECT request_id, name, spec, seeds, cancelled, created_at, "
-                              "updated_at FROM sweeps WHERE number = ?");
+                              "updated_at, open, (SELECT number FROM studies WHERE sweep = "
+                              "sweeps.number) FROM sweeps WHERE number = ?");
   query.bind(1, number);
   if (!query.executeStep()) return absl::NotFoundError(absl::StrCat("no sweep ", sweep_id));
   SweepRecord sweep{.id = SweepId(number),
@@ -33,18 +34,23 @@ absl::StatusOr<SweepRecord> FindSweep(SQLite::Database& db, absl::string_view sw
                     .name = query.getColumn(1).getString(),
                     .spec = query.getColumn(2).getString(),
                     .seeds = query.getColumn(3).getInt(),
+                    .open = query.getColumn(7).getInt() != 0,
                     .created_at = FromMicros(query.getColumn(5).getInt64()),
                     .updated_at = FromMicros(query.getColumn(6).getInt64())};
+  if (!query.getColumn(8).isNull()) sweep.study_id = StudyId(query.getColumn(8).getInt64());
   const bool cancelled = query.getColumn(4).getInt() != 0;
   query.reset();
 
-  SQLite::Statement trials(db, "SELECT condition, family, observe FROM trials WHERE sweep = ? "
-                               "ORDER BY trial");
+  SQLite::Statement trials(db, "SELECT condition, family, observe, study_trial, retrain "
+                               "FROM trials WHERE sweep = ? ORDER BY trial");
   trials.bind(1, number);
   while (trials.executeStep()) {
-    sweep.trials.push_back({.condition = trials.getColumn(0).getString(),
-                            .family = trials.getColumn(1).getString(),
-                            .observe = trials.getColumn(2).getString()});
+    TrialRecord& trial = sweep.trials.emplace_back(
+        TrialRecord{.condition = trials.getColumn(0).getString(),
+                    .family = trials.getColumn(1).getString(),
+                    .observe = trials.getColumn(2).getString(),
+                    .retrain = trials.getColumn(4).getInt() != 0});
+    if (!trials.getColumn(3).isNull()) trial.study_trial = trials.getColumn(3).getInt64();
   }
   for (const auto& [state, name] : kRunStateNames) {
     SQLite::Statement count(db, "SELECT count(*) FROM runs WHERE sweep = ? AND state = ?");
@@ -53,7 +59,7 @@ absl::StatusOr<SweepRecord> FindSweep(SQLite::Database& db, absl::string_view sw
     count.executeStep();
     sweep.runs_by_state.emplace_back(state, count.getColumn(0).getInt64());
   }
-  sweep.state = SweepStateOf(sweep.runs_by_state, cancelled);
+  sweep.state = SweepStateOf(sweep.runs_by_state, cancelled, sweep.open);
   return sweep;
 }
 
@@ -70,6 +76,28 @@ void TouchSweep(SQLite::Database& db, int64_t number, absl::Time now) {
   touch.exec();
 }
 
+// Inserts trial `index` of sweep `number`.
+void InsertTrial(SQLite::Database& db, int64_t number, int index, const TrialRecord& trial) {
+  SQLite::Statement insert(db, "INSERT INTO trials (sweep, trial, condition, family, observe, "
+                               "study_trial, retrain) VALUES (?, ?, ?, ?, ?, ?, ?)");
+  insert.bind(1, number);
+  insert.bind(2, index);
+  insert.bind(3, trial.condition);
+  insert.bind(4, trial.family);
+  insert.bind(5, trial.observe);
+  if (trial.study_trial.has_value()) insert.bind(6, *trial.study_trial);
+  insert.bind(7, trial.retrain ? 1 : 0);
+  insert.exec();
+}
+
+// INVALID_ARGUMENT naming the run unless it has a request id, a config and an env slot.
+absl::Status CheckRunSubmission(const RunSubmission& run, absl::string_view what) {
+  if (!run.request_id.empty() && !run.config.empty() && run.n_envs >= 1) return absl::OkStatus();
+  return absl::InvalidArgumentError(absl::StrCat(
+      "run ", run.request_id, " of ", what, " needs a request id, a config and at least one env "
+      "slot"));
+}
+
 }  // namespace
 
 absl::StatusOr<SweepRecord> RunStore::SubmitSweep(const SweepSubmission& submission,
@@ -77,7 +105,10 @@ absl::StatusOr<SweepRecord> RunStore::SubmitSweep(const SweepSubmission& submiss
   if (submission.request_id.empty()) {
     return absl::InvalidArgumentError("a sweep submission needs a request id");
   }
-  if (submission.trials.empty()) return absl::InvalidArgumentError("the sweep has no trials");
+  if (submission.trials.empty() && !submission.study.has_value()) {
+    return absl::InvalidArgumentError("the sweep has no trials");
+  }
+  if (submission.study.has_value()) DCS_RETURN_IF_ERROR(CheckStudySubmission(*submission.study));
   if (submission.seeds < 1) {
     return absl::InvalidArgumentError(
         absl::StrCat("the sweep has ", submission.seeds, " seeds; it needs at least one"));
@@ -87,45 +118,94 @@ absl::StatusOr<SweepRecord> RunStore::SubmitSweep(const SweepSubmission& submiss
       return absl::InvalidArgumentError(absl::StrCat("a run of the sweep names trial ", run.trial,
                                                      "; it has ", submission.trials.size()));
     }
-    if (run.run.request_id.empty() || run.run.config.empty() || run.run.n_envs < 1) {
-      return absl::InvalidArgumentError(
-          absl::StrCat("run ", run.run.request_id, " of trial ", run.trial,
-                       " needs a request id, a config and at least one env slot"));
-    }
+    DCS_RETURN_IF_ERROR(CheckRunSubmission(run.run, absl::StrCat("trial ", run.trial)));
   }
   return Transaction([&]() -> absl::StatusOr<SweepRecord> {
     SQLite::Statement existing(*db_, "SELECT number FROM sweeps WHERE request_id = ?");
     existing.bind(1, submission.request_id);
     if (existing.executeStep()) return FindSweep(*db_, SweepId(existing.getColumn(0).getInt64()));
 
-    SQLite::Statement insert(*db_, "INSERT INTO sweeps (request_id, name, spec, seeds, "
-                                   "created_at, updated_at) VALUES (?, ?, ?, ?, ?, ?) "
+    SQLite::Statement insert(*db_, "INSERT INTO sweeps (request_id, name, spec, seeds, open, "
+                                   "created_at, updated_at) VALUES (?, ?, ?, ?, ?, ?, ?) "
                                    "RETURNING number");
     insert.bind(1, submission.request_id);
     insert.bind(2, submission.name);
     insert.bind(3, submission.spec);
     insert.bind(4, submission.seeds);
-    insert.bind(5, Micros(now));
+    insert.bind(5, submission.study.has_value() ? 1 : 0);
     insert.bind(6, Micros(now));
+    insert.bind(7, Micros(now));
     insert.executeStep();
     const int64_t number = insert.getColumn(0).getInt64();
     insert.reset();
 
-    SQLite::Statement trial(*db_, "INSERT INTO trials (sweep, trial, condition, family, observe) "
-                                  "VALUES (?, ?, ?, ?, ?)");
     for (size_t i = 0; i < submission.trials.size(); ++i) {
-      trial.bind(1, number);
-      trial.bind(2, static_cast<int>(i));
-      trial.bind(3, submission.trials[i].condition);
-      trial.bind(4, submission.trials[i].family);
-      trial.bind(5, submission.trials[i].observe);
-      trial.exec();
-      trial.reset();
+      InsertTrial(*db_, number, static_cast<int>(i), submission.trials[i]);
     }
     for (const SweepSubmission::Run& run : submission.runs) {
       InsertRun(*db_, run.run, number, run.trial, now);
     }
+    if (submission.study.has_value()) InsertStudy(*db_, *submission.study, number, now);
     return FindSweep(*db_, SweepId(number));
+  });
+}
+
+absl::StatusOr<std::vector<RunRecord>> RunStore::AddSweepTrial(
+    absl::string_view sweep_id, const TrialRecord& trial, const std::vector<RunSubmission>& runs,
+    absl::Time now) {
+  if (!trial.study_trial.has_value() || runs.empty()) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("a trial added to ", sweep_id, " needs its study trial and its runs"));
+  }
+  for (const RunSubmission& run : runs) {
+    DCS_RETURN_IF_ERROR(CheckRunSubmission(run, trial.condition));
+  }
+  return Transaction([&]() -> absl::StatusOr<std::vector<RunRecord>> {
+    DCS_ASSIGN_OR_RETURN(const SweepRecord sweep, FindSweep(*db_, sweep_id));
+    const int64_t number = *SweepNumber(sweep_id);
+    SQLite::Statement existing(*db_, "SELECT trial FROM trials WHERE sweep = ? AND "
+                                     "study_trial = ? AND retrain = ?");
+    existing.bind(1, number);
+    existing.bind(2, *trial.study_trial);
+    existing.bind(3, trial.retrain ? 1 : 0);
+    int index = static_cast<int>(sweep.trials.size());
+    if (existing.executeStep()) {
+      index = existing.getColumn(0).getInt();
+    } else {
+      if (!sweep.open) {
+        return absl::FailedPreconditionError(
+            absl::StrCat(sweep_id, " is closed: it adds no more trials"));
+      }
+      InsertTrial(*db_, number, index, trial);
+      for (const RunSubmission& run : runs) InsertRun(*db_, run, number, index, now);
+      TouchSweep(*db_, number, now);
+    }
+    return FindRuns(*db_, absl::StrCat("sweep = ", number, " AND trial = ?"), index);
+  });
+}
+
+absl::Status RunStore::CloseSweep(absl::string_view sweep_id, absl::Time now) {
+  return Transaction([&]() -> absl::Status {
+    DCS_RETURN_IF_ERROR(FindSweep(*db_, sweep_id).status());
+    const int64_t number = *SweepNumber(sweep_id);
+    SQLite::Statement close(*db_, "UPDATE sweeps SET open = 0 WHERE number = ?");
+    close.bind(1, number);
+    close.exec();
+    TouchSweep(*db_, number, now);
+    return absl::OkStatus();
+  });
+}
+
+absl::StatusOr<std::vector<SweepRecord>> RunStore::ListOpenSweeps() {
+  return Transaction([&]() -> absl::StatusOr<std::vector<SweepRecord>> {
+    std::vector<int64_t> numbers;
+    SQLite::Statement query(*db_, "SELECT number FROM sweeps WHERE open = 1 ORDER BY number");
+    while (query.executeStep()) numbers.push_back(query.getColumn(0).getInt64());
+    std::vector<SweepRecord> sweeps;
+    for (int64_t number : numbers) {
+      DCS_ASSIGN_OR_RETURN(sweeps.emplace_back(), FindSweep(*db_, SweepId(number)));
+    }
+    return sweeps;
   });
 }
 
@@ -162,14 +242,15 @@ absl::StatusOr<SweepRecord> RunStore::CancelSweep(absl::string_view sweep_id, ab
     for (RunRecord& run : SweepRunsIn(*db_, number, RunState::kRunning)) {
       active.push_back(std::move(run));
     }
-    if (active.empty()) {
+    if (active.empty() && !sweep.open) {
       return absl::FailedPreconditionError(absl::StrCat(
           sweep_id, " is ", NameOf(kSweepStateNames, sweep.state), ": no run to cancel"));
     }
     for (const RunRecord& run : active) {
       DCS_RETURN_IF_ERROR(CancelRunRow(*db_, run, "its sweep was cancelled", now));
     }
-    SQLite::Statement mark(*db_, "UPDATE sweeps SET cancelled = 1 WHERE number = ?");
+    FailRunningStudyTrials(*db_, number, now);
+    SQLite::Statement mark(*db_, "UPDATE sweeps SET cancelled = 1, open = 0 WHERE number = ?");
     mark.bind(1, number);
     mark.exec();
     TouchSweep(*db_, number, now);
@@ -180,7 +261,12 @@ absl::StatusOr<SweepRecord> RunStore::CancelSweep(absl::string_view sweep_id, ab
 absl::StatusOr<std::pair<SweepRecord, int>> RunStore::RetrySweep(absl::string_view sweep_id,
                                                                  absl::Time now) {
   return Transaction([&]() -> absl::StatusOr<std::pair<SweepRecord, int>> {
-    DCS_RETURN_IF_ERROR(FindSweep(*db_, sweep_id).status());
+    DCS_ASSIGN_OR_RETURN(const SweepRecord sweep, FindSweep(*db_, sweep_id));
+    if (!sweep.study_id.empty()) {
+      return absl::FailedPreconditionError(absl::StrCat(
+          sweep_id, " drives ", sweep.study_id, ", which was told its failed trials failed: "
+          "retry is for plain sweeps"));
+    }
     const int64_t number = *SweepNumber(sweep_id);
     const std::vector<RunRecord> failed = SweepRunsIn(*db_, number, RunState::kFailed);
     if (failed.empty()) {
@@ -190,8 +276,8 @@ absl::StatusOr<std::pair<SweepRecord, int>> RunStore::RetrySweep(absl::string_vi
       DCS_RETURN_IF_ERROR(SetRunState(*db_, run, RunState::kQueued, "", now));
     }
     TouchSweep(*db_, number, now);
-    DCS_ASSIGN_OR_RETURN(SweepRecord sweep, FindSweep(*db_, sweep_id));
-    return std::make_pair(std::move(sweep), static_cast<int>(failed.size()));
+    DCS_ASSIGN_OR_RETURN(SweepRecord retried, FindSweep(*db_, sweep_id));
+    return std::make_pair(std::move(retried), static_cast<int>(failed.size()));
   });
 }
 

@@ -6,6 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/enum_names.h"
 #include "coordinator/run_submission.h"
+#include "coordinator/study_sweep_spec.h"
 #include "env/observe_mode.h"
 #include "run/sweep_spec_yaml.h"
 
@@ -23,6 +24,14 @@ absl::StatusOr<ExpandedSweep> ExpandSweep(const std::string& spec_text,
                 .name = spec->name.empty() ? default_name : spec->name,
                 .spec = spec_text,
                 .seeds = static_cast<int>(spec->seeds.size())};
+  if (spec->study) {  // its trials and runs come as its study asks for them
+    absl::StatusOr<StudySweepSpec> study = ParseStudySweepYaml(spec_text, spec_name);
+    if (!study.ok()) return study.status();
+    submission.study = std::move(study->study);
+    submission.study->request_id = request_id;
+    submission.study->name = submission.name;
+    return sweep;
+  }
   for (const run::SweepTrial& trial : spec->trials) {
     submission.trials.push_back({.condition = trial.condition,
                                  .family = trial.family,
@@ -38,12 +47,7 @@ absl::StatusOr<ExpandedSweep> ExpandSweep(const std::string& spec_text,
       if (!run.ok()) return run.status();
       submission.runs.push_back(
           {.trial = static_cast<int>(t),
-           .run = {.request_id = absl::StrCat(request_id, "/", t, "/", seed),
-                   .config = run->config_text,
-                   .seed = run->spec.seed,
-                   .env = run->spec.env,
-                   .n_envs = run->spec.n_envs,
-                   .total_timesteps = run->spec.total_timesteps}});
+           .run = SubmissionOf(*run, absl::StrCat(request_id, "/", t, "/", seed))});
       sweep.requests.push_back(*std::move(run));
     }
   }

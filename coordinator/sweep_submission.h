@@ -26,8 +26,10 @@ struct ExpandedSweep {
 // The sweep of `spec_text` (named `spec_name` in errors), named by the spec or else
 // `default_name`, its runs' request ids derived from `request_id` (so a retried submission
 // names the same runs). Runs are queued seed-major: every trial's first seed, then every
-// trial's second, so early results cover the whole grid. INVALID_ARGUMENT as
-// ParseSweepSpecYaml, or as CheckSubmittedRun naming the trial.
+// trial's second, so early results cover the whole grid. A study sweep's submission holds its
+// study (its request id the sweep's) and no trials or runs (coordinator/study_sweep.h adds them).
+// INVALID_ARGUMENT as ParseSweepSpecYaml (ParseStudySweepYaml for a study sweep), or as
+// CheckSubmittedRun naming the trial.
 absl::StatusOr<ExpandedSweep> ExpandSweep(const std::string& spec_text,
                                           const std::string& spec_name,
                                           const std::string& default_name,

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "absl/container/flat_hash_map.h"
+#include "absl/strings/str_cat.h"
 
 namespace dcs::coordinator {
 namespace {
@@ -232,6 +233,18 @@ std::vector<std::vector<std::string>> GroupParameters(
     return Position(space, a.front()) < Position(space, b.front());
   });
   return ordered;
+}
+
+absl::Status ValidateTpeOptions(const TpeOptions& options) {
+  if (options.startup_trials < 0 || options.ei_candidates < 1) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("TPE needs startup_trials >= 0 and ei_candidates >= 1, got ",
+                     options.startup_trials, " and ", options.ei_candidates));
+  }
+  if (options.group && !options.parzen.multivariate) {
+    return absl::InvalidArgumentError("TPE's group option needs multivariate");
+  }
+  return absl::OkStatus();
 }
 
 std::unique_ptr<Sampler> MakeTpeSampler(uint64_t seed, Direction direction,

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "absl/status/status.h"
 #include "coordinator/parzen_estimator.h"
 #include "coordinator/sampler.h"
 
@@ -33,6 +34,10 @@ struct TpeOptions {
   bool group = false;    // with parzen.multivariate: per group of co-occurring parameters
   bool constant_liar = false;
 };
+
+// INVALID_ARGUMENT naming the option for startup_trials < 0, ei_candidates < 1, or group without
+// multivariate.
+absl::Status ValidateTpeOptions(const TpeOptions& options);
 
 std::unique_ptr<Sampler> MakeTpeSampler(uint64_t seed, Direction direction,
                                         const TpeOptions& options);

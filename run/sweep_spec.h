@@ -36,6 +36,9 @@ struct SweepSpec {
   std::vector<SweepTrial> trials;
   // The first condition whose family is "static", if any: what reports compare against.
   std::optional<std::string> baseline;
+  // Whether the spec has a `study` block: a search over the runs' configs, read (and checked)
+  // by coordinator/study_sweep_spec.h, not here.
+  bool study = false;
 };
 
 }  // namespace dcs::run

@@ -45,7 +45,7 @@ constexpr absl::string_view kConditionRunKeys[] = {
 constexpr absl::string_view kTopLevelKeys[] = {
     "name",    "seeds",   "observe", "conditions",     "env",  "total_timesteps",
     "n_envs",  "context", "feature", "training_range", "pool", "evaluation",
-    "ppo",     "coverage"};
+    "ppo",     "coverage", "study"};
 constexpr absl::string_view kConditionKeys[] = {
     "name",    "grid",    "observe", "schedule",       "stages", "env",        "total_timesteps",
     "n_envs",  "context", "feature", "training_range", "pool",   "evaluation", "ppo",
@@ -110,6 +110,7 @@ class SweepParser {
   // Read from the top level.
   std::string name_;
   bool has_seeds_ = false;
+  bool study_ = false;
   int64_t seed_count_ = 0;                      // seeds: N
   std::optional<std::vector<uint64_t>> seeds_;  // seeds: [...]
   bool has_modes_ = false;
@@ -187,6 +188,12 @@ void SweepParser::TopLevel(const YAML::Node& root) {
               }
             } else if (key == "conditions") {
               conditions_node_.emplace(value);
+            } else if (key == "study") {
+              if (value.IsMap()) {
+                study_ = true;
+              } else {
+                Problem(path, value, "must be a mapping: the study's trials, sampler and space");
+              }
             } else if (Contains(kBaseKeys, key)) {
               base_.emplace_back(key, value);
             } else if (key == "seed") {
@@ -484,6 +491,7 @@ absl::StatusOr<SweepSpec> SweepParser::Parse(absl::string_view text) {
   if (!problems_.empty()) return ToStatus();
 
   spec.name = name_;
+  spec.study = study_;
   if (seeds_.has_value()) {
     spec.seeds = *seeds_;
   } else {

@@ -30,6 +30,10 @@
 //       ppo: {n_epochs: 5}    # context, evaluation, ppo, coverage merge key by key
 //       observe: live         # its own modes, instead of the sweep's
 //
+// A `study:` block makes the sweep a search over its one condition's config (TPE or random
+// sampling, coordinator/study_sweep_spec.h, which reads the block); here it is only noted
+// (SweepSpec::study), the rest of the spec read as any sweep's.
+//
 // A condition holds `name`, `grid`, `observe`, `schedule` or `stages` (not both), and any base
 // key. A base key the condition gives replaces the base's whole (`pool` too), except the
 // mappings `context`, `evaluation`, `ppo` and `coverage`, whose keys the condition's replace one

@@ -8,12 +8,15 @@
 #include <memory>
 #include <thread>
 
+#include "absl/container/flat_hash_map.h"
 #include "absl/strings/str_cat.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
 #include "coordinator/library_versions.h"
 #include "coordinator/run_store.h"
+#include "coordinator/study_sweep.h"
+#include "coordinator/sweep_results.h"
 #include "coordinator/worker_registry.h"
 #include "services/command_line.h"
 #include "services/coordinator_service.h"
@@ -63,6 +66,7 @@ class CoordinatorRole final : public ServiceRole {
                                          .string(),
                                      {.lease_duration = runs_.lease_duration}, absl::Now()));
     runs_.store = store_.get();
+    study_logs_ = std::make_unique<coordinator::CompletedRunLogs>(runs_.data_dir);
     metrics.AddCollectable(std::make_shared<WorkerCollector>(*registry_));
     metrics.AddCollectable(std::make_shared<RunCollector>(*store_));
     expired_ = &prometheus::BuildCounter()
@@ -94,7 +98,7 @@ class CoordinatorRole final : public ServiceRole {
 
  private:
   // Returns lapsed leases to the queue as they lapse (every Acquire does too, but queue depths
-  // and run states should not wait for one).
+  // and run states should not wait for one), and steps the open study sweeps.
   void ReapLapsedLeases() {
     const absl::Duration period = std::min(absl::Seconds(1), runs_.lease_duration / 4);
     while (!stopping_.WaitForNotificationWithTimeout(period)) {
@@ -105,6 +109,44 @@ class CoordinatorRole final : public ServiceRole {
         expired_->Increment(*lapsed);
         Log(LogLevel::kWarning, "leases lapsed", {{"count", std::to_string(*lapsed)}});
       }
+      AdvanceStudySweeps();
+    }
+  }
+
+  // One step of each open study sweep (coordinator/study_sweep.h). A sweep whose step fails is
+  // logged and tried again at the next.
+  void AdvanceStudySweeps() {
+    absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = store_->ListOpenSweeps();
+    if (!sweeps.ok()) {
+      Log(LogLevel::kError, "cannot list study sweeps", {{"error", sweeps.status().ToString()}});
+      return;
+    }
+    for (const coordinator::SweepRecord& sweep : *sweeps) {
+      auto spec = study_specs_.find(sweep.id);
+      if (spec == study_specs_.end()) {  // checked when it was submitted
+        absl::StatusOr<coordinator::StudySweepSpec> parsed =
+            coordinator::ParseStudySweepYaml(sweep.spec, sweep.name);
+        if (!parsed.ok()) {
+          Log(LogLevel::kError, "cannot read a study sweep's spec",
+              {{"sweep_id", sweep.id}, {"error", parsed.status().ToString()}});
+          continue;
+        }
+        spec = study_specs_.emplace(sweep.id, *std::move(parsed)).first;
+      }
+      absl::StatusOr<coordinator::StudySweepStep> step = coordinator::AdvanceStudySweep(
+          *store_, runs_.data_dir, *study_logs_, sweep, spec->second, absl::Now());
+      if (!step.ok()) {
+        Log(LogLevel::kError, "cannot step a study sweep",
+            {{"sweep_id", sweep.id}, {"error", step.status().ToString()}});
+      } else if (step->asked + step->told + step->retrained > 0 || step->closed) {
+        Log(LogLevel::kInfo, "study sweep stepped",
+            {{"sweep_id", sweep.id},
+             {"asked", std::to_string(step->asked)},
+             {"told", std::to_string(step->told)},
+             {"retrained", std::to_string(step->retrained)},
+             {"closed", step->closed ? "true" : "false"}});
+      }
+      if (step.ok() && step->closed) study_specs_.erase(spec);
     }
   }
 
@@ -114,6 +156,9 @@ class CoordinatorRole final : public ServiceRole {
   std::unique_ptr<coordinator::RunStore> store_;
   prometheus::Counter* expired_ = nullptr;
   std::unique_ptr<CoordinatorService> service_;
+  // The reaper's: the open study sweeps' specs, parsed once, and their completed runs' logs.
+  absl::flat_hash_map<std::string, coordinator::StudySweepSpec> study_specs_;
+  std::unique_ptr<coordinator::CompletedRunLogs> study_logs_;
   absl::Notification stopping_;
   std::thread reaper_;
 };

@@ -47,13 +47,31 @@ grpc::ServerUnaryReactor* CoordinatorService::GetStudy(grpc::CallbackServerConte
   return Finish(context, get());
 }
 
+namespace {
+
+// A study a sweep drives is asked and told by the coordinator only: FAILED_PRECONDITION for a
+// client's ask, tell or report, naming the sweep.
+absl::Status RequireAskAndTell(coordinator::RunStore& store, const std::string& study_id) {
+  DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study, store.GetStudy(study_id));
+  if (study.sweep_id.empty()) return absl::OkStatus();
+  return absl::FailedPreconditionError(absl::StrCat(
+      study_id, " is driven by ", study.sweep_id, ": the coordinator asks and tells it"));
+}
+
+}  // namespace
+
 grpc::ServerUnaryReactor* CoordinatorService::AskTrial(grpc::CallbackServerContext* context,
                                                        const v1::AskTrialRequest* request,
                                                        v1::AskTrialResponse* response) {
-  absl::StatusOr<coordinator::StudyTrial> trial =
-      runs_.store->AskTrial(request->study_id(), request->request_id(), absl::Now());
-  if (trial.ok()) *response->mutable_trial() = StudyTrialToProto(*trial);
-  return Finish(context, trial.status());
+  auto ask = [&]() -> absl::Status {
+    DCS_RETURN_IF_ERROR(RequireAskAndTell(*runs_.store, request->study_id()));
+    DCS_ASSIGN_OR_RETURN(const coordinator::StudyTrial trial,
+                         runs_.store->AskTrial(request->study_id(), request->request_id(),
+                                               absl::Now()));
+    *response->mutable_trial() = StudyTrialToProto(trial);
+    return absl::OkStatus();
+  };
+  return Finish(context, ask());
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::TellTrial(grpc::CallbackServerContext* context,
@@ -66,6 +84,7 @@ grpc::ServerUnaryReactor* CoordinatorService::TellTrial(grpc::CallbackServerCont
       return absl::InvalidArgumentError(
           absl::StrCat("unknown trial state '", request->state(), "'"));
     }
+    DCS_RETURN_IF_ERROR(RequireAskAndTell(*runs_.store, request->study_id()));
     DCS_ASSIGN_OR_RETURN(const coordinator::StudyTrial trial,
                          runs_.store->TellTrial(request->study_id(), request->number(), *state,
                                                 request->value(), absl::Now()));
@@ -78,10 +97,15 @@ grpc::ServerUnaryReactor* CoordinatorService::TellTrial(grpc::CallbackServerCont
 grpc::ServerUnaryReactor* CoordinatorService::ReportTrial(grpc::CallbackServerContext* context,
                                                           const v1::ReportTrialRequest* request,
                                                           v1::ReportTrialResponse* response) {
-  absl::StatusOr<bool> prune = runs_.store->ReportTrial(request->study_id(), request->number(),
-                                                        request->step(), request->value());
-  if (prune.ok()) response->set_prune(*prune);
-  return Finish(context, prune.status());
+  auto report = [&]() -> absl::Status {
+    DCS_RETURN_IF_ERROR(RequireAskAndTell(*runs_.store, request->study_id()));
+    DCS_ASSIGN_OR_RETURN(const bool prune,
+                         runs_.store->ReportTrial(request->study_id(), request->number(),
+                                                  request->step(), request->value()));
+    response->set_prune(prune);
+    return absl::OkStatus();
+  };
+  return Finish(context, report());
 }
 
 }  // namespace dcs::services

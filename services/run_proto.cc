@@ -104,7 +104,11 @@ v1::Sweep SweepToProto(const coordinator::SweepRecord& sweep) {
     out.set_condition(trial.condition);
     out.set_family(trial.family);
     out.set_observe(trial.observe);
+    if (trial.study_trial.has_value()) out.set_study_trial(*trial.study_trial);
+    out.set_retrain(trial.retrain);
   }
+  proto.set_study_id(sweep.study_id);
+  proto.set_open(sweep.open);
   int64_t total = 0;
   for (const auto& [state, runs] : sweep.runs_by_state) {
     total += runs;

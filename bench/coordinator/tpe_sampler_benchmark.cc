@@ -2,9 +2,9 @@
 //
 // One TPE suggestion (Sampler::Sample: the split, the Parzen estimators of every parameter the
 // trial has, 24 candidates each) after N finished trials, the sampler alone (no store):
-//   BM_SuggestFourStages/N           the paper's 4-stage schedule search (configs/paper/
-//                                    cartpole_multistage_space.yaml: a mode per stage, the
-//                                    mode's parameters)
+//   BM_SuggestFourStages/N           the paper's 4-stage schedule search (the space of
+//                                    configs/paper/cartpole_multistage_search.yaml: a mode per
+//                                    stage, the mode's parameters)
 //   BM_SuggestFourStagesGrouped/N    the same with multivariate TPE by groups
 //   BM_SuggestHartmann6/N            6 floats, for comparison with Optuna 4.9's 6.9 ms per trial
 //                                    at trials 91-100 (shared/spec/tpe.md §16.3)
@@ -17,16 +17,20 @@
 #include <vector>
 
 #include "benchmark/benchmark.h"
+#include "absl/strings/match.h"
+#include "coordinator/study_sweep_spec.h"
 #include "coordinator/tpe_sampler.h"
 #include "run/search_space_yaml.h"
 
 namespace dcs::coordinator {
 namespace {
 
+// The search space of `path`: a space file, or a study sweep spec's.
 run::SearchSpace LoadSpace(const std::string& path) {
   std::ifstream file(path);
   std::stringstream text;
   text << file.rdbuf();
+  if (absl::StrContains(text.str(), "\nstudy:")) return ParseStudySweepYaml(text.str(), path)->space;
   return *run::ParseSearchSpaceYaml(text.str(), path);
 }
 
@@ -60,10 +64,10 @@ void Suggest(benchmark::State& state, const std::string& space_file, const TpeOp
 }
 
 void BM_SuggestFourStages(benchmark::State& state) {
-  Suggest(state, DCS_SOURCE_DIR "/configs/paper/cartpole_multistage_space.yaml", TpeOptions{});
+  Suggest(state, DCS_SOURCE_DIR "/configs/paper/cartpole_multistage_search.yaml", TpeOptions{});
 }
 void BM_SuggestFourStagesGrouped(benchmark::State& state) {
-  Suggest(state, DCS_SOURCE_DIR "/configs/paper/cartpole_multistage_space.yaml",
+  Suggest(state, DCS_SOURCE_DIR "/configs/paper/cartpole_multistage_search.yaml",
           TpeOptions{.parzen = {.multivariate = true}, .group = true});
 }
 void BM_SuggestHartmann6(benchmark::State& state) {

@@ -110,9 +110,13 @@ int SubmitCommand(const GlobalFlags& flags, const SubmitFlags& submit) {
     std::cout << sweep->sweep_id() << std::endl;
   }
   if (submit.dry_run) return kExitOk;
-  std::cerr << "dcs: submitted " << sweep->sweep_id() << " (" << sweep->name() << ", "
-            << sweep->runs() << " runs); follow it with: dcs watch " << sweep->sweep_id()
-            << std::endl;
+  std::cerr << "dcs: submitted " << sweep->sweep_id() << " (" << sweep->name() << ", ";
+  if (sweep->study_id().empty()) {
+    std::cerr << sweep->runs() << " runs";
+  } else {  // its runs come as its study asks for trials
+    std::cerr << "a search: " << sweep->study_id() << " asks for its trials";
+  }
+  std::cerr << "); follow it with: dcs watch " << sweep->sweep_id() << std::endl;
   return submit.watch ? WatchSweep(flags, sweep->sweep_id()) : kExitOk;
 }
 

@@ -174,15 +174,19 @@ TEST_F(SweepStoreTest, UnknownSweepsAreNotFound) {
 
 TEST(SweepStateTest, DerivesFromItsRuns) {
   using S = RunState;
-  auto state = [](std::vector<std::pair<RunState, int64_t>> runs, bool cancelled) {
-    return SweepStateOf(runs, cancelled);
-  };
+  auto state = [](std::vector<std::pair<RunState, int64_t>> runs, bool cancelled,
+                  bool open = false) { return SweepStateOf(runs, cancelled, open); };
   EXPECT_EQ(state({{S::kQueued, 4}}, false), SweepState::kQueued);
   EXPECT_EQ(state({{S::kQueued, 3}, {S::kCompleted, 1}}, false), SweepState::kRunning);
   EXPECT_EQ(state({{S::kRunning, 1}, {S::kFailed, 1}}, true), SweepState::kRunning);
   EXPECT_EQ(state({{S::kCompleted, 3}, {S::kFailed, 1}}, false), SweepState::kFailed);
   EXPECT_EQ(state({{S::kCompleted, 3}, {S::kCancelled, 1}}, true), SweepState::kCancelled);
   EXPECT_EQ(state({{S::kCompleted, 4}}, false), SweepState::kCompleted);
+  // An open study sweep: queued until a run starts, then running until it closes.
+  EXPECT_EQ(state({}, false, true), SweepState::kQueued);
+  EXPECT_EQ(state({{S::kQueued, 4}}, false, true), SweepState::kQueued);
+  EXPECT_EQ(state({{S::kCompleted, 4}}, false, true), SweepState::kRunning);
+  EXPECT_EQ(state({{S::kCompleted, 3}, {S::kFailed, 1}}, false, true), SweepState::kRunning);
 }
 
 }  // namespace

@@ -27,7 +27,6 @@ std::vector<ConfigFile> ConfigFiles() {
     const YAML::Node root = YAML::Load(text.str());
     ConfigFile::Kind kind = ConfigFile::Kind::kRun;
     if (root.IsMap() && root["conditions"]) kind = ConfigFile::Kind::kSweep;
-    if (root.IsMap() && root["parameters"]) kind = ConfigFile::Kind::kSearchSpace;
     files.push_back({.path = path, .text = text.str(), .kind = kind});
   }
   return files;

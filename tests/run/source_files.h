@@ -16,8 +16,7 @@ namespace dcs::run {
 struct ConfigFile {
   enum class Kind {
     kRun,          // a run config
-    kSweep,        // a sweep spec: a mapping with `conditions`
-    kSearchSpace,  // a study's search space: a mapping with `parameters`
+    kSweep,        // a sweep spec: a mapping with `conditions` (a study sweep's too)
   };
   std::filesystem::path path;
   std::string text;

@@ -9,7 +9,6 @@
 #include "gtest/gtest.h"
 #include "run/run_spec_yaml.h"
 #include "run/search_space_yaml.h"
-#include "tests/run/source_files.h"
 
 namespace dcs::run {
 namespace {
@@ -109,48 +108,6 @@ TEST(TrialRunConfigTest, BadPathsAndValuesAreRefusedNamingTheParameter) {
   EXPECT_THAT(
       TrialRunConfig(kBase, "study.yaml", learning_rate, {{"ppo.gamma", 0.9}}).status().message(),
       HasSubstr("the space lacks"));
-}
-
-// Every search space in configs/ parses and names key paths; the paper's CartPole multi-stage
-// space makes a valid run config with every stage in each of its modes.
-TEST(TrialRunConfigTest, TheSpacesInConfigsMakeValidRunConfigs) {
-  int spaces = 0;
-  for (const ConfigFile& file : ConfigFiles()) {
-    if (file.kind != ConfigFile::Kind::kSearchSpace) continue;
-    const absl::StatusOr<SearchSpace> space = ParseSearchSpaceYaml(file.text, file.path.string());
-    ASSERT_TRUE(space.ok()) << space.status();
-    EXPECT_TRUE(ValidateStudyKeyPaths(*space).ok()) << file.path;
-    ++spaces;
-    if (file.path.filename() != "cartpole_multistage_space.yaml") continue;
-    constexpr char kFourStages[] = R"(env: cartpole
-total_timesteps: 150000
-feature: length
-training_range: [0.35, 0.75]
-pool: {size: 7}
-observe: live
-evaluation: {contexts: {id: [0.5], ood_low: [0.1], ood_high: [1.0]}}
-stages: [{steps: 30000}, {steps: 30000}, {steps: 45000}, {steps: 45000}]
-)";
-    for (const double mode : {0, 1, 2}) {  // constant, sinusoidal, cosine annealing
-      ParameterValues values;
-      for (int stage = 0; stage < 4; ++stage) {
-        const std::string schedule = absl::StrCat("stages[", stage, "].schedule.");
-        values[schedule + "family"] = mode;
-        if (mode == 1) {
-          values[schedule + "amplitude_frac"] = 0.3;
-          values[schedule + "period"] = 150;
-        }
-        if (mode == 2) {
-          values[schedule + "neighborhood_radius_frac"] = 0.2;
-          values[schedule + "T_0"] = 250;
-        }
-      }
-      const absl::StatusOr<std::string> config =
-          TrialRunConfig(kFourStages, "base", *space, values);
-      EXPECT_TRUE(config.ok()) << "mode " << mode << ": " << config.status();
-    }
-  }
-  EXPECT_GE(spaces, 1);
 }
 
 }  // namespace

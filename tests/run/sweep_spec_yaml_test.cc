@@ -311,7 +311,7 @@ TEST(SweepSpecYamlTest, TopLevelKeysAreTheSweepsAndTheBasesOnly) {
   EXPECT_EQ(ErrorOf(Spec("  - name: a\nfoo: 1\n")),
             "sweep.yaml: foo: line 22: unknown key 'foo' at the top level (allowed: name, seeds, "
             "observe, conditions, env, total_timesteps, n_envs, context, feature, "
-            "training_range, pool, evaluation, ppo, coverage)");
+            "training_range, pool, evaluation, ppo, coverage, study)");
   EXPECT_THAT(ErrorOf(Spec("  - name: a\nseed: 4\n")),
               StartsWith("sweep.yaml: seed: line 22: a sweep gives 'seeds'"));
   EXPECT_THAT(ErrorOf(Spec("  - name: a\nschedule: {family: constant}\n")),
