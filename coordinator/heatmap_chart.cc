@@ -64,7 +64,8 @@ std::string Csv(const Heatmap& heatmap, double limit) {
       // White numbers on the darker ends of the scale.
       const int text_color = has_value && std::abs(v) > 0.6 * limit ? kWhite : kBlack;
       const std::string text =
-          has_value ? absl::StrFormat("%+.*f", heatmap.decimals, v) : std::string("n/a");
+          has_value ? absl::StrFormat(heatmap.diverging ? "%+.*f" : "%.*f", heatmap.decimals, v)
+                    : std::string("n/a");
       absl::StrAppend(&csv, r, ",", c, ",", has_value ? CsvNumber(v) : "", ",", text_color, ",",
                       CsvField(text), ",", CsvField(heatmap.row_labels[r]), ",",
                       CsvField(heatmap.column_labels[c]), "\n");
@@ -109,10 +110,14 @@ absl::StatusOr<GnuplotFigure> HeatmapFigure(const Heatmap& heatmap) {
       "set ytics ", Tics(heatmap.row_labels), " scale 0\n",
       "set xrange [-0.5:", columns - 0.5, "]\n",
       "set yrange [", rows - 0.5, ":-0.5]  # the first row at the top\n",
-      "# Diverging around 0: vermillion below, blue above (Okabe-Ito).\n",
-      "set palette defined (-1 '", kNegativeColor, "', 0 '", kZeroColor, "', 1 '",
-      kPositiveColor, "')\n",
-      "set cbrange [", CsvNumber(-limit), ":", CsvNumber(limit), "]\n",
+      heatmap.diverging
+          ? absl::StrCat("# Diverging around 0: vermillion below, blue above (Okabe-Ito).\n",
+                         "set palette defined (-1 '", kNegativeColor, "', 0 '", kZeroColor,
+                         "', 1 '", kPositiveColor, "')\n", "set cbrange [", CsvNumber(-limit),
+                         ":", CsvNumber(limit), "]\n")
+          : absl::StrCat("# From 0 up: white to blue (Okabe-Ito).\n", "set palette defined (0 '",
+                         kZeroColor, "', 1 '", kPositiveColor, "')\n", "set cbrange [0:",
+                         CsvNumber(limit), "]\n"),
       "set cbtics scale 0.5\n",
       "set style fill solid 1.0 border lc rgb '#ffffff'\n",
       "plot data using 'column':'row':(0.5):(0.5) with boxxyerror fc rgb '", kMissingColor,

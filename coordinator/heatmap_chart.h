@@ -31,10 +31,12 @@ struct Heatmap {
   std::vector<std::vector<double>> values;  // values[row][column]; NaN: no value
   std::string value_label;  // the colour bar's
   int decimals = 1;  // of the numbers in the cells, which carry their sign ("+12.3", "-0.4")
+  // Counts and other values >= 0: a scale from white at 0 to blue, numbers without a sign.
+  bool diverging = true;
 };
 
-// The heatmap as a gnuplot figure; the colour scale spans [-m, m], m the largest |value| (1
-// without values). INVALID_ARGUMENT for a bad name, no rows or columns, not a row of values
+// The heatmap as a gnuplot figure; the colour scale spans [-m, m] ([0, m] if not diverging), m
+// the largest |value| (1 without values). INVALID_ARGUMENT for a bad name, no rows or columns, not a row of values
 // per row label, a row of another length than the column labels, an infinite value, or
 // decimals outside [0, 6].
 absl::StatusOr<GnuplotFigure> HeatmapFigure(const Heatmap& heatmap);

@@ -1,11 +1,14 @@
 // Copyright 2026 The DCS Authors.
 #include "coordinator/study_figures.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "absl/strings/str_cat.h"
+#include "coordinator/heatmap_chart.h"
 #include "coordinator/line_chart.h"
+#include "coordinator/study_sweep.h"
 
 namespace dcs::coordinator {
 
@@ -41,6 +44,63 @@ absl::StatusOr<GnuplotFigure> StudyHistoryFigure(const StudyRecord& study,
        .columns = 1,
        .panel_width = 640,
        .panel_height = 400});
+}
+
+absl::StatusOr<GnuplotFigure> StudyStageModesFigure(const v1::StudyReport& report) {
+  const int modes = report.modes_size();
+  if (report.top() == 0 || modes == 0) {
+    return absl::FailedPreconditionError(
+        absl::StrCat(report.study_id(), " has no best trials' stage modes to draw"));
+  }
+  Heatmap heatmap{.name = absl::StrCat(report.study_id(), "_stage_modes"),
+                  .title = absl::StrCat("Stage modes of the best ", report.top(), " trials of ",
+                                        report.name()),
+                  .x_label = "mode",
+                  .y_label = "stage",
+                  .column_labels = {report.modes().begin(), report.modes().end()},
+                  .value_label = "trials",
+                  .decimals = 0,
+                  .diverging = false};
+  for (int k = 0; k < report.mode_counts_size() / modes; ++k) {
+    heatmap.row_labels.push_back(absl::StrCat(k + 1));
+    std::vector<double>& row = heatmap.values.emplace_back();
+    for (int m = 0; m < modes; ++m) row.push_back(report.mode_counts(k * modes + m));
+  }
+  return HeatmapFigure(heatmap);
+}
+
+absl::StatusOr<GnuplotFigure> StudyRankShiftFigure(const v1::StudyReport& report) {
+  // Ranks are drawn downwards (y = -rank), rank 1 at the top, each labelled.
+  LinePanel panel{.title = report.name(),
+                  .x_label = "",
+                  .y_label = "rank (1 = best)",
+                  .x_range = std::pair{-0.1, 1.1},
+                  .x_tics = {{.at = 0, .label = "search"}, {.at = 1, .label = "retrain"}},
+                  .legend = LegendPlace::kOutsideRight};
+  int largest = 1;
+  for (const v1::StudyReport::Trial& trial : report.trials()) {
+    if (trial.rank() == 0 || trial.retrain_rank() == 0) continue;
+    panel.lines.push_back({.label = StudyTrialCondition(trial.trial(), /*retrain=*/false),
+                           .x = {0, 1},
+                           .y = {-static_cast<double>(trial.rank()),
+                                 -static_cast<double>(trial.retrain_rank())}});
+    largest = std::max({largest, trial.rank(), trial.retrain_rank()});
+  }
+  if (panel.lines.empty()) {
+    return absl::FailedPreconditionError(
+        absl::StrCat(report.study_id(), " has no retrained trial to draw"));
+  }
+  panel.y_range = std::pair{-largest - 0.5, -0.5};
+  for (int rank = 1; rank <= largest; ++rank) {
+    panel.y_tics.push_back({.at = -static_cast<double>(rank), .label = absl::StrCat(rank)});
+  }
+  return LineChartFigure({.name = absl::StrCat(report.study_id(), "_rank_shift"),
+                          .title = absl::StrCat("Rank shift from search to retrain of ",
+                                                report.name()),
+                          .panels = {panel},
+                          .columns = 1,
+                          .panel_width = 640,
+                          .panel_height = 520});
 }
 
 }  // namespace dcs::coordinator

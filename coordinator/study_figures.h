@@ -10,6 +10,7 @@
 #include "absl/status/statusor.h"
 #include "coordinator/gnuplot_figure.h"
 #include "coordinator/run_store.h"
+#include "dcs/v1/report.pb.h"
 
 namespace dcs::coordinator {
 
@@ -19,6 +20,16 @@ namespace dcs::coordinator {
 // FAILED_PRECONDITION if no trial has a finite value yet.
 absl::StatusOr<GnuplotFigure> StudyHistoryFigure(const StudyRecord& study,
                                                  const std::vector<StudyTrial>& trials);
+
+// The paper's stage-mode heatmap: how many of the report's best trials (StudyReport.top) took
+// each mode (columns) in each stage (rows); named "<study id>_stage_modes". FAILED_PRECONDITION
+// if the report counted none (no complete trial, or a space without stage modes).
+absl::StatusOr<GnuplotFigure> StudyStageModesFigure(const v1::StudyReport& report);
+
+// The paper's rank-shift figure: each retrained trial's rank in the search (left) joined to its
+// rank after retraining (right); named "<study id>_rank_shift". FAILED_PRECONDITION if no
+// retrained trial has both ranks yet.
+absl::StatusOr<GnuplotFigure> StudyRankShiftFigure(const v1::StudyReport& report);
 
 }  // namespace dcs::coordinator
 

@@ -172,7 +172,7 @@ class Step {
         DCS_ASSIGN_OR_RETURN(logs.emplace_back(), logs_.Get(run));
       }
       if (pruning) DCS_RETURN_IF_ERROR(Report(trial, runs, logs, /*ended=*/true).status());
-      return Tell(trial, TrialState::kComplete, Objective(spec_.objective, logs));
+      return Tell(trial, TrialState::kComplete, TrialObjective(spec_.objective, logs));
     }
     if (!pruning) return absl::OkStatus();
     const std::vector<int64_t> boundaries = Boundaries(runs);
@@ -238,14 +238,6 @@ class Step {
     return absl::OkStatus();
   }
 
-  static double Objective(StudyObjective objective, const std::vector<v1::EvaluationLog>& logs) {
-    std::vector<double> values;
-    for (const v1::EvaluationLog& log : logs) {
-      values.push_back(objective == StudyObjective::kBestAnytime ? log.best_anytime() : log.last());
-    }
-    return OverSeeds(objective, values);
-  }
-
   RunStore& store_;
   const std::string& data_dir_;
   CompletedRunLogs& logs_;
@@ -259,6 +251,14 @@ class Step {
 
 std::string StudyTrialCondition(int64_t number, bool retrain) {
   return absl::StrFormat("T%03d%s", number, retrain ? " retrain" : "");
+}
+
+double TrialObjective(StudyObjective objective, const std::vector<v1::EvaluationLog>& logs) {
+  std::vector<double> values;
+  for (const v1::EvaluationLog& log : logs) {
+    values.push_back(objective == StudyObjective::kBestAnytime ? log.best_anytime() : log.last());
+  }
+  return values.empty() ? kNaN : OverSeeds(objective, values);
 }
 
 std::optional<double> ObjectiveAt(StudyObjective objective,

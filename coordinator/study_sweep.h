@@ -47,6 +47,10 @@ absl::StatusOr<StudySweepStep> AdvanceStudySweep(RunStore& store, const std::str
 // ("T007 retrain").
 std::string StudyTrialCondition(int64_t number, bool retrain);
 
+// The objective of a trial from its complete runs' evaluation logs (one per seed), as
+// `objective` defines it (coordinator/study_sweep_spec.h). NaN for no logs.
+double TrialObjective(StudyObjective objective, const std::vector<v1::EvaluationLog>& logs);
+
 // The objective of a trial from its runs' evaluation logs (one per seed), as `objective` defines
 // it, as it stood at training step `step` (evaluations after it ignored; best_anytime: among
 // the evaluations at `boundaries` and at `step`). nullopt if a log has no evaluation at `step`

@@ -48,11 +48,15 @@ absl::StatusOr<v1::SweepResults> CollectSweepResults(const SweepRecord& sweep,
   results.set_sweep_id(sweep.id);
   results.set_name(sweep.name);
   results.set_seeds(sweep.seeds);
+  results.set_spec(sweep.spec);
+  results.set_study_id(sweep.study_id);
   for (const TrialRecord& trial : sweep.trials) {
     v1::TrialResults& out = *results.add_trials();
     out.set_condition(trial.condition);
     out.set_family(trial.family);
     out.set_observe(trial.observe);
+    if (trial.study_trial.has_value()) out.set_study_trial(*trial.study_trial);
+    out.set_retrain(trial.retrain);
   }
   std::vector<const RunRecord*> completed;
   for (const RunRecord& run : runs) {

@@ -2,6 +2,7 @@
 #include "services/cli/report_commands.h"
 
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -11,12 +12,15 @@
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
 #include "coordinator/report_format.h"
+#include "coordinator/study_figures.h"
+#include "coordinator/study_report.h"
 #include "coordinator/sweep_figures.h"
 #include "coordinator/sweep_index_html.h"
 #include "coordinator/sweep_report.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/figure_render.h"
 #include "services/cli/run_client.h"
+#include "services/cli/study_client.h"
 #include "services/command_line.h"
 #include "services/exit_codes.h"
 
@@ -27,49 +31,107 @@ struct ReportFlags {
   std::string sweep_id;
   coordinator::ReportOptions options;
   coordinator::ReportFormat format = coordinator::ReportFormat::kTable;
+  int top = 20;  // a study sweep's: the best trials shown and counted
 };
 
 struct PlotFlags {
   std::string sweep_id;
   std::string out;
   coordinator::FigureFormat format = coordinator::FigureFormat::kSvg;
+  int top = 20;  // as ReportFlags'
 };
 
-// The sweep's report as `options` asks, from its results on the coordinator (only the scores a
-// report reads with `scores_only`; everything, for figures, without).
-absl::StatusOr<v1::SweepReport> FetchReport(const GlobalFlags& flags, const std::string& sweep_id,
-                                            const coordinator::ReportOptions& options,
-                                            bool scores_only, v1::SweepResults* results) {
-  DCS_ASSIGN_OR_RETURN(*results, GetSweepResults(CoordinatorAddress(flags), sweep_id,
-                                                 scores_only, flags.timeout));
-  return coordinator::BuildSweepReport(*results, options);
+// A study sweep's report (coordinator/study_report.h), with its study's trials.
+absl::StatusOr<v1::StudyReport> FetchStudyReport(const GlobalFlags& flags,
+                                                 const v1::SweepResults& results, int top,
+                                                 const coordinator::ReportOptions& options,
+                                                 std::vector<coordinator::StudyTrial>* trials) {
+  DCS_ASSIGN_OR_RETURN(
+      *trials, ConnectStudies(CoordinatorAddress(flags), flags.timeout)->Trials(results.study_id()));
+  return coordinator::BuildStudyReport(results, *trials, top, options);
 }
 
 int ReportCommand(const GlobalFlags& flags, const ReportFlags& report_flags) {
-  v1::SweepResults results;
-  absl::StatusOr<v1::SweepReport> report =
-      FetchReport(flags, report_flags.sweep_id, report_flags.options,
-                  /*scores_only=*/true, &results);
-  if (!report.ok()) return FailCommand(report.status());
-  std::cout << coordinator::FormatReport(*report, report_flags.format) << std::flush;
+  auto text = [&]() -> absl::StatusOr<std::string> {
+    DCS_ASSIGN_OR_RETURN(const v1::SweepResults results,
+                         GetSweepResults(CoordinatorAddress(flags), report_flags.sweep_id,
+                                         /*scores_only=*/true, flags.timeout));
+    if (!results.study_id().empty()) {
+      std::vector<coordinator::StudyTrial> trials;
+      DCS_ASSIGN_OR_RETURN(const v1::StudyReport report,
+                           FetchStudyReport(flags, results, report_flags.top,
+                                            report_flags.options, &trials));
+      return coordinator::FormatStudyReport(report, report_flags.format, report_flags.top);
+    }
+    DCS_ASSIGN_OR_RETURN(const v1::SweepReport report,
+                         coordinator::BuildSweepReport(results, report_flags.options));
+    return coordinator::FormatReport(report, report_flags.format);
+  }();
+  if (!text.ok()) return FailCommand(text.status());
+  std::cout << *text << std::flush;
   return kExitOk;
 }
 
-// The report's table (last checkpoint, avg_combined; also as CSV and LaTeX beside it), every
-// figure with its data and script, and index.html, in `plot.out`; returns index.html's path.
-absl::StatusOr<std::string> Plot(const GlobalFlags& flags, const PlotFlags& plot) {
-  v1::SweepResults results;
-  DCS_ASSIGN_OR_RETURN(const v1::SweepReport report,
-                       FetchReport(flags, plot.sweep_id, {}, /*scores_only=*/false, &results));
-  DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::GnuplotFigure> figures,
+// What `dcs plot` writes: the figures, and the report's text in each format.
+struct Plotted {
+  std::vector<coordinator::GnuplotFigure> figures;
+  std::function<std::string(coordinator::ReportFormat)> report;
+};
+
+// A plain sweep's: its figures (coordinator/sweep_figures.h) and its table (last checkpoint,
+// avg_combined).
+absl::StatusOr<Plotted> PlotSweep(const v1::SweepResults& results) {
+  DCS_ASSIGN_OR_RETURN(v1::SweepReport report, coordinator::BuildSweepReport(results, {}));
+  DCS_ASSIGN_OR_RETURN(std::vector<coordinator::GnuplotFigure> figures,
                        coordinator::SweepFigures(results, report));
+  return Plotted{.figures = std::move(figures),
+                 .report = [report = std::move(report)](coordinator::ReportFormat format) {
+                   return coordinator::FormatReport(report, format);
+                 }};
+}
+
+// A study sweep's: the optimisation history, the best trials' stage modes and the rank shift
+// (those it has data for yet), and its report.
+absl::StatusOr<Plotted> PlotStudy(const GlobalFlags& flags, const v1::SweepResults& results,
+                                  int top) {
+  std::vector<coordinator::StudyTrial> trials;
+  DCS_ASSIGN_OR_RETURN(v1::StudyReport report,
+                       FetchStudyReport(flags, results, top, {}, &trials));
+  DCS_ASSIGN_OR_RETURN(
+      const coordinator::StudyRecord study,
+      ConnectStudies(CoordinatorAddress(flags), flags.timeout)->Get(results.study_id()));
+  Plotted plotted;
+  for (absl::StatusOr<coordinator::GnuplotFigure> figure :
+       {coordinator::StudyHistoryFigure(study, trials),
+        coordinator::StudyStageModesFigure(report), coordinator::StudyRankShiftFigure(report)}) {
+    if (figure.ok()) {
+      plotted.figures.push_back(*std::move(figure));
+    } else if (!absl::IsFailedPrecondition(figure.status())) {  // no data for it yet
+      return figure.status();
+    }
+  }
+  plotted.report = [report = std::move(report), top](coordinator::ReportFormat format) {
+    return coordinator::FormatStudyReport(report, format, top);
+  };
+  return plotted;
+}
+
+// The report (also as CSV, LaTeX and Markdown beside it), every figure with its data and script,
+// and index.html, in `plot.out`; returns index.html's path.
+absl::StatusOr<std::string> Plot(const GlobalFlags& flags, const PlotFlags& plot) {
+  DCS_ASSIGN_OR_RETURN(const v1::SweepResults results,
+                       GetSweepResults(CoordinatorAddress(flags), plot.sweep_id,
+                                       /*scores_only=*/false, flags.timeout));
+  DCS_ASSIGN_OR_RETURN(const Plotted plotted, results.study_id().empty()
+                                                  ? PlotSweep(results)
+                                                  : PlotStudy(flags, results, plot.top));
   std::error_code error;
   std::filesystem::create_directories(plot.out, error);
   if (error) {
     return absl::FailedPreconditionError(
         absl::StrCat("cannot create ", plot.out, ": ", error.message()));
   }
-  for (const coordinator::GnuplotFigure& figure : figures) {
+  for (const coordinator::GnuplotFigure& figure : plotted.figures) {
     DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
                          RenderFigure(figure, plot.format, plot.out));
     std::cerr << "dcs: drew " << rendered.path << std::endl;
@@ -79,14 +141,14 @@ absl::StatusOr<std::string> Plot(const GlobalFlags& flags, const PlotFlags& plot
        {std::pair{coordinator::ReportFormat::kCsv, "report.csv"},
         std::pair{coordinator::ReportFormat::kLatex, "report.tex"},
         std::pair{coordinator::ReportFormat::kMarkdown, "report.md"}}) {
-    DCS_RETURN_IF_ERROR(WriteFileAtomically(absl::StrCat(plot.out, "/", file),
-                                            coordinator::FormatReport(report, format)));
+    DCS_RETURN_IF_ERROR(
+        WriteFileAtomically(absl::StrCat(plot.out, "/", file), plotted.report(format)));
   }
   const std::string index = absl::StrCat(plot.out, "/index.html");
   DCS_RETURN_IF_ERROR(WriteFileAtomically(
       index, coordinator::SweepIndexHtml(
                  absl::StrCat(results.name(), " (", results.sweep_id(), ")"),
-                 coordinator::FormatReport(report, coordinator::ReportFormat::kHtml), figures,
+                 plotted.report(coordinator::ReportFormat::kHtml), plotted.figures,
                  plot.format)));
   return index;
 }
@@ -125,6 +187,11 @@ std::vector<CliCommand> AddReportCommands(CLI::App& dcs, const GlobalFlags& flag
   report->add_option("--bootstrap-seed", report_flags->options.bootstrap_seed,
                      "the bootstrap's seed (the same sweep and seed give the same report)")
       ->capture_default_str();
+  report->add_option("--top", report_flags->top,
+                     "a study sweep's: how many of the best trials are shown, and whose stage "
+                     "modes are counted")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
 
   auto plot_flags = std::make_shared<PlotFlags>();
   CLI::App* plot = dcs.add_subcommand(
@@ -135,6 +202,10 @@ std::vector<CliCommand> AddReportCommands(CLI::App& dcs, const GlobalFlags& flag
   plot->add_option("--out", plot_flags->out, "the directory to write")->required();
   AddChoiceOption(*plot, "--format", &plot_flags->format,
                   ChoicesOf(coordinator::kFigureFormatNames), "svg, png or pdf");
+  plot->add_option("--top", plot_flags->top,
+                   "a study sweep's: how many of the best trials the stage-mode heatmap counts")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
 
   return {
       {report, [&flags, report_flags] { return ReportCommand(flags, *report_flags); }},

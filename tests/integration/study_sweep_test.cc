@@ -2,9 +2,9 @@
 //
 // Study sweeps end to end, with real processes on loopback and the `dcs` client: a TPE search
 // over a two-stage curriculum submitted with `dcs submit` asks, trains, tells and retrains on its
-// own; a search whose coordinator is killed (SIGKILL) twice mid-way and restarted on its data
-// directory finishes with the same trials, values and runs as an undisturbed one: no trial lost,
-// none asked or trained twice.
+// own, and `dcs report` and `dcs plot` show it; a search whose coordinator is killed (SIGKILL)
+// twice mid-way and restarted on its data directory finishes with the same trials, values and runs
+// as an undisturbed one: no trial lost, none asked or trained twice.
 
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
@@ -23,6 +23,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "services/cli/run_client.h"
+#include "tests/integration/browser.h"
 #include "tests/integration/cluster_processes.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/temp_dir.h"
@@ -141,6 +142,19 @@ TEST(StudySweepTest, ASearchSurvivesItsCoordinatorsDeathWithNoTrialLostOrRunTwic
     if (run.trial() >= 6) retrain_seeds.insert(run.seed());
   }
   EXPECT_EQ(retrain_seeds, std::set<uint64_t>{2});  // new: after the search's 0 and 1
+
+  // Its report ranks the trials and compares the retrain; its figures show in a browser.
+  const RunResult report = Dcs({"report", "sweep-1"}, calm.coordinator_address());
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  EXPECT_THAT(report.output, HasSubstr("trials ranked by best_anytime over 2 seeds"));
+  EXPECT_THAT(report.output, HasSubstr("Stage modes of the best 6 trials"));
+  EXPECT_THAT(report.output, HasSubstr("Retrain: 2 trials with 1 new seeds each"));
+  const std::string figures = calm.dir() + "/figures";
+  const RunResult plotted = Dcs({"plot", "sweep-1", "--out", figures}, calm.coordinator_address());
+  ASSERT_EQ(plotted.exit_code, 0) << plotted.output;
+  const std::vector<std::string> images = LoadedImages(figures + "/index.html");
+  EXPECT_EQ(images.size(), 3u);  // the history, the stage modes, the rank shift
+  for (const std::string& image : images) EXPECT_THAT(image, HasSubstr(" loaded ")) << image;
 
   // The coordinator killed after two trials and again after four, restarted each time.
   ClusterProcesses faulty(kLease);
