@@ -177,7 +177,8 @@ std::vector<CliCommand> AddSweepCommands(CLI::App& dcs, const GlobalFlags& flags
 
   CLI::App* submit = dcs.add_subcommand(
       "submit", "Submit a sweep (a grid of conditions x observation modes x seeds; see "
-                "configs/quickstart.yaml) and print its id");
+                "configs/quickstart.yaml), or a search with a study block (see "
+                "configs/paper/cartpole_multistage_search.yaml), and print its id");
   submit->add_option("spec", submit_flags->spec, "the sweep spec (YAML)")->required();
   submit->add_flag("--watch", submit_flags->watch,
                    "then follow it to its end, as `dcs watch`, and exit with its outcome");
