@@ -79,4 +79,11 @@ void ClusterProcesses::Start(const std::string& name, const std::string& program
   processes_.emplace(name, *std::move(child));
 }
 
+void StartCoordinatorLearnerAndActors(ClusterProcesses& cluster) {
+  cluster.StartCoordinator();
+  cluster.StartLearner("learner");
+  cluster.StartActor("actor-1", 4);
+  cluster.StartActor("actor-2", 4);
+}
+
 }  // namespace dcs::integration

@@ -52,6 +52,10 @@ class ClusterProcesses {
   std::map<std::string, services::BoundPorts> ports_;
 };
 
+// Starts `cluster`'s coordinator, a learner ("learner") and two actors of 4 slots ("actor-1",
+// "actor-2").
+void StartCoordinatorLearnerAndActors(ClusterProcesses& cluster);
+
 }  // namespace dcs::integration
 
 #endif  // DCS_TESTS_INTEGRATION_CLUSTER_PROCESSES_H_

@@ -71,23 +71,10 @@ study:
          when: {"stages[1].schedule.family": cosine_annealing}}
 )";
 
-RunResult Dcs(std::vector<std::string> args, const std::string& address,
-              absl::Duration timeout = absl::Minutes(1)) {
-  args.push_back("--addr=" + address);
-  return RunProgram(BinaryPath("dcs"), args, timeout);
-}
-
-void StartCluster(ClusterProcesses& cluster) {
-  cluster.StartCoordinator();
-  cluster.StartLearner("learner");
-  cluster.StartActor("actor-1", 4);
-  cluster.StartActor("actor-2", 4);
-}
-
 // The study's trials as `dcs study trials -o json` prints them, one JSON line each.
 std::vector<std::string> StudyTrials(const ClusterProcesses& cluster) {
   const RunResult trials =
-      Dcs({"study", "trials", "study-1", "-o", "json"}, cluster.coordinator_address());
+      DcsAt({"study", "trials", "study-1", "-o", "json"}, cluster.coordinator_address());
   EXPECT_EQ(trials.exit_code, 0) << trials.output;
   return absl::StrSplit(absl::StripTrailingAsciiWhitespace(trials.output), '\n', absl::SkipEmpty());
 }
@@ -97,7 +84,7 @@ void WaitForTrials(const ClusterProcesses& cluster, int complete) {
   const absl::Time deadline = absl::Now() + absl::Minutes(4);
   while (absl::Now() < deadline) {
     const RunResult trials =
-        Dcs({"study", "trials", "study-1", "-o", "json"}, cluster.coordinator_address());
+        DcsAt({"study", "trials", "study-1", "-o", "json"}, cluster.coordinator_address());
     int done = 0;
     for (absl::string_view line : absl::StrSplit(trials.output, '\n')) {
       done += absl::StrContains(line, "\"state\": \"complete\"") ? 1 : 0;
@@ -121,9 +108,9 @@ TEST(StudySweepTest, ASearchSurvivesItsCoordinatorsDeathWithNoTrialLostOrRunTwic
 
   // Undisturbed: submitted, watched to its end.
   ClusterProcesses calm(kLease);
-  StartCluster(calm);
+  StartCoordinatorLearnerAndActors(calm);
   const RunResult submitted =
-      Dcs({"submit", spec, "--watch"}, calm.coordinator_address(), absl::Minutes(5));
+      DcsAt({"submit", spec, "--watch"}, calm.coordinator_address(), absl::Minutes(5));
   ASSERT_EQ(submitted.exit_code, 0) << submitted.output << "; logs in " << calm.dir();
   EXPECT_THAT(submitted.output, HasSubstr("a search: study-1 asks for its trials"));
   const std::vector<std::string> undisturbed = StudyTrials(calm);
@@ -144,13 +131,14 @@ TEST(StudySweepTest, ASearchSurvivesItsCoordinatorsDeathWithNoTrialLostOrRunTwic
   EXPECT_EQ(retrain_seeds, std::set<uint64_t>{2});  // new: after the search's 0 and 1
 
   // Its report ranks the trials and compares the retrain; its figures show in a browser.
-  const RunResult report = Dcs({"report", "sweep-1"}, calm.coordinator_address());
+  const RunResult report = DcsAt({"report", "sweep-1"}, calm.coordinator_address());
   ASSERT_EQ(report.exit_code, 0) << report.output;
   EXPECT_THAT(report.output, HasSubstr("trials ranked by best_anytime over 2 seeds"));
   EXPECT_THAT(report.output, HasSubstr("Stage modes of the best 6 trials"));
   EXPECT_THAT(report.output, HasSubstr("Retrain: 2 trials with 1 new seeds each"));
   const std::string figures = calm.dir() + "/figures";
-  const RunResult plotted = Dcs({"plot", "sweep-1", "--out", figures}, calm.coordinator_address());
+  const RunResult plotted =
+      DcsAt({"plot", "sweep-1", "--out", figures}, calm.coordinator_address());
   ASSERT_EQ(plotted.exit_code, 0) << plotted.output;
   const std::vector<std::string> images = LoadedImages(figures + "/index.html");
   EXPECT_EQ(images.size(), 3u);  // the history, the stage modes, the rank shift
@@ -158,8 +146,8 @@ TEST(StudySweepTest, ASearchSurvivesItsCoordinatorsDeathWithNoTrialLostOrRunTwic
 
   // The coordinator killed after two trials and again after four, restarted each time.
   ClusterProcesses faulty(kLease);
-  StartCluster(faulty);
-  ASSERT_EQ(Dcs({"submit", spec}, faulty.coordinator_address()).exit_code, 0);
+  StartCoordinatorLearnerAndActors(faulty);
+  ASSERT_EQ(DcsAt({"submit", spec}, faulty.coordinator_address()).exit_code, 0);
   for (int complete : {2, 4}) {
     WaitForTrials(faulty, complete);
     faulty.Kill("coordinator");
@@ -167,7 +155,7 @@ TEST(StudySweepTest, ASearchSurvivesItsCoordinatorsDeathWithNoTrialLostOrRunTwic
     faulty.StartCoordinator();
   }
   const RunResult watched =
-      Dcs({"watch", "sweep-1"}, faulty.coordinator_address(), absl::Minutes(5));
+      DcsAt({"watch", "sweep-1"}, faulty.coordinator_address(), absl::Minutes(5));
   ASSERT_EQ(watched.exit_code, 0) << watched.output << "; logs in " << faulty.dir();
   EXPECT_EQ(StudyTrials(faulty), undisturbed);
   absl::StatusOr<v1::GetSweepResponse> faulty_sweep =
@@ -180,7 +168,7 @@ TEST(StudySweepTest, ASearchSurvivesItsCoordinatorsDeathWithNoTrialLostOrRunTwic
   }
 
   // Its study is the coordinator's to ask and tell.
-  const RunResult ask = Dcs({"study", "ask", "study-1"}, faulty.coordinator_address());
+  const RunResult ask = DcsAt({"study", "ask", "study-1"}, faulty.coordinator_address());
   EXPECT_NE(ask.exit_code, 0);
   EXPECT_THAT(ask.output, HasSubstr("study-1 is driven by sweep-1"));
 }

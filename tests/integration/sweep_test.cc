@@ -55,25 +55,10 @@ conditions:
   - schedule: {family: teleport}
 )";
 
-// `dcs ARGS... --addr ADDRESS`.
-RunResult Dcs(std::vector<std::string> args, const std::string& address,
-              absl::Duration timeout = absl::Minutes(1)) {
-  args.push_back("--addr=" + address);
-  return RunProgram(BinaryPath("dcs"), args, timeout);
-}
-
 std::string WriteSpec(const std::string& text) {
   const std::string path = testing::MakeTempDir() + "/small.yaml";
   EXPECT_TRUE(WriteFileAtomically(path, text).ok());
   return path;
-}
-
-// A coordinator, a learner and two actors.
-void StartCluster(ClusterProcesses& cluster) {
-  cluster.StartCoordinator();
-  cluster.StartLearner("learner");
-  cluster.StartActor("actor-1", 4);
-  cluster.StartActor("actor-2", 4);
 }
 
 // Waits until sweep `sweep_id` has at least `completed` completed runs, or has ended.
@@ -97,7 +82,7 @@ std::string Reports(const ClusterProcesses& cluster, const std::string& sweep_id
   std::string reports;
   for (const char* checkpoint : {"last", "best"}) {
     for (const char* format : {"json", "table"}) {
-      const RunResult report = Dcs({"report", sweep_id, "--checkpoint", checkpoint, "--format",
+      const RunResult report = DcsAt({"report", sweep_id, "--checkpoint", checkpoint, "--format",
                                     format},
                                    cluster.coordinator_address());
       EXPECT_EQ(report.exit_code, 0) << report.output;
@@ -112,16 +97,17 @@ TEST(SweepTest, ASweepSurvivesItsCoordinatorsDeathAndReportsTheSame) {
 
   // Undisturbed: `dcs submit --watch` follows it to its end.
   ClusterProcesses calm(kLease);
-  StartCluster(calm);
+  StartCoordinatorLearnerAndActors(calm);
   const RunResult submitted =
-      Dcs({"submit", spec, "--watch"}, calm.coordinator_address(), absl::Minutes(5));
+      DcsAt({"submit", spec, "--watch"}, calm.coordinator_address(), absl::Minutes(5));
   ASSERT_EQ(submitted.exit_code, 0) << submitted.output << "; logs in " << calm.dir();
   EXPECT_THAT(submitted.output, HasSubstr("sweep-1 small: completed, 8/8 runs done"));
   const std::string undisturbed = Reports(calm, "sweep-1");
   EXPECT_THAT(undisturbed, HasSubstr("static"));
   EXPECT_THAT(undisturbed, HasSubstr("sinusoidal amplitude_frac=0.5"));
   const std::string figures = calm.dir() + "/figures";
-  const RunResult plotted = Dcs({"plot", "sweep-1", "--out", figures}, calm.coordinator_address());
+  const RunResult plotted =
+      DcsAt({"plot", "sweep-1", "--out", figures}, calm.coordinator_address());
   ASSERT_EQ(plotted.exit_code, 0) << plotted.output;
   EXPECT_THAT(plotted.output, HasSubstr(figures + "/index.html"));
   const std::vector<std::string> images = LoadedImages(figures + "/index.html");
@@ -130,8 +116,8 @@ TEST(SweepTest, ASweepSurvivesItsCoordinatorsDeathAndReportsTheSame) {
 
   // The coordinator killed once two runs are done, restarted on its data directory.
   ClusterProcesses faulty(kLease);
-  StartCluster(faulty);
-  const RunResult queued = Dcs({"submit", spec}, faulty.coordinator_address());
+  StartCoordinatorLearnerAndActors(faulty);
+  const RunResult queued = DcsAt({"submit", spec}, faulty.coordinator_address());
   ASSERT_EQ(queued.exit_code, 0) << queued.output;
   EXPECT_THAT(queued.output, HasSubstr("sweep-1"));
   WaitForCompleted(faulty, "sweep-1", 2);
@@ -139,7 +125,7 @@ TEST(SweepTest, ASweepSurvivesItsCoordinatorsDeathAndReportsTheSame) {
   absl::SleepFor(2 * kLease);
   faulty.StartCoordinator();
   const RunResult watched =
-      Dcs({"watch", "sweep-1"}, faulty.coordinator_address(), absl::Minutes(5));
+      DcsAt({"watch", "sweep-1"}, faulty.coordinator_address(), absl::Minutes(5));
   ASSERT_EQ(watched.exit_code, 0) << watched.output << "; logs in " << faulty.dir();
   EXPECT_EQ(Reports(faulty, "sweep-1"), undisturbed);
 }
@@ -147,7 +133,7 @@ TEST(SweepTest, ASweepSurvivesItsCoordinatorsDeathAndReportsTheSame) {
 TEST(SweepTest, ABadSpecIsRefusedWholeWithEveryProblemAndNothingIsStored) {
   ClusterProcesses cluster(kLease);
   cluster.StartCoordinator();
-  const RunResult refused = Dcs({"submit", WriteSpec(kBadSpec)}, cluster.coordinator_address());
+  const RunResult refused = DcsAt({"submit", WriteSpec(kBadSpec)}, cluster.coordinator_address());
   EXPECT_EQ(refused.exit_code, 65) << refused.output;  // EX_DATAERR
   EXPECT_THAT(refused.output, HasSubstr("INVALID_ARGUMENT"));
   EXPECT_THAT(refused.output, HasSubstr("2 problems"));

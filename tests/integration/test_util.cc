@@ -29,6 +29,12 @@ RunResult RunProgram(const std::string& path, const std::vector<std::string>& ar
   return result;
 }
 
+RunResult DcsAt(std::vector<std::string> args, const std::string& address,
+                absl::Duration timeout) {
+  args.push_back("--addr=" + address);
+  return RunProgram(BinaryPath("dcs"), args, timeout);
+}
+
 std::vector<std::string> Lines(const std::string& text) {
   return absl::StrSplit(text, '\n', absl::SkipEmpty());
 }

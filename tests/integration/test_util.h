@@ -27,6 +27,10 @@ struct RunResult {
 RunResult RunProgram(const std::string& path, const std::vector<std::string>& args,
               absl::Duration timeout = absl::Seconds(60));
 
+// `dcs ARGS... --addr=ADDRESS`, killed after `timeout`.
+RunResult DcsAt(std::vector<std::string> args, const std::string& address,
+                absl::Duration timeout = absl::Minutes(1));
+
 // The lines of `text`, without empty ones.
 std::vector<std::string> Lines(const std::string& text);
 
