@@ -86,12 +86,13 @@ class Step {
       running += trial.state == TrialState::kRunning ? 1 : 0;
     }
     for (int64_t number = static_cast<int64_t>(trials.size());
-         number < spec_.trials && running < spec_.parallel; ++number, ++running) {
+         number < spec_.trials && running < spec_.parallel; ++number) {
       DCS_ASSIGN_OR_RETURN(
           StudyTrial trial,
           store_.AskTrial(sweep_.study_id, absl::StrCat(sweep_.request_id, "/ask/", number), now_));
       DCS_RETURN_IF_ERROR(Queue(trial, /*retrain=*/false));
       ++done_.asked;
+      running += trial.state == TrialState::kRunning ? 1 : 0;
       trials.push_back(std::move(trial));
     }
     if (static_cast<int64_t>(trials.size()) < spec_.trials || running > 0) return done_;
@@ -171,7 +172,9 @@ class Step {
         if (run.state != RunState::kCompleted) return Tell(trial, TrialState::kFailed, kNaN);
         DCS_ASSIGN_OR_RETURN(logs.emplace_back(), logs_.Get(run));
       }
-      if (pruning) DCS_RETURN_IF_ERROR(Report(trial, runs, logs, /*ended=*/true).status());
+      if (pruning) {
+        DCS_RETURN_IF_ERROR(Report(trial, Boundaries(runs), logs, /*ended=*/true).status());
+      }
       return Tell(trial, TrialState::kComplete, TrialObjective(spec_.objective, logs));
     }
     if (!pruning) return absl::OkStatus();
@@ -193,7 +196,7 @@ class Step {
       logs.push_back(*std::move(log));
     }
     DCS_ASSIGN_OR_RETURN(const std::optional<double> pruned_at,
-                         Report(trial, runs, logs, /*ended=*/false));
+                         Report(trial, boundaries, logs, /*ended=*/false));
     if (!pruned_at.has_value()) return absl::OkStatus();
     for (const RunRecord& run : runs) {
       if (IsTerminal(run.state)) continue;
@@ -210,14 +213,13 @@ class Step {
     return request.ok() ? StageBoundaries(request->spec) : std::vector<int64_t>{};
   }
 
-  // Reports the trial's objective at each stage boundary not yet reported that every one of
-  // `logs` has passed. Returns the value it was pruned at, if the pruner said so (never for a
-  // trial whose runs `ended`: it is complete whatever the pruner says).
+  // Reports the trial's objective at each of its stage `boundaries` not yet reported that every
+  // one of `logs` has passed. Returns the value it was pruned at, if the pruner said so (never
+  // for a trial whose runs `ended`: it is complete whatever the pruner says).
   absl::StatusOr<std::optional<double>> Report(StudyTrial& trial,
-                                               const std::vector<RunRecord>& runs,
+                                               const std::vector<int64_t>& boundaries,
                                                const std::vector<v1::EvaluationLog>& logs,
                                                bool ended) {
-    const std::vector<int64_t> boundaries = Boundaries(runs);
     for (int64_t boundary : boundaries) {
       if (trial.reported.contains(boundary)) continue;
       const std::optional<double> value = ObjectiveAt(spec_.objective, logs, boundaries, boundary);
