@@ -8,7 +8,6 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_join.h"
 #include "common/random.h"
 #include "common/status_macros.h"
 #include "coordinator/sampler.h"
@@ -24,15 +23,13 @@ namespace {
 // space that writes a wrong key or value is refused at submission, not trial by trial.
 constexpr int kCheckedSamples = 32;
 
+// A name of `names` at `path`, as the run config reads its enumerations.
 template <typename Enum, size_t N>
 absl::StatusOr<Enum> ReadName(run::YamlReader& reader, const YAML::Node& node,
                               const std::string& path, const EnumName<Enum> (&names)[N]) {
   DCS_ASSIGN_OR_RETURN(const std::string word, reader.Word(node, path));
   if (std::optional<Enum> value = FindByName(names, word)) return *value;
-  std::vector<std::string> allowed;
-  for (const auto& [value, name] : names) allowed.emplace_back(name);
-  return reader.Error(
-      path, node, absl::StrCat("unknown '", word, "' (one of ", absl::StrJoin(allowed, ", "), ")"));
+  return reader.Error(path, node, absl::StrCat("must be ", ListNames(names), ", got '", word, "'"));
 }
 
 absl::Status ReadTpe(run::YamlReader& reader, const YAML::Node& node, const std::string& path,

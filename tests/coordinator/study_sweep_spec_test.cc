@@ -101,10 +101,10 @@ TEST(StudySweepSpecTest, RefusesABadBlockNamingWhere) {
   EXPECT_THAT(Error(Spec("  trials: 0\n")).message(),
               HasSubstr("study.trials: line 11: must be at least 1"));
   EXPECT_THAT(Error(Spec("  trials: 3\n  sampler: cmaes\n")).message(),
-              HasSubstr("study.sampler: line 12: unknown 'cmaes' (one of tpe, random)"));
+              HasSubstr("study.sampler: line 12: must be tpe or random, got 'cmaes'"));
   EXPECT_THAT(Error(Spec("  trials: 3\n  budget: 9\n")).message(), HasSubstr("budget"));
   EXPECT_THAT(Error(Spec("  trials: 3\n  objective: mean\n")).message(),
-              HasSubstr("unknown 'mean' (one of best_anytime, last_iqm)"));
+              HasSubstr("must be best_anytime or last_iqm, got 'mean'"));
   EXPECT_THAT(Error(Spec("  trials: 3\n  pruner: {percentile: 20}\n")).message(),
               HasSubstr("study.pruner: line 12: missing 'kind'"));
   EXPECT_THAT(Error(Spec("  trials: 3\n  pruner: {kind: median, percentile: 120}\n")).message(),
