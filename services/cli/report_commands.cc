@@ -119,9 +119,13 @@ absl::StatusOr<Plotted> PlotStudy(const GlobalFlags& flags, const v1::SweepResul
 // The report (also as CSV, LaTeX and Markdown beside it), every figure with its data and script,
 // and index.html, in `plot.out`; returns index.html's path.
 absl::StatusOr<std::string> Plot(const GlobalFlags& flags, const PlotFlags& plot) {
+  // A study's figures read the scores only; a sweep's, every context's returns.
+  DCS_ASSIGN_OR_RETURN(const v1::GetSweepResponse sweep,
+                       GetSweep(CoordinatorAddress(flags), plot.sweep_id, flags.timeout));
   DCS_ASSIGN_OR_RETURN(const v1::SweepResults results,
                        GetSweepResults(CoordinatorAddress(flags), plot.sweep_id,
-                                       /*scores_only=*/false, flags.timeout));
+                                       /*scores_only=*/!sweep.sweep().study_id().empty(),
+                                       flags.timeout));
   DCS_ASSIGN_OR_RETURN(const Plotted plotted, results.study_id().empty()
                                                   ? PlotSweep(results)
                                                   : PlotStudy(flags, results, plot.top));
