@@ -86,7 +86,7 @@ class Step {
       running += trial.state == TrialState::kRunning ? 1 : 0;
     }
     for (int64_t number = static_cast<int64_t>(trials.size());
-         number < spec_.trials && running < spec_.parallel; ++number) {
+         number < spec_.trials && running < spec_.parallel && !cancelled_; ++number) {
       DCS_ASSIGN_OR_RETURN(
           StudyTrial trial,
           store_.AskTrial(sweep_.study_id, absl::StrCat(sweep_.request_id, "/ask/", number), now_));
@@ -95,7 +95,9 @@ class Step {
       running += trial.state == TrialState::kRunning ? 1 : 0;
       trials.push_back(std::move(trial));
     }
-    if (static_cast<int64_t>(trials.size()) < spec_.trials || running > 0) return done_;
+    if (static_cast<int64_t>(trials.size()) < spec_.trials || running > 0 || cancelled_) {
+      return done_;
+    }
 
     for (StudyTrial* trial : Best(trials, spec_.retrain_top_k)) {
       DCS_RETURN_IF_ERROR(Queue(*trial, /*retrain=*/true));
@@ -143,17 +145,23 @@ class Step {
     }
     if (!config.ok()) return Tell(trial, TrialState::kFailed, kNaN);
     const run::SweepTrial& base = spec_.sweep.trials.front();
-    DCS_ASSIGN_OR_RETURN(
-        const std::vector<RunRecord> runs,
+    absl::StatusOr<std::vector<RunRecord>> runs =
         store_.AddSweepTrial(sweep_.id,
                              {.condition = condition,
                               .family = base.family,
                               .observe = std::string(NameOf(env::kObserveModeNames, base.observe)),
                               .study_trial = trial.number,
                               .retrain = retrain},
-                             submissions, now_));
-    for (size_t i = 0; i < runs.size() && i < requests.size(); ++i) {
-      requests[i].dir = RunDirectory(data_dir_, runs[i].id);
+                             submissions, now_);
+    if (absl::IsFailedPrecondition(runs.status()) && !retrain) {
+      // The sweep was cancelled since this step read it: the trial asked meanwhile fails, as
+      // the cancel failed the others, and the step asks no more.
+      cancelled_ = true;
+      return Tell(trial, TrialState::kFailed, kNaN);
+    }
+    if (!runs.ok()) return runs.status();
+    for (size_t i = 0; i < runs->size() && i < requests.size(); ++i) {
+      requests[i].dir = RunDirectory(data_dir_, (*runs)[i].id);
       DCS_RETURN_IF_ERROR(run::CreateRunDirectory(requests[i]));
     }
     return absl::OkStatus();
@@ -247,6 +255,7 @@ class Step {
   const StudySweepSpec& spec_;
   const absl::Time now_;
   StudySweepStep done_;
+  bool cancelled_ = false;  // found cancelled while it stepped
 };
 
 }  // namespace

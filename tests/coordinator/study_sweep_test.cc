@@ -255,6 +255,14 @@ TEST_F(StudySweepTest, CancellingTheSweepFailsItsRunningTrialsAndClosesIt) {
   EXPECT_TRUE(open->empty());
   EXPECT_EQ(store_->RetrySweep(sweep.id, kNow).status().code(),
             absl::StatusCode::kFailedPrecondition);
+
+  // A step that read the sweep before the cancel asks for a trial it cannot queue: it fails too,
+  // the step asks no more, and no trial is left running.
+  absl::StatusOr<StudySweepStep> late =
+      AdvanceStudySweep(*store_, Path("data"), *logs_, sweep, spec_, kNow);
+  ASSERT_TRUE(late.ok()) << late.status();
+  EXPECT_EQ(late->asked, 1);
+  for (const StudyTrial& trial : Trials(sweep)) EXPECT_EQ(trial.state, TrialState::kFailed);
 }
 
 TEST_F(StudySweepTest, TheMedianPrunerStopsATrialBehindAtAStageBoundary) {
