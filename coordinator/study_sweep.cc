@@ -68,11 +68,11 @@ class Step {
         queued[{*trial.study_trial, trial.retrain}].index = static_cast<int>(i);
       }
     }
+    std::map<int, std::vector<RunRecord>> runs_of;  // sweep trial index -> its runs
     for (const RunRecord& run : runs) {
-      for (auto& [key, trial] : queued) {
-        if (run.trial == trial.index) trial.runs.push_back(run);
-      }
+      if (run.trial.has_value()) runs_of[*run.trial].push_back(run);
     }
+    for (auto& [key, trial] : queued) trial.runs = std::move(runs_of[trial.index]);
 
     int running = 0;
     for (StudyTrial& trial : trials) {

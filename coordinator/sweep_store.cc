@@ -63,6 +63,20 @@ absl::StatusOr<SweepRecord> FindSweep(SQLite::Database& db, absl::string_view sw
   return sweep;
 }
 
+// Every sweep matching `where` (an SQL condition on the sweeps table), oldest first.
+absl::StatusOr<std::vector<SweepRecord>> FindSweeps(SQLite::Database& db,
+                                                    absl::string_view where) {
+  std::vector<int64_t> numbers;
+  SQLite::Statement query(
+      db, absl::StrCat("SELECT number FROM sweeps WHERE ", where, " ORDER BY number"));
+  while (query.executeStep()) numbers.push_back(query.getColumn(0).getInt64());
+  std::vector<SweepRecord> sweeps;
+  for (int64_t number : numbers) {
+    DCS_ASSIGN_OR_RETURN(sweeps.emplace_back(), FindSweep(db, SweepId(number)));
+  }
+  return sweeps;
+}
+
 // The runs of sweep `number` in `state`.
 std::vector<RunRecord> SweepRunsIn(SQLite::Database& db, int64_t number, RunState state) {
   return FindRuns(db, absl::StrCat("sweep = ? AND state = '", NameOf(kRunStateNames, state), "'"),
@@ -197,16 +211,7 @@ absl::Status RunStore::CloseSweep(absl::string_view sweep_id, absl::Time now) {
 }
 
 absl::StatusOr<std::vector<SweepRecord>> RunStore::ListOpenSweeps() {
-  return Transaction([&]() -> absl::StatusOr<std::vector<SweepRecord>> {
-    std::vector<int64_t> numbers;
-    SQLite::Statement query(*db_, "SELECT number FROM sweeps WHERE open = 1 ORDER BY number");
-    while (query.executeStep()) numbers.push_back(query.getColumn(0).getInt64());
-    std::vector<SweepRecord> sweeps;
-    for (int64_t number : numbers) {
-      DCS_ASSIGN_OR_RETURN(sweeps.emplace_back(), FindSweep(*db_, SweepId(number)));
-    }
-    return sweeps;
-  });
+  return Transaction([&] { return FindSweeps(*db_, "open = 1"); });
 }
 
 absl::StatusOr<SweepRecord> RunStore::GetSweep(absl::string_view sweep_id) {
@@ -214,16 +219,7 @@ absl::StatusOr<SweepRecord> RunStore::GetSweep(absl::string_view sweep_id) {
 }
 
 absl::StatusOr<std::vector<SweepRecord>> RunStore::ListSweeps() {
-  return Transaction([&]() -> absl::StatusOr<std::vector<SweepRecord>> {
-    std::vector<int64_t> numbers;
-    SQLite::Statement query(*db_, "SELECT number FROM sweeps ORDER BY number");
-    while (query.executeStep()) numbers.push_back(query.getColumn(0).getInt64());
-    std::vector<SweepRecord> sweeps;
-    for (int64_t number : numbers) {
-      DCS_ASSIGN_OR_RETURN(sweeps.emplace_back(), FindSweep(*db_, SweepId(number)));
-    }
-    return sweeps;
-  });
+  return Transaction([&] { return FindSweeps(*db_, "1"); });
 }
 
 absl::StatusOr<std::vector<RunRecord>> RunStore::ListSweepRuns(absl::string_view sweep_id) {
