@@ -282,8 +282,16 @@ absl::StatusOr<std::optional<LearnerLease>> RunStore::AcquireRun(absl::string_vi
     const int64_t epoch =
         Grant(*db_, number, kLearnerSlot, holder, address, now + options_.lease_duration);
     DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(*db_, RunId(number)));
-    return LearnerLease{.key = {.run_id = run.id, .slot = kLearnerSlot, .epoch = epoch},
-                        .run = std::move(run)};
+    LearnerLease lease{.key = {.run_id = run.id, .slot = kLearnerSlot, .epoch = epoch},
+                       .run = std::move(run)};
+    SQLite::Statement trial(*db_, "SELECT t.condition, t.observe FROM runs r JOIN trials t "
+                                  "ON t.sweep = r.sweep AND t.trial = r.trial WHERE r.number = ?");
+    trial.bind(1, number);
+    if (trial.executeStep()) {
+      lease.condition = trial.getColumn(0).getString();
+      lease.observe = trial.getColumn(1).getString();
+    }
+    return lease;
   });
 }
 
@@ -625,6 +633,27 @@ absl::StatusOr<StoreCounts> RunStore::Counts() {
         db_->execAndGet("SELECT count(*) FROM evaluation_jobs j JOIN runs r ON r.number = j.run "
                         "WHERE j.done = 0 AND j.holder = '' AND r.state = 'running'")
             .getInt64();
+    SQLite::Statement sweeps(
+        *db_,
+        "SELECT r.sweep, r.state, count(*), "
+        "sum(CASE WHEN r.state IN ('queued', 'running') "
+        "THEN max(0, r.total_timesteps - r.timesteps) ELSE 0 END) "
+        "FROM runs r JOIN sweeps s ON s.number = r.sweep WHERE s.open != 0 OR EXISTS "
+        "(SELECT 1 FROM runs a WHERE a.sweep = s.number AND a.state IN ('queued', 'running')) "
+        "GROUP BY r.sweep, r.state ORDER BY r.sweep");
+    while (sweeps.executeStep()) {
+      const std::string sweep_id = SweepId(sweeps.getColumn(0).getInt64());
+      if (counts.active_sweeps.empty() || counts.active_sweeps.back().sweep_id != sweep_id) {
+        ActiveSweepCounts& sweep = counts.active_sweeps.emplace_back();
+        sweep.sweep_id = sweep_id;
+        for (const auto& [state, name] : kRunStateNames) sweep.runs_by_state.emplace_back(state, 0);
+      }
+      ActiveSweepCounts& sweep = counts.active_sweeps.back();
+      // The schema's CHECK keeps states to the table's names.
+      const RunState state = *FindByName(kRunStateNames, sweeps.getColumn(1).getString());
+      sweep.runs_by_state[static_cast<int>(state)].second = sweeps.getColumn(2).getInt64();
+      sweep.steps_remaining += sweeps.getColumn(3).getInt64();
+    }
     return counts;
   });
 }

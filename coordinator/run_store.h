@@ -98,6 +98,10 @@ struct LeaseKey {
 struct LearnerLease {
   LeaseKey key;
   RunRecord run;
+  // Its trial's condition and observation mode (TrialRecord), empty for a run alone: what the
+  // learner labels the run's metrics with.
+  std::string condition;
+  std::string observe;
 };
 
 // An env slot leased to an actor, with where the run's learner listens.
@@ -163,11 +167,19 @@ struct CheckpointRecord {
 };
 
 // Counts for metrics.
+// A sweep that has work ahead: runs queued or running, or (a study sweep) trials to add.
+struct ActiveSweepCounts {
+  std::string sweep_id;
+  std::vector<std::pair<RunState, int64_t>> runs_by_state;  // every state, zeros included
+  int64_t steps_remaining = 0;  // environment steps its queued and running runs have left
+};
+
 struct StoreCounts {
   std::vector<std::pair<RunState, int64_t>> runs_by_state;  // every state, zeros included
   int64_t free_learner_leases = 0;  // runs waiting for a learner
   int64_t free_slot_leases = 0;     // slots of running runs waiting for an actor
   int64_t free_evaluation_jobs = 0;  // evaluation jobs of running runs waiting for an actor
+  std::vector<ActiveSweepCounts> active_sweeps;  // in sweep order
 };
 
 // One trial of a sweep: a condition in one observation mode (run/sweep_spec.h), or in a study

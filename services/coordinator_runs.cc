@@ -239,7 +239,7 @@ grpc::ServerWriteReactor<v1::RunFile>* CoordinatorService::GetRunFiles(
     return RunFilesToPieces(files);
   };
   absl::StatusOr<std::vector<v1::RunFile>> pieces = get();
-  CountRefusal(pieces.status());
+  rejected_.Count(pieces.status());
   return new PiecesWriter<v1::RunFile>(std::move(pieces));
 }
 
@@ -261,6 +261,9 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerCon
     response->set_config(lease->run.submission.config);
     response->set_seed(lease->run.submission.seed);
     *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
+    response->set_sweep_id(lease->run.sweep_id);
+    response->set_condition(lease->condition);
+    response->set_observe(lease->observe);
     return absl::OkStatus();
   };
   return Finish(context, acquire());
@@ -329,7 +332,7 @@ grpc::ServerReadReactor<v1::PutCheckpointRequest>* CoordinatorService::PutCheckp
   return new CheckpointReader(
       [this](const coordinator::LeaseKey& key, const run::PackedCheckpoint& checkpoint,
              const v1::EvaluationLog& log) { return StoreCheckpoint(key, checkpoint, log); },
-      [this](const absl::Status& status) { CountRefusal(status); });
+      [this](const absl::Status& status) { rejected_.Count(status); });
 }
 
 grpc::ServerWriteReactor<v1::CheckpointPiece>* CoordinatorService::GetCheckpoint(
@@ -348,7 +351,7 @@ grpc::ServerWriteReactor<v1::CheckpointPiece>* CoordinatorService::GetCheckpoint
   };
   absl::StatusOr<std::vector<v1::CheckpointPiece>> pieces = get();
   // NOT_FOUND is the answer for a run without a checkpoint yet, not a refusal.
-  if (!absl::IsNotFound(pieces.status())) CountRefusal(pieces.status());
+  if (!absl::IsNotFound(pieces.status())) rejected_.Count(pieces.status());
   return new PiecesWriter<v1::CheckpointPiece>(std::move(pieces));
 }
 
@@ -385,7 +388,7 @@ grpc::ServerReadReactor<v1::SubmitEvaluationRequest>* CoordinatorService::Submit
   return new JoiningReader<v1::SubmitEvaluationRequest>(
       PieceJoiner<v1::SubmitEvaluationRequest>(&v1::SubmitEvaluationRequest::mutable_weights,
                                                "the evaluation's policy"),
-      submit, [this](const absl::Status& status) { CountRefusal(status); });
+      submit, [this](const absl::Status& status) { rejected_.Count(status); });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
@@ -424,7 +427,7 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
                            &v1::AcquireEvaluationResponse::mutable_weights);
   };
   absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> messages = acquire();
-  CountRefusal(messages.status());
+  rejected_.Count(messages.status());
   return new PiecesWriter<v1::AcquireEvaluationResponse>(std::move(messages));
 }
 

@@ -44,16 +44,8 @@ CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, Ru
       learner_leases_(LeasesFamily(metrics).Add({{"kind", "run"}})),
       slot_leases_(LeasesFamily(metrics).Add({{"kind", "slot"}})),
       evaluation_leases_(LeasesFamily(metrics).Add({{"kind", "evaluation"}})),
-      rejected_(prometheus::BuildCounter()
-                    .Name("dcs_requests_rejected_total")
-                    .Help("Requests the coordinator refused, by reason (the status code).")
-                    .Register(metrics)) {}
-
-void CoordinatorService::CountRefusal(const absl::Status& status) {
-  if (!status.ok()) {
-    rejected_.Add({{"reason", absl::StatusCodeToString(status.code())}}).Increment();
-  }
-}
+      rejected_(metrics, "dcs_requests_rejected_total",
+                "Requests the coordinator refused, by reason (the status code).") {}
 
 int CoordinatorService::AliveActors() const {
   const std::vector<coordinator::WorkerRecord> workers = registry_.List(absl::Now());
@@ -65,7 +57,7 @@ int CoordinatorService::AliveActors() const {
 
 grpc::ServerUnaryReactor* CoordinatorService::Finish(grpc::CallbackServerContext* context,
                                                      const absl::Status& status) {
-  CountRefusal(status);
+  rejected_.Count(status);
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   reactor->Finish(ToGrpcStatus(status));
   return reactor;

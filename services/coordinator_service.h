@@ -22,6 +22,7 @@
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "run/run_checkpoint.h"
 #include "services/build_info.h"
+#include "services/refusal_counter.h"
 
 namespace dcs::services {
 
@@ -140,8 +141,6 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   // Finishes the call with `status`, counting a refusal under its reason.
   grpc::ServerUnaryReactor* Finish(grpc::CallbackServerContext* context,
                                    const absl::Status& status);
-  // Counts `status` under its reason unless it is OK.
-  void CountRefusal(const absl::Status& status);
   // The actors heartbeating now, who share each evaluation's jobs.
   int AliveActors() const;
   // Stores a checkpoint a learner streamed (PutCheckpoint), with the evaluation log as of it.
@@ -159,7 +158,7 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   prometheus::Counter& learner_leases_;
   prometheus::Counter& slot_leases_;
   prometheus::Counter& evaluation_leases_;
-  prometheus::Family<prometheus::Counter>& rejected_;
+  RefusalCounter rejected_;
 };
 
 }  // namespace dcs::services

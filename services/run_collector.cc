@@ -7,11 +7,15 @@
 namespace dcs::services {
 namespace {
 
-prometheus::ClientMetric Gauge(std::string label, std::string value, double number) {
+prometheus::ClientMetric Gauge(prometheus::ClientMetric::Label label, double number) {
   prometheus::ClientMetric metric;
-  metric.label = {{std::move(label), std::move(value)}};
+  metric.label = {std::move(label)};
   metric.gauge.value = number;
   return metric;
+}
+
+prometheus::ClientMetric::Label StateLabel(coordinator::RunState state) {
+  return {"state", std::string(NameOf(coordinator::kRunStateNames, state))};
 }
 
 }  // namespace
@@ -22,18 +26,35 @@ std::vector<prometheus::MetricFamily> RunCollector::Collect() const {
   prometheus::MetricFamily runs{"dcs_runs", "Runs the coordinator knows, by state.",
                                 prometheus::MetricType::Gauge, {}};
   for (const auto& [state, count] : counts->runs_by_state) {
-    runs.metric.push_back(Gauge("state", std::string(NameOf(coordinator::kRunStateNames, state)),
-                                static_cast<double>(count)));
+    runs.metric.push_back(Gauge(StateLabel(state), static_cast<double>(count)));
   }
   prometheus::MetricFamily queues{
       "dcs_queue_depth",
       "Work waiting: runs for a learner (queue=\"runs\"), env slots and evaluation jobs for "
       "an actor (\"slots\", \"evaluations\").",
       prometheus::MetricType::Gauge,
-      {Gauge("queue", "runs", static_cast<double>(counts->free_learner_leases)),
-       Gauge("queue", "slots", static_cast<double>(counts->free_slot_leases)),
-       Gauge("queue", "evaluations", static_cast<double>(counts->free_evaluation_jobs))}};
-  return {std::move(runs), std::move(queues)};
+      {Gauge({"queue", "runs"}, static_cast<double>(counts->free_learner_leases)),
+       Gauge({"queue", "slots"}, static_cast<double>(counts->free_slot_leases)),
+       Gauge({"queue", "evaluations"}, static_cast<double>(counts->free_evaluation_jobs))}};
+  prometheus::MetricFamily sweep_runs{
+      "dcs_sweep_runs", "Runs of each sweep with work ahead, by state.",
+      prometheus::MetricType::Gauge, {}};
+  prometheus::MetricFamily steps_remaining{
+      "dcs_sweep_steps_remaining",
+      "Environment steps the queued and running runs of each sweep with work ahead have left "
+      "(a study's trials not yet asked are not counted).",
+      prometheus::MetricType::Gauge,
+      {}};
+  for (const coordinator::ActiveSweepCounts& sweep : counts->active_sweeps) {
+    for (const auto& [state, count] : sweep.runs_by_state) {
+      prometheus::ClientMetric metric = Gauge(StateLabel(state), static_cast<double>(count));
+      metric.label.insert(metric.label.begin(), {"sweep_id", sweep.sweep_id});
+      sweep_runs.metric.push_back(std::move(metric));
+    }
+    steps_remaining.metric.push_back(
+        Gauge({"sweep_id", sweep.sweep_id}, static_cast<double>(sweep.steps_remaining)));
+  }
+  return {std::move(runs), std::move(queues), std::move(sweep_runs), std::move(steps_remaining)};
 }
 
 }  // namespace dcs::services

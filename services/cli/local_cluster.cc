@@ -27,6 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kStateFile[] = "cluster.yaml";
+constexpr char kScrapeTargetsFile[] = "prometheus-targets.yml";
 constexpr absl::Duration kPollInterval = absl::Milliseconds(20);
 
 std::string StatePath(const std::string& data_dir) { return (fs::path(data_dir) / kStateFile); }
@@ -64,10 +65,33 @@ absl::Status WriteClusterState(const std::string& data_dir, const ClusterState& 
   return WriteFileAtomically(StatePath(data_dir), absl::StrCat(out.c_str(), "\n"));
 }
 
-// Removes cluster.yaml and the port files: the cluster is no longer running.
+// The processes serving /metrics, as a Prometheus file_sd file: a target group per process
+// labelled with its role as `job` (the executable's name without "dcs-") and its name as
+// `process`. Prometheus rereads the file when it changes.
+absl::Status WriteScrapeTargets(const std::string& data_dir, const ClusterState& state) {
+  YAML::Emitter out;
+  out << YAML::BeginSeq;
+  for (const ClusterProcess& process : state.processes) {
+    if (process.metrics_address.empty()) continue;  // not bound yet
+    out << YAML::BeginMap;
+    out << YAML::Key << "targets" << YAML::Value << YAML::Flow << YAML::BeginSeq
+        << process.metrics_address << YAML::EndSeq;
+    out << YAML::Key << "labels" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "job" << YAML::Value
+        << std::string(absl::StripPrefix(process.executable, "dcs-"));
+    out << YAML::Key << "process" << YAML::Value << process.name;
+    out << YAML::EndMap << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  return WriteFileAtomically((fs::path(data_dir) / kScrapeTargetsFile).string(),
+                             absl::StrCat(out.c_str(), "\n"));
+}
+
+// Removes cluster.yaml, the scrape targets and the port files: the cluster is no longer running.
 void RemoveClusterFiles(const std::string& data_dir, const ClusterState& state) {
   std::error_code ignored;
   fs::remove(StatePath(data_dir), ignored);
+  fs::remove(fs::path(data_dir) / kScrapeTargetsFile, ignored);
   for (const ClusterProcess& process : state.processes) {
     fs::remove(PortFilePath(data_dir, process.name), ignored);
   }
@@ -198,6 +222,7 @@ absl::Status LocalCluster::StartProcess(const std::string& name, const std::stri
   }
   state_.processes.back().grpc_address = absl::StrCat("127.0.0.1:", ports->grpc);
   state_.processes.back().metrics_address = absl::StrCat("127.0.0.1:", ports->metrics);
+  DCS_RETURN_IF_ERROR(WriteScrapeTargets(options_.data_dir, state_));
   return WriteClusterState(options_.data_dir, state_);
 }
 

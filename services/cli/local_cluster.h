@@ -7,6 +7,8 @@
 // Layout of the data directory (./dcs-data by default):
 //   cluster.yaml         the running cluster: supervisor pid, every process's pid and addresses
 //                        (how `dcs status` and `dcs down` find it)
+//   prometheus-targets.yml  every process's /metrics address, a Prometheus file_sd file
+//                        (deploy/prometheus/local.yml scrapes ./dcs-data's)
 //   logs/<name>.log      each process's stdout and stderr
 //   run/<name>.ports     each process's bound ports (--port-file)
 //

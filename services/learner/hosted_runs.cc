@@ -29,6 +29,7 @@ namespace dcs::services {
 struct HostedRuns::Run {
   coordinator::LeaseKey lease;
   std::string config;
+  prometheus::Labels metric_labels;  // run_id, sweep_id, condition, observe
   absl::Time renewed_at;                     // the manager thread's
 
   absl::Mutex mu;
@@ -189,6 +190,10 @@ void HostedRuns::AcquireRun() {
   auto run = std::make_shared<Run>();
   run->lease = *lease;
   run->config = response.config();
+  run->metric_labels = {{"run_id", run->lease.run_id},
+                        {"sweep_id", response.sweep_id()},
+                        {"condition", response.condition()},
+                        {"observe", response.observe()}};
   run->renewed_at = absl::Now();
   {
     absl::MutexLock lock(&mu_);
@@ -309,7 +314,7 @@ void HostedRuns::Train(Run& run) {
     if (run.lost) run.host->Stop();
   }
   learner::RunHost& host = **loaded;
-  RunMetrics metrics(metric_families_, run.lease.run_id);
+  RunMetrics metrics(metric_families_, run.metric_labels);
   while (true) {
     const absl::Time start = absl::Now();
     absl::StatusOr<learner::HostStep> step = host.Step();

@@ -30,10 +30,8 @@ LearnerService::LearnerService(HostedRuns& runs, prometheus::Registry& metrics)
                     .Help("Slots' rollouts taken from actors (retries not counted).")
                     .Register(metrics)
                     .Add({})),
-      rejected_(prometheus::BuildCounter()
-                    .Name("dcs_rollouts_rejected_total")
-                    .Help("Slots' rollouts refused, by reason (the status code).")
-                    .Register(metrics)) {}
+      rejected_(metrics, "dcs_rollouts_rejected_total",
+                "Slots' rollouts refused, by reason (the status code).") {}
 
 grpc::Status LearnerService::GetSlotWork(grpc::ServerContext* /*context*/,
                                          const v1::GetSlotWorkRequest* request,
@@ -103,9 +101,7 @@ grpc::Status LearnerService::PushRollout(grpc::ServerContext* /*context*/,
     return absl::OkStatus();
   };
   const absl::Status status = push();
-  if (!status.ok()) {
-    rejected_.Add({{"reason", absl::StatusCodeToString(status.code())}}).Increment();
-  }
+  rejected_.Count(status);
   return ToGrpcStatus(status);
 }
 

@@ -20,6 +20,7 @@
 #include "absl/time/time.h"
 #include "dcs/v1/learner_service.grpc.pb.h"
 #include "services/learner/hosted_runs.h"
+#include "services/refusal_counter.h"
 
 namespace dcs::services {
 
@@ -39,7 +40,7 @@ class LearnerService final : public v1::LearnerService::Service {
   HostedRuns& runs_;
   prometheus::Histogram& rollout_bytes_;
   prometheus::Counter& received_;
-  prometheus::Family<prometheus::Counter>& rejected_;
+  RefusalCounter rejected_;
 };
 
 }  // namespace dcs::services

@@ -1,9 +1,11 @@
 // Copyright 2026 The DCS Authors.
 #include "services/learner/run_metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 
+#include "absl/strings/str_format.h"
 #include "actor/split.h"
 #include "common/enum_names.h"
 
@@ -34,6 +36,9 @@ struct RunMetrics::Families {
         evaluation_return(Gauge(registry, "dcs_evaluation_return",
                                 "Mean evaluation return of the latest evaluation, per run and "
                                 "split.")),
+        evaluation_context_return(Gauge(registry, "dcs_evaluation_context_return",
+                                        "Mean evaluation return of the latest evaluation, per "
+                                        "run, split and context (the varied feature's value).")),
         update_seconds(prometheus::BuildHistogram()
                            .Name("dcs_learner_update_seconds")
                            .Help("Wall seconds of one PPO update (with evaluations due).")
@@ -60,6 +65,7 @@ struct RunMetrics::Families {
   prometheus::Family<prometheus::Gauge>& clip_fraction;
   prometheus::Family<prometheus::Gauge>& explained_variance;
   prometheus::Family<prometheus::Gauge>& evaluation_return;
+  prometheus::Family<prometheus::Gauge>& evaluation_context_return;
   prometheus::Family<prometheus::Histogram>& update_seconds;
   prometheus::Histogram& update_histogram =
       update_seconds.Add({}, prometheus::Histogram::BucketBoundaries{
@@ -70,49 +76,68 @@ std::shared_ptr<RunMetrics::Families> RunMetrics::Register(prometheus::Registry&
   return std::make_shared<Families>(registry);
 }
 
-RunMetrics::RunMetrics(std::shared_ptr<Families> families, std::string run_id)
-    : families_(std::move(families)), run_id_(std::move(run_id)) {
+RunMetrics::RunMetrics(std::shared_ptr<Families> families, prometheus::Labels labels)
+    : families_(std::move(families)), labels_(std::move(labels)) {
   // Known series start at zero (spec/operations.md §2.1).
-  families_->env_steps.Add({{"run_id", run_id_}});
-  families_->episodes.Add({{"run_id", run_id_}});
+  families_->env_steps.Add(labels_);
+  families_->episodes.Add(labels_);
 }
 
 RunMetrics::~RunMetrics() {
-  const prometheus::Labels labels{{"run_id", run_id_}};
-  families_->env_steps.Remove(&families_->env_steps.Add(labels));
-  families_->episodes.Remove(&families_->episodes.Add(labels));
+  families_->env_steps.Remove(&families_->env_steps.Add(labels_));
+  families_->episodes.Remove(&families_->episodes.Add(labels_));
   for (prometheus::Family<prometheus::Gauge>* family :
        {&families_->episode_return, &families_->steps_per_second, &families_->policy_version,
         &families_->policy_loss, &families_->value_loss, &families_->entropy_loss,
         &families_->approx_kl, &families_->clip_fraction, &families_->explained_variance}) {
-    family->Remove(&family->Add(labels));
+    family->Remove(&family->Add(labels_));
   }
   for (const auto& [split, name] : actor::kSplitNames) {
     families_->evaluation_return.Remove(
-        &families_->evaluation_return.Add({{"run_id", run_id_}, {"split", std::string(name)}}));
+        &families_->evaluation_return.Add(With({{"split", std::string(name)}})));
   }
+  for (const prometheus::Labels& labels : context_labels_) {
+    families_->evaluation_context_return.Remove(
+        &families_->evaluation_context_return.Add(labels));
+  }
+}
+
+prometheus::Labels RunMetrics::With(
+    std::initializer_list<prometheus::Labels::value_type> extra) const {
+  prometheus::Labels labels = labels_;
+  labels.insert(extra);
+  return labels;
 }
 
 void RunMetrics::Update(const learner::TrainingProgress& progress, int64_t steps,
                         int64_t episodes, double seconds) {
-  const prometheus::Labels labels{{"run_id", run_id_}};
-  families_->env_steps.Add(labels).Increment(static_cast<double>(steps));
-  families_->episodes.Add(labels).Increment(static_cast<double>(episodes));
+  families_->env_steps.Add(labels_).Increment(static_cast<double>(steps));
+  families_->episodes.Add(labels_).Increment(static_cast<double>(episodes));
   if (!std::isnan(progress.recent_return)) {
-    families_->episode_return.Add(labels).Set(progress.recent_return);
+    families_->episode_return.Add(labels_).Set(progress.recent_return);
   }
-  families_->steps_per_second.Add(labels).Set(progress.steps_per_second);
-  families_->policy_version.Add(labels).Set(static_cast<double>(progress.updates));
-  families_->policy_loss.Add(labels).Set(progress.update.policy_loss);
-  families_->value_loss.Add(labels).Set(progress.update.value_loss);
-  families_->entropy_loss.Add(labels).Set(progress.update.entropy_loss);
-  families_->approx_kl.Add(labels).Set(progress.update.approx_kl);
-  families_->clip_fraction.Add(labels).Set(progress.update.clip_fraction);
-  families_->explained_variance.Add(labels).Set(progress.update.explained_variance);
+  families_->steps_per_second.Add(labels_).Set(progress.steps_per_second);
+  families_->policy_version.Add(labels_).Set(static_cast<double>(progress.updates));
+  families_->policy_loss.Add(labels_).Set(progress.update.policy_loss);
+  families_->value_loss.Add(labels_).Set(progress.update.value_loss);
+  families_->entropy_loss.Add(labels_).Set(progress.update.entropy_loss);
+  families_->approx_kl.Add(labels_).Set(progress.update.approx_kl);
+  families_->clip_fraction.Add(labels_).Set(progress.update.clip_fraction);
+  families_->explained_variance.Add(labels_).Set(progress.update.explained_variance);
   if (progress.evaluation != nullptr) {
     for (const auto& [split, name] : actor::kSplitNames) {
-      families_->evaluation_return.Add({{"run_id", run_id_}, {"split", std::string(name)}})
+      families_->evaluation_return.Add(With({{"split", std::string(name)}}))
           .Set(progress.evaluation->split_mean[static_cast<int>(split)]);
+    }
+    for (const actor::ContextResult& context : progress.evaluation->contexts) {
+      prometheus::Labels labels =
+          With({{"split", std::string(NameOf(actor::kSplitNames, context.context.split))},
+                {"context", absl::StrFormat("%g", context.context.value)}});
+      families_->evaluation_context_return.Add(labels).Set(context.mean);
+      if (std::find(context_labels_.begin(), context_labels_.end(), labels) ==
+          context_labels_.end()) {
+        context_labels_.push_back(std::move(labels));
+      }
     }
   }
   families_->update_histogram.Observe(seconds);

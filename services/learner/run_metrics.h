@@ -2,9 +2,11 @@
 #ifndef DCS_SERVICES_LEARNER_RUN_METRICS_H_
 #define DCS_SERVICES_LEARNER_RUN_METRICS_H_
 
-// A learner's training metrics, one series per hosted run (label run_id, bounded by
-// --max-runs; a run's series are removed when it leaves the learner). Names and label rules:
-// spec/operations.md §2. Thread-safe (prometheus-cpp metrics are).
+// A learner's training metrics, one series per hosted run (bounded by --max-runs; a run's
+// series are removed when it leaves the learner), labelled with the run's run_id, sweep_id,
+// condition and observe (the last three empty for a run alone), so that dashboards filter by
+// sweep and condition. Names and label rules: spec/operations.md §2. Thread-compatible: the
+// run's thread updates it while scrapes read its series (prometheus-cpp metrics allow that).
 //
 //   dcs_env_steps_total, dcs_episodes_total          counters
 //   dcs_episode_return_mean                          the last 100 training episodes
@@ -12,6 +14,8 @@
 //   dcs_policy_loss, dcs_value_loss, dcs_entropy_loss, dcs_approx_kl, dcs_clip_fraction,
 //   dcs_explained_variance                           of the latest update
 //   dcs_evaluation_return{split}                     the latest evaluation's split means
+//   dcs_evaluation_context_return{split, context}    its per-context means (context: the
+//                                                    varied feature's value)
 //   dcs_learner_update_seconds                       histogram, no run label
 
 #include <prometheus/counter.h>
@@ -19,8 +23,9 @@
 #include <prometheus/histogram.h>
 #include <prometheus/registry.h>
 
+#include <initializer_list>
 #include <memory>
-#include <string>
+#include <vector>
 
 #include "learner/training_run.h"
 
@@ -32,8 +37,8 @@ class RunMetrics {
   struct Families;
   static std::shared_ptr<Families> Register(prometheus::Registry& registry);
 
-  // Series for run `run_id`.
-  RunMetrics(std::shared_ptr<Families> families, std::string run_id);
+  // Series for the run labelled `labels` (run_id, sweep_id, condition, observe).
+  RunMetrics(std::shared_ptr<Families> families, prometheus::Labels labels);
   ~RunMetrics();  // removes the run's series
   RunMetrics(const RunMetrics&) = delete;
   RunMetrics& operator=(const RunMetrics&) = delete;
@@ -43,8 +48,13 @@ class RunMetrics {
               double seconds);
 
  private:
+  // `labels_` with `extra` added.
+  prometheus::Labels With(std::initializer_list<prometheus::Labels::value_type> extra) const;
+
   const std::shared_ptr<Families> families_;
-  const std::string run_id_;
+  const prometheus::Labels labels_;
+  // The per-context series set so far (their labels), removed with the run's.
+  std::vector<prometheus::Labels> context_labels_;
 };
 
 }  // namespace dcs::services

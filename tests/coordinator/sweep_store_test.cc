@@ -20,6 +20,7 @@
 namespace dcs::coordinator {
 namespace {
 
+using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
 const absl::Time kStart = absl::FromUnixSeconds(1'800'000'000);
@@ -162,6 +163,54 @@ TEST_F(SweepStoreTest, CancellingStopsEveryActiveRunAndRetryRequeuesOnlyFailedOn
   EXPECT_EQ(retried->first.state, SweepState::kRunning);
   EXPECT_THAT(store->RetrySweep("sweep-1", kStart).status().message(),
               HasSubstr("no failed run"));
+}
+
+TEST_F(SweepStoreTest, ALearnerLeaseNamesTheRunsTrial) {
+  std::unique_ptr<RunStore> store = Open();
+  ASSERT_TRUE(store->SubmitSweep(Sweep("s", 2, 1), kStart).ok());
+  ASSERT_TRUE(store->SubmitRun({.request_id = "alone",
+                                .config = "env: cartpole\n",
+                                .env = "cartpole",
+                                .total_timesteps = 1000},
+                               kStart)
+                  .ok());
+  std::vector<std::pair<std::string, std::string>> trials;
+  for (int i = 0; i < 3; ++i) {
+    absl::StatusOr<std::optional<LearnerLease>> lease = store->AcquireRun("L", "a", "N", kStart);
+    ASSERT_TRUE(lease.ok() && lease->has_value()) << lease.status();
+    trials.emplace_back((*lease)->condition, (*lease)->observe);
+  }
+  // Fair queueing leases the run alone second.
+  EXPECT_THAT(trials, ElementsAre(std::pair("condition-0", "none"), std::pair("", ""),
+                                  std::pair("condition-1", "none")));
+}
+
+TEST_F(SweepStoreTest, CountsOnlySweepsWithWorkAhead) {
+  std::unique_ptr<RunStore> store = Open();
+  ASSERT_TRUE(store->SubmitSweep(Sweep("done", 1, 1), kStart).ok());  // run-1
+  ASSERT_TRUE(store->SubmitSweep(Sweep("busy", 1, 3), kStart).ok());  // runs 2 to 4
+  absl::StatusOr<std::optional<LearnerLease>> done = store->AcquireRun("L", "a", "N", kStart);
+  ASSERT_TRUE(done.ok() && done->has_value());
+  ASSERT_EQ((*done)->key.run_id, "run-1");
+  ASSERT_TRUE(store->FinishRun((*done)->key, RunState::kCompleted, "", kStart).ok());
+  absl::StatusOr<std::optional<LearnerLease>> running = store->AcquireRun("L", "a", "N", kStart);
+  ASSERT_TRUE(running.ok() && running->has_value());
+  ASSERT_EQ((*running)->key.run_id, "run-2");
+  ASSERT_TRUE(store->ReportProgress((*running)->key, {.timesteps = 400}, kStart).ok());
+
+  absl::StatusOr<StoreCounts> counts = store->Counts();
+  ASSERT_TRUE(counts.ok()) << counts.status();
+  ASSERT_EQ(counts->active_sweeps.size(), 1u);
+  const ActiveSweepCounts& busy = counts->active_sweeps[0];
+  EXPECT_EQ(busy.sweep_id, "sweep-2");
+  EXPECT_THAT(busy.runs_by_state,
+              ElementsAre(std::pair(RunState::kQueued, 2), std::pair(RunState::kRunning, 1),
+                          std::pair(RunState::kCompleted, 0), std::pair(RunState::kFailed, 0),
+                          std::pair(RunState::kCancelled, 0)));
+  EXPECT_EQ(busy.steps_remaining, 2 * 1000 + 600);
+
+  ASSERT_TRUE(store->CancelSweep("sweep-2", kStart).ok());
+  EXPECT_THAT(store->Counts()->active_sweeps, ::testing::IsEmpty());
 }
 
 TEST_F(SweepStoreTest, UnknownSweepsAreNotFound) {

@@ -30,7 +30,6 @@ using services::cli::ClusterProcess;
 using services::cli::LocalCluster;
 using dcs::testing::HttpGet;
 using dcs::testing::MakeTempDir;
-using dcs::testing::PickFreePort;
 using ::testing::UnorderedElementsAre;
 
 std::unique_ptr<LocalCluster> StartCluster() {
@@ -124,56 +123,6 @@ TEST(ClusterTest, EveryProcessExportsItsMetricsAndPassesPromtool) {
         RunProgram("/bin/sh", {"-c", absl::StrCat("promtool check metrics < ", file)});
     EXPECT_EQ(lint.exit_code, 0) << lint.output;
   }
-}
-
-TEST(ClusterTest, ARealPrometheusServerScrapesEveryProcess) {
-  std::unique_ptr<LocalCluster> cluster = StartCluster();
-  ASSERT_NE(cluster, nullptr);
-  const std::string dir = MakeTempDir();
-  std::string targets;
-  for (const ClusterProcess& process : cluster->state().processes) {
-    absl::StrAppend(&targets, targets.empty() ? "" : ", ", "'", process.metrics_address, "'");
-  }
-  ASSERT_TRUE(WriteFileAtomically(absl::StrCat(dir, "/prometheus.yml"),
-                                  absl::StrCat("global:\n  scrape_interval: 1s\n"
-                                               "scrape_configs:\n  - job_name: dcs\n"
-                                               "    static_configs:\n      - targets: [",
-                                               targets, "]\n"))
-                  .ok());
-  const std::string web = absl::StrCat("127.0.0.1:", PickFreePort());
-  absl::StatusOr<services::cli::ChildProcess> prometheus = services::cli::ChildProcess::Start(
-      {.path = "/usr/bin/prometheus",
-       .args = {absl::StrCat("--config.file=", dir, "/prometheus.yml"),
-                absl::StrCat("--storage.tsdb.path=", dir, "/data"),
-                absl::StrCat("--web.listen-address=", web)},
-       .output_path = absl::StrCat(dir, "/prometheus.log")});
-  ASSERT_TRUE(prometheus.ok()) << prometheus.status();
-
-  // Every target up, then the coordinator's gauges queryable through PromQL.
-  const std::string query = absl::StrCat(
-      "http://", web, "/api/v1/query?query=sum%20by%20(role)%20(dcs_workers%7Bstate%3D%22alive%22%7D)");
-  absl::StatusOr<std::string> targets_json, result;
-  const absl::Time deadline = absl::Now() + absl::Seconds(60);
-  bool all_up = false;
-  while (absl::Now() < deadline) {
-    targets_json = HttpGet(absl::StrCat("http://", web, "/api/v1/targets"));
-    if (targets_json.ok() && !absl::StrContains(*targets_json, "\"health\":\"down\"") &&
-        !absl::StrContains(*targets_json, "\"health\":\"unknown\"") &&
-        absl::StrContains(*targets_json, "\"health\":\"up\"")) {
-      result = HttpGet(query);
-      if (result.ok() && absl::StrContains(*result, "\"role\":\"actor\"") &&
-          absl::StrContains(*result, "\"role\":\"learner\"")) {
-        all_up = true;
-        break;
-      }
-    }
-    absl::SleepFor(absl::Milliseconds(250));
-  }
-  ASSERT_TRUE(all_up) << (targets_json.ok() ? *targets_json : targets_json.status().ToString());
-  EXPECT_THAT(*result, ::testing::ContainsRegex("\"role\":\"actor\"\\},\"value\":\\[[0-9.]+,\"1\"\\]"));
-  EXPECT_THAT(*result,
-              ::testing::ContainsRegex("\"role\":\"learner\"\\},\"value\":\\[[0-9.]+,\"1\"\\]"));
-  prometheus->Stop(absl::Seconds(5));
 }
 
 TEST(ClusterTest, SigtermStopsEveryProcessCleanlyWithinFiveSeconds) {

@@ -110,6 +110,7 @@ TEST(DcsCliTest, UpDetachedThenStatusThenDown) {
   EXPECT_EQ(down.exit_code, 0) << down.output;
   ExpectAllStopped(*state);
   EXPECT_FALSE(std::filesystem::exists(absl::StrCat(data_dir, "/cluster.yaml")));
+  EXPECT_FALSE(std::filesystem::exists(absl::StrCat(data_dir, "/prometheus-targets.yml")));
 }
 
 TEST(DcsCliTest, CtrlCStopsTheForegroundClusterLeavingNothingBehind) {

@@ -67,4 +67,11 @@ absl::StatusOr<std::string> HttpGet(const std::string& url, std::string* headers
   return body;
 }
 
+std::string UrlEncode(const std::string& text) {
+  char* escaped = curl_easy_escape(nullptr, text.data(), static_cast<int>(text.size()));
+  std::string result(escaped);
+  curl_free(escaped);
+  return result;
+}
+
 }  // namespace dcs::testing

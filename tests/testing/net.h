@@ -37,6 +37,9 @@ int PickFreePort();
 // failure ("" if no response arrived).
 absl::StatusOr<std::string> HttpGet(const std::string& url, std::string* headers = nullptr);
 
+// `text` percent-encoded for a URL's query string (libcurl's curl_easy_escape).
+std::string UrlEncode(const std::string& text);
+
 }  // namespace dcs::testing
 
 #endif  // DCS_TESTS_TESTING_NET_H_
