@@ -515,8 +515,10 @@ TEST(DataPlaneBadInputTest, RefusesEachBadRolloutNamingItAndTakesTheGoodOne) {
   // series, from zero.
   absl::StatusOr<std::string> metrics = testing::HttpGet(cluster.metrics_url("learner"));
   ASSERT_TRUE(metrics.ok()) << metrics.status();
-  EXPECT_EQ(MetricValue(*metrics, "dcs_env_steps_total{run_id=\"run-1\"}"), 0);
-  EXPECT_EQ(MetricValue(*metrics, "dcs_episodes_total{run_id=\"run-1\"}"), 0);
+  // A run alone: no sweep or condition.
+  constexpr char kRun[] = R"({condition="",observe="",run_id="run-1",sweep_id=""})";
+  EXPECT_EQ(MetricValue(*metrics, absl::StrCat("dcs_env_steps_total", kRun)), 0);
+  EXPECT_EQ(MetricValue(*metrics, absl::StrCat("dcs_episodes_total", kRun)), 0);
   // The shapes and values, the pieces that do not parse, the empty stream and the one gRPC cut
   // short (it looks empty to the learner).
   EXPECT_EQ(MetricValue(*metrics, "dcs_rollouts_rejected_total{reason=\"INVALID_ARGUMENT\"}"), 7);
