@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "services/address.h"
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 
 namespace dcs::services {
@@ -12,6 +13,11 @@ std::string HostOf(absl::string_view address) {
 
 std::string WithPort(absl::string_view address, int port) {
   return absl::StrCat(HostOf(address), ":", port);
+}
+
+std::string JoinHostPort(absl::string_view host, int port) {
+  const bool bare_ipv6 = absl::StrContains(host, ':') && !absl::StartsWith(host, "[");
+  return bare_ipv6 ? absl::StrCat("[", host, "]:", port) : absl::StrCat(host, ":", port);
 }
 
 }  // namespace dcs::services

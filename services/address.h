@@ -17,6 +17,10 @@ std::string HostOf(absl::string_view address);
 // The same host with another port: ("127.0.0.1:0", 41234) -> "127.0.0.1:41234".
 std::string WithPort(absl::string_view address, int port);
 
+// `host` and `port` as an address, a bare IPv6 host bracketed: ("fd00::1", 50052) ->
+// "[fd00::1]:50052" (a pod IP as Kubernetes gives it); ("learner-0", 50052) -> "learner-0:50052".
+std::string JoinHostPort(absl::string_view host, int port);
+
 }  // namespace dcs::services
 
 #endif  // DCS_SERVICES_ADDRESS_H_

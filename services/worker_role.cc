@@ -40,7 +40,7 @@ absl::Status WorkerServiceRole::Start(Server& server, const std::string& listen_
     host = HostOf(listen_address);
     if (host == "0.0.0.0" || host == "[::]" || host.empty()) host = HostName();
   }
-  advertised_address_ = absl::StrCat(host, ":", server.port());
+  advertised_address_ = JoinHostPort(host, server.port());
   coordinator::WorkerInfo info{.role = role_,
                                .address = advertised_address_,
                                .hostname = HostName(),
