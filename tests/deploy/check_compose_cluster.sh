@@ -1,0 +1,167 @@
+#!/usr/bin/env bash
+# Starts docker-compose.yml's cluster for real and runs a small sweep through it: the image built
+# from ./Dockerfile, the coordinator, a learner and two actors, Prometheus scraping all four;
+# the sweep is submitted and watched to its end with the image's own `dcs`, then Prometheus must
+# see every process up and the learner's steps. Grafana is left out (not packaged in Debian, and
+# no registry may be reachable); so is any image that cannot be found locally or pulled:
+# Prometheus then runs from a stand-in image of Debian's prometheus package (same flags).
+#
+#   tests/deploy/check_compose_cluster.sh REPO_ROOT
+#
+# Runs only with DCS_CONTAINER_TESTS=1, a container engine that answers (`docker info`) and
+# docker-compose; else exits 77 (skipped). It builds the image: the first time as long as the
+# programs' part of `make build`, then seconds while the sources are unchanged.
+# Uses its own compose project (dcs-check-<pid>) and removes it, volumes included, on exit; the
+# published ports (127.0.0.1:50051 and :9090) must be free.
+set -euo pipefail
+
+root=${1:?usage: check_compose_cluster.sh REPO_ROOT}
+cd "$root"
+
+step() { echo "check_compose_cluster: $*"; }
+fail() {
+  echo "check_compose_cluster: FAIL: $*" >&2
+  exit 1
+}
+skip() {
+  echo "check_compose_cluster: SKIP: $*"
+  exit 77
+}
+
+[ "${DCS_CONTAINER_TESTS:-0}" = 1 ] \
+  || skip "set DCS_CONTAINER_TESTS=1 to run it (it builds the image: minutes, more the first time)"
+command -v docker >/dev/null 2>&1 || skip "no docker client"
+command -v docker-compose >/dev/null 2>&1 || skip "no docker-compose"
+docker info >/dev/null 2>&1 || skip "no container engine answers (docker info fails)"
+for port in 50051 9090; do
+  if (exec 3<>"/dev/tcp/127.0.0.1/$port") 2>/dev/null; then
+    fail "127.0.0.1:$port is in use; the compose cluster publishes it"
+  fi
+done
+
+work=$(mktemp -d)
+project="dcs-check-$$"
+compose=(docker-compose -p "$project" -f docker-compose.yml -f "$work/override.yml")
+cleanup() {
+  local status=$?
+  if [ "$status" -ne 0 ] && [ -f "$work/override.yml" ]; then
+    "${compose[@]}" ps >&2 || true
+    "${compose[@]}" logs --no-color --tail=20 >&2 || true
+  fi
+  "${compose[@]}" down -v --remove-orphans >/dev/null 2>&1 || true
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+# Prometheus: the pinned image if it is here or can be pulled, else Debian's package.
+prometheus_image=$(docker-compose -f docker-compose.yml config \
+                     | awk '/^  prometheus:/{p=1} p && /image:/{print $2; exit}')
+if docker image inspect "$prometheus_image" >/dev/null 2>&1 \
+   || docker pull -q "$prometheus_image" >/dev/null 2>&1; then
+  step "Prometheus from $prometheus_image"
+else
+  prometheus_image=dcs-check/prometheus-debian:latest
+  step "Prometheus from a stand-in of Debian's prometheus package ($prometheus_image)"
+  mkdir -p "$work/prometheus"
+  cat >"$work/prometheus/Dockerfile" <<'EOF'
+FROM debian:bookworm-slim
+RUN apt-get update \
+ && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends prometheus \
+ && rm -rf /var/lib/apt/lists/* \
+ && install -d -o nobody -g nogroup /prometheus
+USER nobody
+EXPOSE 9090
+ENTRYPOINT ["/usr/bin/prometheus"]
+EOF
+  docker build -q -t "$prometheus_image" "$work/prometheus" >/dev/null \
+    || fail "could not build the Prometheus stand-in image"
+fi
+cat >"$work/override.yml" <<EOF
+services:
+  prometheus:
+    image: $prometheus_image
+EOF
+
+step "building the DCS image (docker-compose build coordinator)"
+"${compose[@]}" build -q coordinator >/dev/null || fail "docker-compose build coordinator failed"
+
+step "up: coordinator, learner, 2 actors, prometheus (not grafana)"
+"${compose[@]}" up -d --scale actor=2 coordinator learner actor prometheus \
+  || fail "docker-compose up failed"
+
+# Every DCS container healthy (a worker is healthy once registered with the coordinator).
+deadline=$((SECONDS + 120))
+while :; do
+  states=$(for id in $("${compose[@]}" ps -q coordinator learner actor); do
+             docker inspect -f '{{.Name}} {{.State.Health.Status}}' "$id"
+           done)
+  if [ "$(grep -c ' healthy$' <<<"$states")" -eq 4 ]; then break; fi
+  [ "$SECONDS" -lt "$deadline" ] || fail "not every DCS container became healthy: $states"
+  sleep 2
+done
+step "healthy: $(tr '\n' ' ' <<<"$states")"
+
+dcs() { "${compose[@]}" exec -T coordinator dcs --addr 127.0.0.1:50051 "$@"; }
+status=$(dcs status)
+echo "$status"
+if [ "$(grep -cE '^learner .* alive ' <<<"$status")" -ne 1 ] \
+   || [ "$(grep -cE '^actor .* alive ' <<<"$status")" -ne 2 ]; then
+  fail "dcs status does not list 1 learner and 2 actors alive"
+fi
+
+# A small sweep: two conditions, two seeds, runs of 1536 steps (tests/integration/sweep_test.cc).
+"${compose[@]}" exec -T coordinator sh -c 'cat > /tmp/small.yaml' <<'EOF'
+name: small
+seeds: 2
+observe: [none]
+env: cartpole
+total_timesteps: 1536
+feature: length
+training_range: [0.35, 0.75]
+pool: {size: 3}
+evaluation: {freq: 512, episodes: 2, contexts: {id: [0.5], ood_low: [0.1], ood_high: [1.0]}}
+ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
+conditions:
+  - name: static
+  - schedule: {family: sinusoidal, amplitude_frac: 0.5, period: 40}
+EOF
+sweep=$(dcs submit /tmp/small.yaml) || fail "dcs submit failed: $sweep"
+step "submitted $sweep; watching it"
+timeout 600 "${compose[@]}" exec -T coordinator dcs --addr 127.0.0.1:50051 watch "$sweep" \
+  || fail "dcs watch $sweep did not end with the sweep completed"
+dcs report "$sweep" || fail "dcs report $sweep failed"
+
+# Prometheus scrapes all four processes (the actors found through Docker's DNS).
+query() {
+  python3 -c 'import sys, urllib.parse, urllib.request
+url = "http://127.0.0.1:9090/api/v1/query?" + urllib.parse.urlencode({"query": sys.argv[1]})
+print(urllib.request.urlopen(url, timeout=5).read().decode())' "$1"
+}
+deadline=$((SECONDS + 60))
+while :; do
+  up=$(query 'sum by (job) (up)' || true)
+  if grep -q '"job":"coordinator"},"value":\[[0-9.]*,"1"\]' <<<"$up" \
+     && grep -q '"job":"learner"},"value":\[[0-9.]*,"1"\]' <<<"$up" \
+     && grep -q '"job":"actor"},"value":\[[0-9.]*,"2"\]' <<<"$up"; then
+    break
+  fi
+  [ "$SECONDS" -lt "$deadline" ] || fail "Prometheus does not see every process up: $up"
+  sleep 2
+done
+step "Prometheus: up by job: $up"
+# The runs' own series end with them (a 4-run sweep of 1536 steps lasts a few seconds); what
+# stays: the actors' step counters (4 runs x 1536 steps) and the coordinator's runs by state,
+# through the recording rule of deploy/prometheus/rules.yml.
+deadline=$((SECONDS + 30))
+while :; do
+  steps=$(query 'sum(dcs_actor_env_steps_total) >= 6144' || true)
+  completed=$(query 'state:dcs_runs:sum{state="completed"} == 4' || true)
+  if grep -q '"result":\[{' <<<"$steps" && grep -q '"result":\[{' <<<"$completed"; then break; fi
+  [ "$SECONDS" -lt "$deadline" ] \
+    || fail "Prometheus lacks the sweep's steps or runs: $steps $completed"
+  sleep 2
+done
+step "Prometheus: sum(dcs_actor_env_steps_total) >= 6144: $steps"
+step "Prometheus: state:dcs_runs:sum{state=\"completed\"} == 4: $completed"
+
+step "the composed cluster ran a sweep"
