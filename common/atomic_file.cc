@@ -44,9 +44,10 @@ absl::Status WriteAll(int fd, absl::string_view contents, const std::string& pat
 
 }  // namespace
 
-absl::Status WriteFileAtomically(const std::string& path, absl::string_view contents) {
+absl::Status WriteFileAtomically(const std::string& path, absl::string_view contents,
+                                 mode_t mode) {
   const std::string temporary = absl::StrCat(path, ".tmp.", ::getpid());
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, mode);
   if (fd < 0) return ErrnoError(errno, "cannot create", temporary);
   absl::Status status = WriteAll(fd, contents, temporary);
   if (::close(fd) != 0 && status.ok()) status = ErrnoError(errno, "cannot close", temporary);

@@ -6,7 +6,10 @@
 // temporary file in the same directory, fsync it, rename it over the target, fsync the
 // directory. Thread-safe for distinct paths.
 
+#include <sys/types.h>
+
 #include <string>
+
 #include "absl/strings/string_view.h"
 
 #include "absl/status/status.h"
@@ -14,10 +17,12 @@
 
 namespace dcs {
 
-// Replaces `path` with `contents`. On failure (a full disk, a missing directory) the old file
-// is untouched and the error names the path and the reason: RESOURCE_EXHAUSTED for a full
-// disk or quota, NOT_FOUND for a missing directory, PERMISSION_DENIED, else INTERNAL.
-absl::Status WriteFileAtomically(const std::string& path, absl::string_view contents);
+// Replaces `path` with `contents`, created with permissions `mode` (less the umask; 0600 for
+// a secret). On failure (a full disk, a missing directory) the old file is untouched and the
+// error names the path and the reason: RESOURCE_EXHAUSTED for a full disk or quota, NOT_FOUND
+// for a missing directory, PERMISSION_DENIED, else INTERNAL.
+absl::Status WriteFileAtomically(const std::string& path, absl::string_view contents,
+                                 mode_t mode = 0644);
 
 // The whole contents of `path`. NOT_FOUND if it does not exist.
 absl::StatusOr<std::string> ReadFile(const std::string& path);

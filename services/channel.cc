@@ -2,8 +2,44 @@
 #include "services/channel.h"
 
 #include <grpcpp/grpcpp.h>
+#include <grpcpp/support/client_interceptor.h>
+
+#include <utility>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "services/auth.h"
 
 namespace dcs::services {
+namespace {
+
+// Presents the cluster's token on every call (services/auth.h).
+class TokenInterceptor final : public grpc::experimental::Interceptor {
+ public:
+  explicit TokenInterceptor(const std::string& token) : header_(absl::StrCat("Bearer ", token)) {}
+
+  void Intercept(grpc::experimental::InterceptorBatchMethods* methods) override {
+    if (methods->QueryInterceptionHookPoint(
+            grpc::experimental::InterceptionHookPoints::PRE_SEND_INITIAL_METADATA)) {
+      methods->GetSendInitialMetadata()->emplace("authorization", header_);
+    }
+    methods->Proceed();
+  }
+
+ private:
+  const std::string header_;
+};
+
+class TokenInterceptorFactory final
+    : public grpc::experimental::ClientInterceptorFactoryInterface {
+ public:
+  grpc::experimental::Interceptor* CreateClientInterceptor(
+      grpc::experimental::ClientRpcInfo* /*info*/) override {
+    return new TokenInterceptor(ClusterToken());
+  }
+};
+
+}  // namespace
 
 std::shared_ptr<grpc::Channel> OpenChannel(const std::string& address) {
   grpc::ChannelArguments args;
@@ -13,7 +49,10 @@ std::shared_ptr<grpc::Channel> OpenChannel(const std::string& address) {
   // A sweep's results hold every run's evaluation log, about 10 KB a run without the episodes'
   // returns: gRPC's default 4 MiB stops at a few hundred runs; a sweep may have 10,000.
   args.SetMaxReceiveMessageSize(kMaxReceiveBytes);
-  return grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args);
+  std::vector<std::unique_ptr<grpc::experimental::ClientInterceptorFactoryInterface>> token;
+  if (!ClusterToken().empty()) token.push_back(std::make_unique<TokenInterceptorFactory>());
+  return grpc::experimental::CreateCustomChannelWithInterceptors(
+      address, grpc::InsecureChannelCredentials(), args, std::move(token));
 }
 
 void SetTimeout(grpc::ClientContext& context, absl::Duration timeout) {

@@ -21,8 +21,8 @@ namespace dcs::services {
 inline constexpr int kMaxReceiveBytes = 256 << 20;
 
 // A plaintext channel to `address` (host:port) that pings an idle peer every 30 s, so a dead
-// peer behind NAT is noticed, reconnects at most 2 s apart, and accepts replies up to
-// kMaxReceiveBytes.
+// peer behind NAT is noticed, reconnects at most 2 s apart, accepts replies up to
+// kMaxReceiveBytes, and presents the cluster's token on every call (services/auth.h).
 std::shared_ptr<grpc::Channel> OpenChannel(const std::string& address);
 
 // Sets `timeout` as the deadline of a call: every DCS client call has one.

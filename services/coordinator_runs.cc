@@ -167,6 +167,9 @@ class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointR
 grpc::ServerUnaryReactor* CoordinatorService::SubmitRun(grpc::CallbackServerContext* context,
                                                         const v1::SubmitRunRequest* request,
                                                         v1::SubmitRunResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto submit = [&]() -> absl::Status {
     if (request->request_id().empty()) {
       return absl::InvalidArgumentError("request_id is empty: a client names each submission");
@@ -201,6 +204,9 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitRun(grpc::CallbackServerCont
 grpc::ServerUnaryReactor* CoordinatorService::GetRun(grpc::CallbackServerContext* context,
                                                      const v1::GetRunRequest* request,
                                                      v1::GetRunResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<coordinator::RunRecord> run = runs_.store->GetRun(request->run_id());
   if (run.ok()) *response->mutable_run() = RunToProto(*run);
   return Finish(context, run.status());
@@ -209,6 +215,9 @@ grpc::ServerUnaryReactor* CoordinatorService::GetRun(grpc::CallbackServerContext
 grpc::ServerUnaryReactor* CoordinatorService::ListRuns(grpc::CallbackServerContext* context,
                                                        const v1::ListRunsRequest* /*request*/,
                                                        v1::ListRunsResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<std::vector<coordinator::RunRecord>> runs = runs_.store->ListRuns();
   if (runs.ok()) {
     for (const coordinator::RunRecord& run : *runs) *response->add_runs() = RunToProto(run);
@@ -219,6 +228,9 @@ grpc::ServerUnaryReactor* CoordinatorService::ListRuns(grpc::CallbackServerConte
 grpc::ServerUnaryReactor* CoordinatorService::CancelRun(grpc::CallbackServerContext* context,
                                                         const v1::CancelRunRequest* request,
                                                         v1::CancelRunResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<coordinator::RunRecord> run =
       runs_.store->CancelRun(request->run_id(), absl::Now());
   if (run.ok()) {
@@ -229,7 +241,10 @@ grpc::ServerUnaryReactor* CoordinatorService::CancelRun(grpc::CallbackServerCont
 }
 
 grpc::ServerWriteReactor<v1::RunFile>* CoordinatorService::GetRunFiles(
-    grpc::CallbackServerContext* /*context*/, const v1::GetRunFilesRequest* request) {
+    grpc::CallbackServerContext* context, const v1::GetRunFilesRequest* request) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Refuse<grpc::ServerWriteReactor<v1::RunFile>>(refused);
+  }
   auto get = [&]() -> absl::StatusOr<std::vector<v1::RunFile>> {
     DCS_ASSIGN_OR_RETURN(const coordinator::RunRecord run,
                          runs_.store->GetRun(request->run_id()));
@@ -246,6 +261,9 @@ grpc::ServerWriteReactor<v1::RunFile>* CoordinatorService::GetRunFiles(
 grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerContext* context,
                                                          const v1::AcquireRunRequest* request,
                                                          v1::AcquireRunResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto acquire = [&]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(
         const std::optional<coordinator::LearnerLease> lease,
@@ -272,6 +290,9 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerCon
 grpc::ServerUnaryReactor* CoordinatorService::AcquireSlot(grpc::CallbackServerContext* context,
                                                           const v1::AcquireSlotRequest* request,
                                                           v1::AcquireSlotResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   const std::vector<std::string> except(request->except_run_ids().begin(),
                                         request->except_run_ids().end());
   absl::StatusOr<std::optional<coordinator::SlotLease>> lease =
@@ -292,6 +313,9 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireSlot(grpc::CallbackServerCo
 grpc::ServerUnaryReactor* CoordinatorService::RenewLease(grpc::CallbackServerContext* context,
                                                          const v1::RenewLeaseRequest* request,
                                                          v1::RenewLeaseResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
   if (!key.ok()) return Finish(context, key.status());
   *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
@@ -301,6 +325,9 @@ grpc::ServerUnaryReactor* CoordinatorService::RenewLease(grpc::CallbackServerCon
 grpc::ServerUnaryReactor* CoordinatorService::ReleaseLease(grpc::CallbackServerContext* context,
                                                            const v1::ReleaseLeaseRequest* request,
                                                            v1::ReleaseLeaseResponse* /*response*/) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
   if (!key.ok()) return Finish(context, key.status());
   return Finish(context, runs_.store->ReleaseLease(*key, absl::Now()));
@@ -309,6 +336,9 @@ grpc::ServerUnaryReactor* CoordinatorService::ReleaseLease(grpc::CallbackServerC
 grpc::ServerUnaryReactor* CoordinatorService::ReportProgress(
     grpc::CallbackServerContext* context, const v1::ReportProgressRequest* request,
     v1::ReportProgressResponse* /*response*/) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
   if (!key.ok()) return Finish(context, key.status());
   return Finish(context, runs_.store->ReportProgress(*key, ProgressFromProto(request->progress()),
@@ -328,7 +358,10 @@ absl::Status CoordinatorService::StoreCheckpoint(const coordinator::LeaseKey& ke
 }
 
 grpc::ServerReadReactor<v1::PutCheckpointRequest>* CoordinatorService::PutCheckpoint(
-    grpc::CallbackServerContext* /*context*/, v1::PutCheckpointResponse* /*response*/) {
+    grpc::CallbackServerContext* context, v1::PutCheckpointResponse* /*response*/) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Refuse<grpc::ServerReadReactor<v1::PutCheckpointRequest>>(refused);
+  }
   return new CheckpointReader(
       [this](const coordinator::LeaseKey& key, const run::PackedCheckpoint& checkpoint,
              const v1::EvaluationLog& log) { return StoreCheckpoint(key, checkpoint, log); },
@@ -336,7 +369,10 @@ grpc::ServerReadReactor<v1::PutCheckpointRequest>* CoordinatorService::PutCheckp
 }
 
 grpc::ServerWriteReactor<v1::CheckpointPiece>* CoordinatorService::GetCheckpoint(
-    grpc::CallbackServerContext* /*context*/, const v1::GetCheckpointRequest* request) {
+    grpc::CallbackServerContext* context, const v1::GetCheckpointRequest* request) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Refuse<grpc::ServerWriteReactor<v1::CheckpointPiece>>(refused);
+  }
   auto get = [&]() -> absl::StatusOr<std::vector<v1::CheckpointPiece>> {
     DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
     if (key.slot != coordinator::kLearnerSlot) {
@@ -358,6 +394,9 @@ grpc::ServerWriteReactor<v1::CheckpointPiece>* CoordinatorService::GetCheckpoint
 grpc::ServerUnaryReactor* CoordinatorService::FinishRun(grpc::CallbackServerContext* context,
                                                         const v1::FinishRunRequest* request,
                                                         v1::FinishRunResponse* /*response*/) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto finish = [&]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
     DCS_ASSIGN_OR_RETURN(const coordinator::RunState state, RunStateFromProto(request->state()));
@@ -371,7 +410,10 @@ grpc::ServerUnaryReactor* CoordinatorService::FinishRun(grpc::CallbackServerCont
 }
 
 grpc::ServerReadReactor<v1::SubmitEvaluationRequest>* CoordinatorService::SubmitEvaluation(
-    grpc::CallbackServerContext* /*context*/, v1::SubmitEvaluationResponse* /*response*/) {
+    grpc::CallbackServerContext* context, v1::SubmitEvaluationResponse* /*response*/) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Refuse<grpc::ServerReadReactor<v1::SubmitEvaluationRequest>>(refused);
+  }
   auto submit = [this](PieceJoiner<v1::SubmitEvaluationRequest>& joined) -> absl::Status {
     const v1::SubmitEvaluationRequest& request = joined.header();
     DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request.lease()));
@@ -394,6 +436,9 @@ grpc::ServerReadReactor<v1::SubmitEvaluationRequest>* CoordinatorService::Submit
 grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
     grpc::CallbackServerContext* context, const v1::GetEvaluationRequest* request,
     v1::GetEvaluationResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<coordinator::EvaluationProgress> evaluation =
       runs_.store->GetEvaluation(request->run_id(), request->policy_version());
   if (evaluation.ok()) {
@@ -407,7 +452,10 @@ grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
 }
 
 grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::AcquireEvaluation(
-    grpc::CallbackServerContext* /*context*/, const v1::AcquireEvaluationRequest* request) {
+    grpc::CallbackServerContext* context, const v1::AcquireEvaluationRequest* request) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Refuse<grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>>(refused);
+  }
   auto acquire = [&]() -> absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> {
     DCS_ASSIGN_OR_RETURN(std::optional<coordinator::EvaluationGrant> grant,
                          runs_.store->AcquireEvaluationJobs(request->holder(),
@@ -434,6 +482,9 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
 grpc::ServerUnaryReactor* CoordinatorService::ReportEvaluation(
     grpc::CallbackServerContext* context, const v1::ReportEvaluationRequest* request,
     v1::ReportEvaluationResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto report = [&]() -> absl::Status {
     if (request->results().empty()) {
       return absl::InvalidArgumentError("the report holds no job's result");

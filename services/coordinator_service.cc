@@ -66,6 +66,9 @@ grpc::ServerUnaryReactor* CoordinatorService::Finish(grpc::CallbackServerContext
 grpc::ServerUnaryReactor* CoordinatorService::RegisterWorker(
     grpc::CallbackServerContext* context, const v1::RegisterWorkerRequest* request,
     v1::RegisterWorkerResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<coordinator::WorkerInfo> info = WorkerInfoFromProto(request->worker());
   if (!info.ok()) return Finish(context, info.status());
   const coordinator::WorkerRole role = info->role;
@@ -86,12 +89,18 @@ grpc::ServerUnaryReactor* CoordinatorService::RegisterWorker(
 grpc::ServerUnaryReactor* CoordinatorService::Heartbeat(grpc::CallbackServerContext* context,
                                                         const v1::HeartbeatRequest* request,
                                                         v1::HeartbeatResponse* /*response*/) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   return Finish(context, registry_.Heartbeat(request->worker_id(), absl::Now()));
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::UnregisterWorker(
     grpc::CallbackServerContext* context, const v1::UnregisterWorkerRequest* request,
     v1::UnregisterWorkerResponse* /*response*/) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::Status status = registry_.Unregister(request->worker_id(), absl::Now());
   if (status.ok()) Log(LogLevel::kInfo, "worker left", {{"worker_id", request->worker_id()}});
   return Finish(context, status);
@@ -100,6 +109,9 @@ grpc::ServerUnaryReactor* CoordinatorService::UnregisterWorker(
 grpc::ServerUnaryReactor* CoordinatorService::GetClusterStatus(
     grpc::CallbackServerContext* context, const v1::GetClusterStatusRequest* /*request*/,
     v1::GetClusterStatusResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   *response->mutable_coordinator_build() = build_;
   *response->mutable_coordinator_start_time() = TimeToProto(start_time_);
   for (const coordinator::WorkerRecord& record : registry_.List(absl::Now())) {

@@ -21,7 +21,9 @@
 #include "dcs/v1/evaluation.pb.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "run/run_checkpoint.h"
+#include "services/auth.h"
 #include "services/build_info.h"
+#include "services/grpc_status.h"
 #include "services/refusal_counter.h"
 
 namespace dcs::services {
@@ -141,6 +143,9 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   // Finishes the call with `status`, counting a refusal under its reason.
   grpc::ServerUnaryReactor* Finish(grpc::CallbackServerContext* context,
                                    const absl::Status& status);
+  // A stream refused before it starts (an unauthenticated caller), counted under its reason.
+  template <typename StreamReactor>
+  StreamReactor* Refuse(const absl::Status& status);
   // The actors heartbeating now, who share each evaluation's jobs.
   int AliveActors() const;
   // Stores a checkpoint a learner streamed (PutCheckpoint), with the evaluation log as of it.
@@ -160,6 +165,20 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   prometheus::Counter& evaluation_leases_;
   RefusalCounter rejected_;
 };
+
+// Implementation details.
+
+template <typename StreamReactor>
+StreamReactor* CoordinatorService::Refuse(const absl::Status& status) {
+  // Finishes at once; owned by gRPC until OnDone.
+  class Refused final : public StreamReactor {
+   public:
+    explicit Refused(const absl::Status& status) { this->Finish(ToGrpcStatus(status)); }
+    void OnDone() override { delete this; }
+  };
+  rejected_.Count(status);
+  return new Refused(status);
+}
 
 }  // namespace dcs::services
 

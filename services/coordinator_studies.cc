@@ -17,6 +17,9 @@ namespace dcs::services {
 grpc::ServerUnaryReactor* CoordinatorService::CreateStudy(grpc::CallbackServerContext* context,
                                                           const v1::CreateStudyRequest* request,
                                                           v1::CreateStudyResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto create = [&]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(coordinator::StudyRecord study, StudyFromProto(request->study()));
     study.submission.request_id = request->request_id();
@@ -33,6 +36,9 @@ grpc::ServerUnaryReactor* CoordinatorService::CreateStudy(grpc::CallbackServerCo
 grpc::ServerUnaryReactor* CoordinatorService::GetStudy(grpc::CallbackServerContext* context,
                                                        const v1::GetStudyRequest* request,
                                                        v1::GetStudyResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto get = [&]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study,
                          runs_.store->GetStudy(request->study_id()));
@@ -63,6 +69,9 @@ absl::Status RequireAskAndTell(coordinator::RunStore& store, const std::string& 
 grpc::ServerUnaryReactor* CoordinatorService::AskTrial(grpc::CallbackServerContext* context,
                                                        const v1::AskTrialRequest* request,
                                                        v1::AskTrialResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto ask = [&]() -> absl::Status {
     DCS_RETURN_IF_ERROR(RequireAskAndTell(*runs_.store, request->study_id()));
     DCS_ASSIGN_OR_RETURN(const coordinator::StudyTrial trial,
@@ -77,6 +86,9 @@ grpc::ServerUnaryReactor* CoordinatorService::AskTrial(grpc::CallbackServerConte
 grpc::ServerUnaryReactor* CoordinatorService::TellTrial(grpc::CallbackServerContext* context,
                                                         const v1::TellTrialRequest* request,
                                                         v1::TellTrialResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto tell = [&]() -> absl::Status {
     const std::optional<coordinator::TrialState> state =
         FindByName(coordinator::kTrialStateNames, request->state());
@@ -97,6 +109,9 @@ grpc::ServerUnaryReactor* CoordinatorService::TellTrial(grpc::CallbackServerCont
 grpc::ServerUnaryReactor* CoordinatorService::ReportTrial(grpc::CallbackServerContext* context,
                                                           const v1::ReportTrialRequest* request,
                                                           v1::ReportTrialResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto report = [&]() -> absl::Status {
     DCS_RETURN_IF_ERROR(RequireAskAndTell(*runs_.store, request->study_id()));
     DCS_ASSIGN_OR_RETURN(const bool prune,

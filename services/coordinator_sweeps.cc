@@ -28,6 +28,9 @@ constexpr char kDefaultSpecName[] = "sweep.yaml";
 grpc::ServerUnaryReactor* CoordinatorService::SubmitSweep(grpc::CallbackServerContext* context,
                                                           const v1::SubmitSweepRequest* request,
                                                           v1::SubmitSweepResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto submit = [&]() -> absl::Status {
     if (request->request_id().empty() && !request->validate_only()) {
       return absl::InvalidArgumentError("request_id is empty: a client names each submission");
@@ -68,6 +71,9 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitSweep(grpc::CallbackServerCo
 grpc::ServerUnaryReactor* CoordinatorService::GetSweep(grpc::CallbackServerContext* context,
                                                        const v1::GetSweepRequest* request,
                                                        v1::GetSweepResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto get = [&]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord sweep,
                          runs_.store->GetSweep(request->sweep_id()));
@@ -83,6 +89,9 @@ grpc::ServerUnaryReactor* CoordinatorService::GetSweep(grpc::CallbackServerConte
 grpc::ServerUnaryReactor* CoordinatorService::ListSweeps(
     grpc::CallbackServerContext* context, const v1::ListSweepsRequest* /*request*/,
     v1::ListSweepsResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = runs_.store->ListSweeps();
   if (sweeps.ok()) {
     for (const coordinator::SweepRecord& sweep : *sweeps) {
@@ -95,6 +104,9 @@ grpc::ServerUnaryReactor* CoordinatorService::ListSweeps(
 grpc::ServerUnaryReactor* CoordinatorService::CancelSweep(grpc::CallbackServerContext* context,
                                                           const v1::CancelSweepRequest* request,
                                                           v1::CancelSweepResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<coordinator::SweepRecord> sweep =
       runs_.store->CancelSweep(request->sweep_id(), absl::Now());
   if (sweep.ok()) {
@@ -107,6 +119,9 @@ grpc::ServerUnaryReactor* CoordinatorService::CancelSweep(grpc::CallbackServerCo
 grpc::ServerUnaryReactor* CoordinatorService::RetrySweep(grpc::CallbackServerContext* context,
                                                          const v1::RetrySweepRequest* request,
                                                          v1::RetrySweepResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   absl::StatusOr<std::pair<coordinator::SweepRecord, int>> retried =
       runs_.store->RetrySweep(request->sweep_id(), absl::Now());
   if (retried.ok()) {
@@ -121,6 +136,9 @@ grpc::ServerUnaryReactor* CoordinatorService::RetrySweep(grpc::CallbackServerCon
 grpc::ServerUnaryReactor* CoordinatorService::GetSweepResults(
     grpc::CallbackServerContext* context, const v1::GetSweepResultsRequest* request,
     v1::SweepResults* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Finish(context, refused);
+  }
   auto get = [&]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord sweep,
                          runs_.store->GetSweep(request->sweep_id()));

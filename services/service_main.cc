@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "services/address.h"
+#include "services/auth.h"
 #include "services/command_line.h"
 #include "services/exit_codes.h"
 #include "services/log.h"
@@ -27,6 +28,7 @@ struct CommonFlags {
   LogFormat log_format = LogFormat::kText;
   bool reflection = false;
   absl::Duration shutdown_grace = absl::Seconds(3);
+  std::string token_file;
 };
 
 void AddCommonFlags(CLI::App& app, CommonFlags& flags) {
@@ -47,6 +49,9 @@ void AddCommonFlags(CLI::App& app, CommonFlags& flags) {
                "serve gRPC server reflection (for debugging clients such as `buf curl`)");
   AddDurationOption(app, "--shutdown-grace", &flags.shutdown_grace,
                     "on SIGTERM/SIGINT, how long calls in flight may take before cancellation");
+  app.add_option("--token-file", flags.token_file,
+                 "the cluster's bearer token, required on every call and presented on every "
+                 "call made (default: $DCS_TOKEN; neither: no authentication)");
 }
 
 }  // namespace
@@ -70,6 +75,9 @@ int RunService(const ServiceDefinition& definition, ServiceRole& role, int argc,
     PrintError(definition.program, status.message());
     return ExitCodeFor(status);
   };
+  absl::StatusOr<std::string> token = LoadToken(flags.token_file);
+  if (!token.ok()) return fail(token.status());
+  SetClusterToken(*std::move(token));
   const BuildInfo build = ProcessBuildInfo(definition.libraries);
   absl::StatusOr<std::unique_ptr<MetricsEndpoint>> metrics =
       MetricsEndpoint::Start(flags.metrics_listen, definition.component, build);

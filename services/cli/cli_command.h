@@ -25,6 +25,7 @@ namespace dcs::services::cli {
 struct GlobalFlags {
   std::string addr;  // --addr or DCS_ADDR
   std::string data_dir = "dcs-data";
+  std::string token_file;  // --token-file or DCS_TOKEN_FILE
   absl::Duration timeout = absl::Seconds(5);
   OutputFormat output = OutputFormat::kTable;
   // This invocation's arguments, argv[0] first: a command may hand them to another program

@@ -3,11 +3,15 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <filesystem>
+
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "common/status_util.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "grpc/health/v1/health.grpc.pb.h"
+#include "common/status_macros.h"
+#include "services/auth.h"
 #include "services/channel.h"
 #include "services/cli/local_cluster.h"
 #include "services/grpc_status.h"
@@ -20,6 +24,16 @@ std::string CoordinatorAddress(const GlobalFlags& flags) {
     return state->coordinator_address;
   }
   return "127.0.0.1:50051";
+}
+
+absl::StatusOr<std::string> ClientToken(const GlobalFlags& flags) {
+  DCS_ASSIGN_OR_RETURN(std::string token, LoadToken(flags.token_file));
+  if (!token.empty()) return token;
+  const absl::StatusOr<ClusterState> local = ReadClusterState(flags.data_dir);
+  const bool calls_local = flags.addr.empty() || (local.ok() && flags.addr == local->coordinator_address);
+  const std::string local_token = TokenPath(flags.data_dir);
+  if (!calls_local || !std::filesystem::exists(local_token)) return "";
+  return LoadToken(local_token);
 }
 
 absl::StatusOr<bool> IsServing(const std::string& address, const std::string& service,

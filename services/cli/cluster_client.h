@@ -19,6 +19,11 @@ namespace dcs::services::cli {
 // (`dcs up`), else 127.0.0.1:50051.
 std::string CoordinatorAddress(const GlobalFlags& flags);
 
+// The token `dcs` presents (services/auth.h): --token-file's, else $DCS_TOKEN, else, when it
+// calls the local cluster's coordinator (no --addr, or the same address), the local cluster's
+// (its data directory's `token`); "" if none. Errors as LoadToken's.
+absl::StatusOr<std::string> ClientToken(const GlobalFlags& flags);
+
 // Asks the server at `address` (host:port) whether `service` is SERVING ("" = the whole
 // server). UNAVAILABLE or DEADLINE_EXCEEDED if it cannot be reached; NOT_FOUND if it does not
 // know `service`.

@@ -14,6 +14,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "common/text_table.h"
+#include "services/auth.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/local_cluster.h"
 #include "services/command_line.h"
@@ -53,8 +54,11 @@ int RunUp(const GlobalFlags& flags, const UpFlags& up) {
       .actors = up.actors,
       .coordinator_listen = up.coordinator_listen,
       .detach = up.detach,
+      // The token given (--token-file, $DCS_TOKEN), else a new one for this cluster.
+      .token = ClusterToken().empty() ? NewToken() : ClusterToken(),
       .start_timeout = up.start_timeout,
       .interrupted = interrupted};
+  SetClusterToken(options.token);  // for this command's own calls
   std::cerr << "starting a local cluster: coordinator, learner, " << up.actors
             << " actor(s); logs in " << flags.data_dir << "/logs" << std::endl;
   absl::StatusOr<std::unique_ptr<LocalCluster>> cluster = LocalCluster::Start(options);

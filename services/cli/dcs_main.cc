@@ -13,7 +13,9 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "services/auth.h"
 #include "services/cli/cli_command.h"
+#include "services/cli/cluster_client.h"
 #include "services/cli/cluster_commands.h"
 #include "services/cli/env_commands.h"
 #include "services/cli/report_commands.h"
@@ -50,6 +52,10 @@ int Main(int argc, char** argv) {
       ->envname("DCS_ADDR");
   app.add_option("--data-dir", flags.data_dir, "where `dcs up` keeps logs and cluster state")
       ->capture_default_str();
+  app.add_option("--token-file", flags.token_file,
+                 "the cluster's bearer token (default: $DCS_TOKEN, else the local cluster's "
+                 "when calling its coordinator)")
+      ->envname("DCS_TOKEN_FILE");
   AddDurationOption(app, "--timeout", &flags.timeout, "deadline of each call to a server");
   AddChoiceOption(app, "-o,--output", &flags.output, OutputFormatNames(),
                   "table, or json (for scripts)");
@@ -60,6 +66,9 @@ int Main(int argc, char** argv) {
   }
 
   if (std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  absl::StatusOr<std::string> token = ClientToken(flags);
+  if (!token.ok()) return FailCommand(token.status());
+  SetClusterToken(*std::move(token));
   for (const CliCommand& command : commands) {
     if (command.app->parsed()) return command.run();
   }

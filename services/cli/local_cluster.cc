@@ -87,10 +87,12 @@ absl::Status WriteScrapeTargets(const std::string& data_dir, const ClusterState&
                              absl::StrCat(out.c_str(), "\n"));
 }
 
-// Removes cluster.yaml, the scrape targets and the port files: the cluster is no longer running.
+// Removes cluster.yaml, the scrape targets, the token and the port files: the cluster is no
+// longer running.
 void RemoveClusterFiles(const std::string& data_dir, const ClusterState& state) {
   std::error_code ignored;
   fs::remove(StatePath(data_dir), ignored);
+  fs::remove(TokenPath(data_dir), ignored);
   fs::remove(fs::path(data_dir) / kScrapeTargetsFile, ignored);
   for (const ClusterProcess& process : state.processes) {
     fs::remove(PortFilePath(data_dir, process.name), ignored);
@@ -98,6 +100,8 @@ void RemoveClusterFiles(const std::string& data_dir, const ClusterState& state) 
 }
 
 }  // namespace
+
+std::string TokenPath(const std::string& data_dir) { return fs::path(data_dir) / "token"; }
 
 absl::StatusOr<ClusterState> ReadClusterState(const std::string& data_dir) {
   const std::string path = StatePath(data_dir);
@@ -147,6 +151,9 @@ absl::StatusOr<std::unique_ptr<LocalCluster>> LocalCluster::Start(
     }
   }
 
+  if (!options.token.empty()) {
+    DCS_RETURN_IF_ERROR(WriteFileAtomically(TokenPath(options.data_dir), options.token, 0600));
+  }
   std::unique_ptr<LocalCluster> cluster(new LocalCluster(options));
   cluster->state_.supervisor_pid = options.detach ? 0 : ::getpid();
   DCS_RETURN_IF_ERROR(cluster->StartProcess(
@@ -203,6 +210,9 @@ absl::Status LocalCluster::StartProcess(const std::string& name, const std::stri
   fs::remove(port_file, ignored);
   args.push_back(absl::StrCat("--port-file=", port_file));
   args.push_back("--metrics-listen=127.0.0.1:0");
+  if (!options_.token.empty()) {
+    args.push_back(absl::StrCat("--token-file=", TokenPath(options_.data_dir)));
+  }
   absl::StatusOr<ChildProcess> child =
       ChildProcess::Start({.path = fs::path(options_.bin_dir) / executable,
                            .args = std::move(args),

@@ -9,6 +9,8 @@
 //                        (how `dcs status` and `dcs down` find it)
 //   prometheus-targets.yml  every process's /metrics address, a Prometheus file_sd file
 //                        (deploy/prometheus/local.yml scrapes ./dcs-data's)
+//   token                the cluster's bearer token, when it has one (mode 0600; the `dcs`
+//                        client reads it to call this cluster's coordinator)
 //   logs/<name>.log      each process's stdout and stderr
 //   run/<name>.ports     each process's bound ports (--port-file)
 //
@@ -35,6 +37,9 @@ struct LocalClusterOptions {
   int actors = 2;
   std::string coordinator_listen = "127.0.0.1:0";
   bool detach = false;  // children in their own sessions, left running when `dcs up` exits
+  // The cluster's bearer token (services/auth.h), written to <data_dir>/token (mode 0600) and
+  // required by every process; empty: none.
+  std::string token;
   absl::Duration start_timeout = absl::Seconds(30);
   // Polled while starting: true aborts the start-up (Ctrl-C), which then returns CANCELLED.
   std::function<bool()> interrupted = [] { return false; };
@@ -54,6 +59,9 @@ struct ClusterState {
   std::string coordinator_address;
   std::vector<ClusterProcess> processes;  // in start-up order
 };
+
+// Where a cluster in `data_dir` keeps its token.
+std::string TokenPath(const std::string& data_dir);
 
 // The cluster recorded in `data_dir`. NOT_FOUND if none is; DATA_LOSS if cluster.yaml is
 // unreadable.

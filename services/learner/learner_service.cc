@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "common/status_macros.h"
+#include "services/auth.h"
 #include "services/grpc_status.h"
 #include "services/pieces.h"
 #include "services/time_proto.h"
@@ -33,9 +34,10 @@ LearnerService::LearnerService(HostedRuns& runs, prometheus::Registry& metrics)
       rejected_(metrics, "dcs_rollouts_rejected_total",
                 "Slots' rollouts refused, by reason (the status code).") {}
 
-grpc::Status LearnerService::GetSlotWork(grpc::ServerContext* /*context*/,
+grpc::Status LearnerService::GetSlotWork(grpc::ServerContext* context,
                                          const v1::GetSlotWorkRequest* request,
                                          grpc::ServerWriter<v1::GetSlotWorkResponse>* writer) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) return ToGrpcStatus(refused);
   v1::GetSlotWorkResponse header;
   std::string weights;  // serialised, if the actor lacks them
   auto get = [&]() -> absl::Status {
@@ -67,9 +69,13 @@ grpc::Status LearnerService::GetSlotWork(grpc::ServerContext* /*context*/,
   return grpc::Status::OK;
 }
 
-grpc::Status LearnerService::PushRollout(grpc::ServerContext* /*context*/,
+grpc::Status LearnerService::PushRollout(grpc::ServerContext* context,
                                          grpc::ServerReader<v1::PushRolloutRequest>* reader,
                                          v1::PushRolloutResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    rejected_.Count(refused);
+    return ToGrpcStatus(refused);
+  }
   auto push = [&]() -> absl::Status {
     PieceJoiner<v1::PushRolloutRequest> joiner(&v1::PushRolloutRequest::mutable_data,
                                                "the slot's rollout");

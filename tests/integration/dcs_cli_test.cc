@@ -80,6 +80,12 @@ TEST(DcsCliTest, UpDetachedThenStatusThenDown) {
   absl::StatusOr<services::cli::ClusterState> state = services::cli::ReadClusterState(data_dir);
   ASSERT_TRUE(state.ok()) << state.status();
   ASSERT_THAT(state->processes, SizeIs(4));
+  // `dcs up` made the cluster a token, readable by its owner only; `dcs status` below calls
+  // the coordinator with it.
+  const std::filesystem::path token = services::cli::TokenPath(data_dir);
+  ASSERT_TRUE(std::filesystem::exists(token));
+  EXPECT_EQ(std::filesystem::status(token).permissions() & std::filesystem::perms::all,
+            std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
 
   const RunResult status = Dcs({"status", "--data-dir", data_dir});
   EXPECT_EQ(status.exit_code, 0) << status.output;
@@ -111,6 +117,7 @@ TEST(DcsCliTest, UpDetachedThenStatusThenDown) {
   ExpectAllStopped(*state);
   EXPECT_FALSE(std::filesystem::exists(absl::StrCat(data_dir, "/cluster.yaml")));
   EXPECT_FALSE(std::filesystem::exists(absl::StrCat(data_dir, "/prometheus-targets.yml")));
+  EXPECT_FALSE(std::filesystem::exists(token));
 }
 
 TEST(DcsCliTest, CtrlCStopsTheForegroundClusterLeavingNothingBehind) {

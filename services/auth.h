@@ -1,0 +1,56 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_AUTH_H_
+#define DCS_SERVICES_AUTH_H_
+
+// The cluster's bearer token. Every process of a cluster holds the same token: a service
+// requires it on every call of its own services (`authorization: Bearer <token>` in the call's
+// metadata) and presents it on every channel it opens (services/channel.h), so the check holds
+// between services as well as from `dcs`. Health (grpc.health.v1) and reflection stay open for
+// probes. Without a token nothing is required or presented.
+//
+// The token is process-wide: SetClusterToken() is called once at start-up, before any server
+// starts or channel opens (services/service_main.cc, the `dcs` client's main); it is read-only
+// afterwards, hence safe from any thread. Refused calls are counted by the servers' gRPC
+// metrics (grpc_server_handled_total{grpc_code="Unauthenticated"}).
+//
+// Plaintext channels carry the token in metadata: gRPC's call credentials refuse to travel
+// without transport security (spec/operations.md §1.9).
+
+#include <string>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+
+namespace grpc {
+class ServerContextBase;
+}
+
+namespace dcs::services {
+
+// The shortest token accepted: 128 bits, hex-encoded.
+inline constexpr size_t kMinTokenLength = 32;
+
+// The environment variable that holds the token itself (when no token file is given).
+inline constexpr char kTokenEnvironmentVariable[] = "DCS_TOKEN";
+
+// The token from `file` (its content, surrounding whitespace removed) if `file` is not empty,
+// else from $DCS_TOKEN; "" when neither is set (no authentication). INVALID_ARGUMENT, naming
+// the file or the variable, for an unreadable file, a token shorter than kMinTokenLength or
+// one with characters other than printable ASCII.
+absl::StatusOr<std::string> LoadToken(const std::string& file);
+
+// A new token: 256 bits from OpenSSL's CSPRNG, hex-encoded.
+std::string NewToken();
+
+// Sets the process's token (see above). `token` must be "" or valid as LoadToken returns it.
+void SetClusterToken(std::string token);
+const std::string& ClusterToken();
+
+// OK if the cluster has no token or the call presents it; else UNAUTHENTICATED saying whether
+// the token was missing or wrong (never the token). Compares in constant time.
+absl::Status Authenticate(const grpc::ServerContextBase& context);
+
+}  // namespace dcs::services
+
+#endif  // DCS_SERVICES_AUTH_H_

@@ -1,0 +1,168 @@
+// Copyright 2026 The DCS Authors.
+//
+// The cluster's bearer token (services/auth.h) with real processes on loopback: a local cluster
+// started with a token comes up (its workers register, so the token holds between services);
+// every method of every DCS service refuses a call without the token and one with a wrong
+// token, UNAUTHENTICATED, and counts it; health stays open; the `dcs` client is refused
+// without the token and served with it.
+
+#include <grpcpp/generic/generic_stub.h>
+#include <grpcpp/grpcpp.h>
+#include <google/protobuf/descriptor.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+#include "common/atomic_file.h"
+#include "dcs/v1/coordinator_service.grpc.pb.h"
+#include "dcs/v1/learner_service.grpc.pb.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "services/auth.h"
+#include "services/cli/cluster_client.h"
+#include "services/cli/local_cluster.h"
+#include "services/exit_codes.h"
+#include "tests/integration/test_util.h"
+#include "tests/testing/net.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::integration {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Calls `method` ("/dcs.v1.CoordinatorService/GetRun") with one empty request message, as any
+// kind of RPC looks on the wire, presenting `authorization` if given; returns how it ended.
+grpc::Status CallWithEmptyRequest(const std::string& address, const std::string& method,
+                                  const std::optional<std::string>& authorization) {
+  grpc::GenericStub stub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  if (authorization.has_value()) context.AddMetadata("authorization", *authorization);
+  grpc::CompletionQueue queue;
+  std::unique_ptr<grpc::GenericClientAsyncReaderWriter> call =
+      stub.PrepareCall(&context, method, &queue);
+  void* tag = nullptr;
+  bool ok = false;
+  call->StartCall(nullptr);
+  queue.Next(&tag, &ok);
+  grpc::Slice empty("");
+  call->Write(grpc::ByteBuffer(&empty, 1), nullptr);
+  queue.Next(&tag, &ok);
+  call->WritesDone(nullptr);
+  queue.Next(&tag, &ok);
+  grpc::ByteBuffer reply;  // read to the end, or the status never comes
+  do {
+    call->Read(&reply, nullptr);
+    queue.Next(&tag, &ok);
+  } while (ok);
+  grpc::Status status;
+  call->Finish(&status, nullptr);
+  queue.Next(&tag, &ok);
+  queue.Shutdown();
+  while (queue.Next(&tag, &ok)) {
+  }
+  return status;
+}
+
+// Every method's path of `service`.
+std::vector<std::string> MethodPaths(const google::protobuf::ServiceDescriptor& service) {
+  std::vector<std::string> paths;
+  for (int i = 0; i < service.method_count(); ++i) {
+    paths.push_back(absl::StrCat("/", service.full_name(), "/", service.method(i)->name()));
+  }
+  return paths;
+}
+
+// The sum of grpc_server_handled_total's UNAUTHENTICATED series in a /metrics exposition.
+double UnauthenticatedCalls(const std::string& exposition) {
+  double sum = 0;
+  for (absl::string_view line : absl::StrSplit(exposition, '\n')) {
+    if (!absl::StartsWith(line, "grpc_server_handled_total{") ||
+        !absl::StrContains(line, "grpc_code=\"UNAUTHENTICATED\"")) {
+      continue;
+    }
+    double value = 0;
+    EXPECT_TRUE(absl::SimpleAtod(line.substr(line.rfind(' ') + 1), &value)) << line;
+    sum += value;
+  }
+  return sum;
+}
+
+TEST(AuthTest, EveryServiceRefusesCallsWithoutTheClustersTokenAndCountsThem) {
+  const std::string data_dir = testing::MakeTempDir();
+  const std::string token = services::NewToken();
+  // Up means every worker registered with the coordinator: with the token, between services.
+  absl::StatusOr<std::unique_ptr<services::cli::LocalCluster>> cluster =
+      services::cli::LocalCluster::Start(
+          {.data_dir = data_dir, .bin_dir = BinDir(), .actors = 1, .token = token});
+  ASSERT_TRUE(cluster.ok()) << cluster.status();
+  const auto& processes = (*cluster)->state().processes;
+  ASSERT_EQ(processes.size(), 3u);
+  const services::cli::ClusterProcess& coordinator = processes[0];
+  const services::cli::ClusterProcess& learner = processes[1];
+
+  int refused = 0;
+  for (const auto& [process, descriptor] :
+       {std::pair(coordinator, v1::GetRunRequest::descriptor()->file()->FindServiceByName(
+                                   "CoordinatorService")),
+        std::pair(learner, v1::GetSlotWorkRequest::descriptor()->file()->FindServiceByName(
+                               "LearnerService"))}) {
+    ASSERT_NE(descriptor, nullptr) << process.name;
+    const std::vector<std::string> methods = MethodPaths(*descriptor);
+    ASSERT_FALSE(methods.empty());
+    for (const std::string& method : methods) {
+      const grpc::Status without = CallWithEmptyRequest(process.grpc_address, method, std::nullopt);
+      EXPECT_EQ(without.error_code(), grpc::StatusCode::UNAUTHENTICATED) << method;
+      EXPECT_THAT(without.error_message(), HasSubstr("has none")) << method;
+      const grpc::Status wrong =
+          CallWithEmptyRequest(process.grpc_address, method, "Bearer " + services::NewToken());
+      EXPECT_EQ(wrong.error_code(), grpc::StatusCode::UNAUTHENTICATED) << method;
+      EXPECT_THAT(wrong.error_message(), HasSubstr("not this cluster's")) << method;
+      const grpc::Status bare = CallWithEmptyRequest(process.grpc_address, method, token);
+      EXPECT_EQ(bare.error_code(), grpc::StatusCode::UNAUTHENTICATED) << method << ": no scheme";
+      // With the token the call gets past authentication (the empty request may be refused
+      // for what it is).
+      const grpc::Status with =
+          CallWithEmptyRequest(process.grpc_address, method, "Bearer " + token);
+      EXPECT_NE(with.error_code(), grpc::StatusCode::UNAUTHENTICATED)
+          << method << ": " << with.error_message();
+      refused += 3;
+    }
+    // Counted where the operator looks.
+    absl::StatusOr<std::string> metrics =
+        testing::HttpGet(absl::StrCat("http://", process.metrics_address, "/metrics"));
+    ASSERT_TRUE(metrics.ok()) << metrics.status();
+    EXPECT_EQ(UnauthenticatedCalls(*metrics), 3.0 * static_cast<double>(methods.size()))
+        << process.name;
+  }
+  EXPECT_GT(refused, 0);
+
+  // Health stays open for probes, of every process.
+  for (const services::cli::ClusterProcess& process : processes) {
+    absl::StatusOr<bool> serving =
+        services::cli::IsServing(process.grpc_address, "", absl::Seconds(5));
+    ASSERT_TRUE(serving.ok()) << process.name << ": " << serving.status();
+    EXPECT_TRUE(*serving) << process.name;
+  }
+
+  // The client: refused without the token, served with it from a file or the environment.
+  const RunResult anonymous = DcsAt({"status"}, coordinator.grpc_address);
+  EXPECT_EQ(anonymous.exit_code, services::kExitNoPermission) << anonymous.output;
+  EXPECT_THAT(anonymous.output, HasSubstr("requires a token"));
+  const RunResult with_file = DcsAt({"status", "--token-file", services::cli::TokenPath(data_dir)},
+                                    coordinator.grpc_address);
+  EXPECT_EQ(with_file.exit_code, 0) << with_file.output;
+  const std::string short_token = absl::StrCat(testing::MakeTempDir(), "/short");
+  ASSERT_TRUE(WriteFileAtomically(short_token, "secret\n").ok());
+  const RunResult weak = DcsAt({"status", "--token-file", short_token}, coordinator.grpc_address);
+  EXPECT_EQ(weak.exit_code, services::kExitDataError) << weak.output;
+  EXPECT_THAT(weak.output, HasSubstr("too short"));
+}
+
+}  // namespace
+}  // namespace dcs::integration

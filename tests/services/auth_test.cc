@@ -1,0 +1,67 @@
+// Copyright 2026 The DCS Authors.
+#include "services/auth.h"
+
+#include <stdlib.h>
+
+#include <string>
+
+#include "absl/strings/str_cat.h"
+#include "common/atomic_file.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::services {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr char kToken[] = "0123456789abcdef0123456789abcdef";  // 32 characters
+
+class LoadTokenTest : public testing::TempDirTest {
+ protected:
+  void TearDown() override { ::unsetenv(kTokenEnvironmentVariable); }
+
+  std::string File(const std::string& contents) {
+    const std::string path = Path("token");
+    EXPECT_TRUE(WriteFileAtomically(path, contents, 0600).ok());
+    return path;
+  }
+};
+
+TEST_F(LoadTokenTest, ReadsAFileWithoutItsSurroundingWhitespace) {
+  EXPECT_EQ(LoadToken(File(absl::StrCat("  ", kToken, "\n"))).value_or("?"), kToken);
+}
+
+TEST_F(LoadTokenTest, FallsBackToTheEnvironmentThenToNone) {
+  EXPECT_EQ(LoadToken("").value_or("?"), "");
+  ::setenv(kTokenEnvironmentVariable, kToken, 1);
+  EXPECT_EQ(LoadToken("").value_or("?"), kToken);
+  // A file wins over the environment.
+  const std::string other(40, 'x');
+  EXPECT_EQ(LoadToken(File(other)).value_or("?"), other);
+}
+
+TEST_F(LoadTokenTest, RefusesWeakOrUnprintableTokensNamingTheSource) {
+  const std::string path = File("secret");
+  absl::StatusOr<std::string> weak = LoadToken(path);
+  EXPECT_EQ(weak.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(weak.status().message(), HasSubstr(path));
+  EXPECT_THAT(weak.status().message(), HasSubstr("too short"));
+
+  EXPECT_THAT(LoadToken(File(absl::StrCat(kToken, " ", kToken))).status().message(),
+              HasSubstr("not printable ASCII"));
+  ::setenv(kTokenEnvironmentVariable, "short", 1);
+  EXPECT_THAT(LoadToken("").status().message(), HasSubstr("$DCS_TOKEN"));
+  EXPECT_THAT(LoadToken(Path("missing")).status().message(), HasSubstr("missing"));
+}
+
+TEST(NewTokenTest, IsLongEnoughAndDiffersEachTime) {
+  const std::string token = NewToken();
+  EXPECT_EQ(token.size(), 64u);
+  EXPECT_GE(token.size(), kMinTokenLength);
+  EXPECT_NE(token, NewToken());
+}
+
+}  // namespace
+}  // namespace dcs::services
