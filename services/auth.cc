@@ -1,16 +1,23 @@
 // Copyright 2026 The DCS Authors.
 #include "services/auth.h"
 
+#include <grpcpp/security/credentials.h>
+#include <grpcpp/security/server_credentials.h>
+#include <grpcpp/security/tls_certificate_provider.h>
+#include <grpcpp/security/tls_credentials_options.h>
 #include <grpcpp/server_context.h>
 #include <openssl/crypto.h>
 #include <openssl/rand.h>
 
 #include <cstdlib>
+#include <memory>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "absl/strings/ascii.h"
 #include "absl/strings/escaping.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "common/atomic_file.h"
 
@@ -19,9 +26,23 @@ namespace {
 
 constexpr absl::string_view kScheme = "Bearer ";
 
+// How often gRPC's file watcher rereads the certificate files.
+constexpr unsigned kCertificateRefreshSeconds = 5;
+
 std::string& Token() {
   static auto* token = new std::string();  // never destroyed: read by threads until exit
   return *token;
+}
+
+TlsFiles& Tls() {
+  static auto* files = new TlsFiles();  // as Token()
+  return *files;
+}
+
+std::shared_ptr<grpc::experimental::CertificateProviderInterface> CertificateProvider() {
+  const TlsFiles& files = Tls();
+  return std::make_shared<grpc::experimental::FileWatcherCertificateProvider>(
+      files.key, files.certificate, files.ca, kCertificateRefreshSeconds);
 }
 
 absl::StatusOr<std::string> CheckedToken(absl::string_view text, absl::string_view source) {
@@ -82,6 +103,59 @@ absl::Status Authenticate(const grpc::ServerContextBase& context) {
     return absl::UnauthenticatedError("the call's token is not this cluster's");
   }
   return absl::OkStatus();
+}
+
+void AddTlsFlags(CLI::App& app, TlsFiles& files) {
+  app.add_option("--tls-cert", files.certificate,
+                 "mutual TLS: this process's certificate chain (PEM; reread when it changes)")
+      ->envname("DCS_TLS_CERT");
+  app.add_option("--tls-key", files.key, "mutual TLS: its private key (PEM)")
+      ->envname("DCS_TLS_KEY");
+  app.add_option("--tls-ca", files.ca,
+                 "mutual TLS: the CA bundle every peer's certificate must chain to (PEM)")
+      ->envname("DCS_TLS_CA");
+}
+
+absl::Status CheckTlsFiles(const TlsFiles& files) {
+  if (!files.enabled()) return absl::OkStatus();
+  for (const auto& [path, flag, marker] :
+       {std::tuple(files.certificate, "--tls-cert", "-----BEGIN CERTIFICATE-----"),
+        std::tuple(files.key, "--tls-key", "PRIVATE KEY-----"),
+        std::tuple(files.ca, "--tls-ca", "-----BEGIN CERTIFICATE-----")}) {
+    if (path.empty()) {
+      return absl::InvalidArgumentError(absl::StrCat(
+          "mutual TLS needs --tls-cert, --tls-key and --tls-ca together; ", flag, " is missing"));
+    }
+    absl::StatusOr<std::string> pem = ReadFile(path);
+    if (!pem.ok()) {
+      return absl::InvalidArgumentError(
+          absl::StrCat(flag, ": cannot read ", path, ": ", pem.status().message()));
+    }
+    if (!absl::StrContains(*pem, marker)) {
+      return absl::InvalidArgumentError(absl::StrCat(flag, ": ", path, " holds no PEM ", marker));
+    }
+  }
+  return absl::OkStatus();
+}
+
+void SetClusterTls(TlsFiles files) { Tls() = std::move(files); }
+
+std::shared_ptr<grpc::ServerCredentials> ClusterServerCredentials() {
+  if (!Tls().enabled()) return grpc::InsecureServerCredentials();
+  grpc::experimental::TlsServerCredentialsOptions options(CertificateProvider());
+  options.watch_root_certs();
+  options.watch_identity_key_cert_pairs();
+  options.set_cert_request_type(GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY);
+  return grpc::experimental::TlsServerCredentials(options);
+}
+
+std::shared_ptr<grpc::ChannelCredentials> ClusterChannelCredentials() {
+  if (!Tls().enabled()) return grpc::InsecureChannelCredentials();
+  grpc::experimental::TlsChannelCredentialsOptions options;
+  options.set_certificate_provider(CertificateProvider());
+  options.watch_root_certs();
+  options.watch_identity_key_cert_pairs();
+  return grpc::experimental::TlsCredentials(options);
 }
 
 }  // namespace dcs::services

@@ -2,29 +2,40 @@
 #ifndef DCS_SERVICES_AUTH_H_
 #define DCS_SERVICES_AUTH_H_
 
-// The cluster's bearer token. Every process of a cluster holds the same token: a service
-// requires it on every call of its own services (`authorization: Bearer <token>` in the call's
-// metadata) and presents it on every channel it opens (services/channel.h), so the check holds
-// between services as well as from `dcs`. Health (grpc.health.v1) and reflection stay open for
-// probes. Without a token nothing is required or presented.
+// How the processes of a cluster know each other: a bearer token, and optionally mutual TLS.
 //
-// The token is process-wide: SetClusterToken() is called once at start-up, before any server
-// starts or channel opens (services/service_main.cc, the `dcs` client's main); it is read-only
-// afterwards, hence safe from any thread. Refused calls are counted by the servers' gRPC
-// metrics (grpc_server_handled_total{grpc_code="Unauthenticated"}).
+// Token. Every process of a cluster holds the same token: a service requires it on every call
+// of its own services (`authorization: Bearer <token>` in the call's metadata) and presents it
+// on every channel it opens (services/channel.h), so the check holds between services as well
+// as from `dcs`. Health (grpc.health.v1) and reflection stay open for probes. Without a token
+// nothing is required or presented. Plaintext channels carry it in metadata: gRPC's call
+// credentials refuse to travel without transport security (spec/operations.md §1.9).
 //
-// Plaintext channels carry the token in metadata: gRPC's call credentials refuse to travel
-// without transport security (spec/operations.md §1.9).
+// Mutual TLS. With certificate files, servers accept only TLS connections from clients whose
+// certificate chains to the CA bundle, and clients accept only servers whose certificate does
+// and names the address dialled; every process presents its own certificate. gRPC's file
+// watcher rereads the three files every few seconds, so renewed certificates take effect
+// without a restart.
+//
+// Both are process-wide: set once at start-up, before any server starts or channel opens
+// (services/service_main.cc, the `dcs` client's main); read-only afterwards, hence safe from
+// any thread. Refused calls are counted by the servers' gRPC metrics
+// (grpc_server_handled_total{grpc_code="UNAUTHENTICATED"}).
 
+#include <memory>
 #include <string>
+
+#include <CLI/CLI.hpp>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 
 namespace grpc {
+class ChannelCredentials;
 class ServerContextBase;
-}
+class ServerCredentials;
+}  // namespace grpc
 
 namespace dcs::services {
 
@@ -50,6 +61,30 @@ const std::string& ClusterToken();
 // OK if the cluster has no token or the call presents it; else UNAUTHENTICATED saying whether
 // the token was missing or wrong (never the token). Compares in constant time.
 absl::Status Authenticate(const grpc::ServerContextBase& context);
+
+// Certificate files (PEM) for mutual TLS.
+struct TlsFiles {
+  std::string certificate;  // this process's certificate chain
+  std::string key;          // its private key
+  std::string ca;           // the CA bundle peers' certificates must chain to
+  bool enabled() const { return !certificate.empty() || !key.empty() || !ca.empty(); }
+};
+
+// Adds --tls-cert, --tls-key and --tls-ca (each with a DCS_TLS_... environment fallback),
+// bound to `files`.
+void AddTlsFlags(CLI::App& app, TlsFiles& files);
+
+// OK if none or all three files are given and each is a readable PEM file; else
+// INVALID_ARGUMENT naming the missing flag or the file and what is wrong with it.
+absl::Status CheckTlsFiles(const TlsFiles& files);
+
+// Sets the process's TLS files (see above); `files` must have passed CheckTlsFiles.
+void SetClusterTls(TlsFiles files);
+
+// What servers listen with and channels dial with: mutual TLS over the cluster's files, or
+// plaintext without them.
+std::shared_ptr<grpc::ServerCredentials> ClusterServerCredentials();
+std::shared_ptr<grpc::ChannelCredentials> ClusterChannelCredentials();
 
 }  // namespace dcs::services
 

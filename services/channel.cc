@@ -52,7 +52,7 @@ std::shared_ptr<grpc::Channel> OpenChannel(const std::string& address) {
   std::vector<std::unique_ptr<grpc::experimental::ClientInterceptorFactoryInterface>> token;
   if (!ClusterToken().empty()) token.push_back(std::make_unique<TokenInterceptorFactory>());
   return grpc::experimental::CreateCustomChannelWithInterceptors(
-      address, grpc::InsecureChannelCredentials(), args, std::move(token));
+      address, ClusterChannelCredentials(), args, std::move(token));
 }
 
 void SetTimeout(grpc::ClientContext& context, absl::Duration timeout) {

@@ -9,6 +9,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "grpc/health/v1/health.pb.h"
+#include "services/auth.h"
 #include "services/grpc_server_metrics.h"
 #include "services/log.h"
 
@@ -45,7 +46,7 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(const ServerOptions& optio
   // Accept the keepalive pings of DCS clients (services/channel.h) while they are idle.
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_PERMIT_WITHOUT_CALLS, 1);
   builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS, 10'000);
-  builder.AddListeningPort(options.listen_address, grpc::InsecureServerCredentials(),
+  builder.AddListeningPort(options.listen_address, ClusterServerCredentials(),
                            &server->port_);
   for (const ServedService& served : options.services) {
     builder.RegisterService(served.service);

@@ -29,6 +29,7 @@ struct CommonFlags {
   bool reflection = false;
   absl::Duration shutdown_grace = absl::Seconds(3);
   std::string token_file;
+  TlsFiles tls;
 };
 
 void AddCommonFlags(CLI::App& app, CommonFlags& flags) {
@@ -52,6 +53,7 @@ void AddCommonFlags(CLI::App& app, CommonFlags& flags) {
   app.add_option("--token-file", flags.token_file,
                  "the cluster's bearer token, required on every call and presented on every "
                  "call made (default: $DCS_TOKEN; neither: no authentication)");
+  AddTlsFlags(app, flags.tls);
 }
 
 }  // namespace
@@ -78,6 +80,8 @@ int RunService(const ServiceDefinition& definition, ServiceRole& role, int argc,
   absl::StatusOr<std::string> token = LoadToken(flags.token_file);
   if (!token.ok()) return fail(token.status());
   SetClusterToken(*std::move(token));
+  if (absl::Status tls = CheckTlsFiles(flags.tls); !tls.ok()) return fail(tls);
+  SetClusterTls(flags.tls);
   const BuildInfo build = ProcessBuildInfo(definition.libraries);
   absl::StatusOr<std::unique_ptr<MetricsEndpoint>> metrics =
       MetricsEndpoint::Start(flags.metrics_listen, definition.component, build);

@@ -56,6 +56,7 @@ int RunUp(const GlobalFlags& flags, const UpFlags& up) {
       .detach = up.detach,
       // The token given (--token-file, $DCS_TOKEN), else a new one for this cluster.
       .token = ClusterToken().empty() ? NewToken() : ClusterToken(),
+      .tls = flags.tls,
       .start_timeout = up.start_timeout,
       .interrupted = interrupted};
   SetClusterToken(options.token);  // for this command's own calls

@@ -56,6 +56,7 @@ int Main(int argc, char** argv) {
                  "the cluster's bearer token (default: $DCS_TOKEN, else the local cluster's "
                  "when calling its coordinator)")
       ->envname("DCS_TOKEN_FILE");
+  AddTlsFlags(app, flags.tls);
   AddDurationOption(app, "--timeout", &flags.timeout, "deadline of each call to a server");
   AddChoiceOption(app, "-o,--output", &flags.output, OutputFormatNames(),
                   "table, or json (for scripts)");
@@ -69,6 +70,8 @@ int Main(int argc, char** argv) {
   absl::StatusOr<std::string> token = ClientToken(flags);
   if (!token.ok()) return FailCommand(token.status());
   SetClusterToken(*std::move(token));
+  if (absl::Status tls = CheckTlsFiles(flags.tls); !tls.ok()) return FailCommand(tls);
+  SetClusterTls(flags.tls);
   for (const CliCommand& command : commands) {
     if (command.app->parsed()) return command.run();
   }

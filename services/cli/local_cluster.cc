@@ -213,6 +213,11 @@ absl::Status LocalCluster::StartProcess(const std::string& name, const std::stri
   if (!options_.token.empty()) {
     args.push_back(absl::StrCat("--token-file=", TokenPath(options_.data_dir)));
   }
+  if (options_.tls.enabled()) {
+    args.push_back(absl::StrCat("--tls-cert=", options_.tls.certificate));
+    args.push_back(absl::StrCat("--tls-key=", options_.tls.key));
+    args.push_back(absl::StrCat("--tls-ca=", options_.tls.ca));
+  }
   absl::StatusOr<ChildProcess> child =
       ChildProcess::Start({.path = fs::path(options_.bin_dir) / executable,
                            .args = std::move(args),

@@ -27,6 +27,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
+#include "services/auth.h"
 #include "services/cli/child_process.h"
 
 namespace dcs::services::cli {
@@ -40,6 +41,7 @@ struct LocalClusterOptions {
   // The cluster's bearer token (services/auth.h), written to <data_dir>/token (mode 0600) and
   // required by every process; empty: none.
   std::string token;
+  TlsFiles tls;  // mutual TLS between every process and its clients (services/auth.h); or none
   absl::Duration start_timeout = absl::Seconds(30);
   // Polled while starting: true aborts the start-up (Ctrl-C), which then returns CANCELLED.
   std::function<bool()> interrupted = [] { return false; };

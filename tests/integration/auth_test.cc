@@ -1,10 +1,14 @@
 // Copyright 2026 The DCS Authors.
 //
-// The cluster's bearer token (services/auth.h) with real processes on loopback: a local cluster
-// started with a token comes up (its workers register, so the token holds between services);
-// every method of every DCS service refuses a call without the token and one with a wrong
-// token, UNAUTHENTICATED, and counts it; health stays open; the `dcs` client is refused
-// without the token and served with it.
+// The cluster's bearer token and mutual TLS (services/auth.h) with real processes on loopback.
+//
+// Token: a local cluster started with a token comes up (its workers register, so the token
+// holds between services); every method of every DCS service refuses a call without the token
+// and one with a wrong token, UNAUTHENTICATED, and counts it; health stays open; the `dcs`
+// client is refused without the token and served with it.
+//
+// Mutual TLS: a cluster with certificates comes up; plaintext and a certificate of another CA
+// are refused; certificates renewed in place are taken up without a restart.
 
 #include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
@@ -15,8 +19,10 @@
 #include <string>
 #include <vector>
 
+#include "absl/cleanup/cleanup.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
+#include "absl/time/clock.h"
 #include "common/atomic_file.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "dcs/v1/learner_service.grpc.pb.h"
@@ -108,8 +114,8 @@ TEST(AuthTest, EveryServiceRefusesCallsWithoutTheClustersTokenAndCountsThem) {
 
   int refused = 0;
   for (const auto& [process, descriptor] :
-       {std::pair(coordinator, v1::GetRunRequest::descriptor()->file()->FindServiceByName(
-                                   "CoordinatorService")),
+       {std::pair(coordinator,
+                  v1::GetRunRequest::descriptor()->file()->FindServiceByName("CoordinatorService")),
         std::pair(learner, v1::GetSlotWorkRequest::descriptor()->file()->FindServiceByName(
                                "LearnerService"))}) {
     ASSERT_NE(descriptor, nullptr) << process.name;
@@ -162,6 +168,101 @@ TEST(AuthTest, EveryServiceRefusesCallsWithoutTheClustersTokenAndCountsThem) {
   const RunResult weak = DcsAt({"status", "--token-file", short_token}, coordinator.grpc_address);
   EXPECT_EQ(weak.exit_code, services::kExitDataError) << weak.output;
   EXPECT_THAT(weak.output, HasSubstr("too short"));
+}
+
+// A CA and a certificate it signs for 127.0.0.1 (server and client use), in `dir`:
+// ca.pem, node.pem, node.key. EC keys, so that it takes milliseconds.
+services::TlsFiles MakeCertificates(const std::string& dir) {
+  const RunResult made = RunProgram(
+      "/bin/sh",
+      {"-ec",
+       absl::StrCat("cd ", dir, "\n",
+                    "openssl req -x509 -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes "
+                    "-keyout ca.key -out ca.pem -days 2 -subj /CN=dcs-test-ca 2>/dev/null\n",
+                    "openssl req -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes "
+                    "-keyout node.key -out node.csr -subj /CN=dcs-node 2>/dev/null\n",
+                    "printf 'subjectAltName=IP:127.0.0.1,DNS:localhost\\n"
+                    "extendedKeyUsage=serverAuth,clientAuth\\n' > node.ext\n",
+                    "openssl x509 -req -in node.csr -CA ca.pem -CAkey ca.key -CAcreateserial "
+                    "-out node.pem -days 2 -extfile node.ext 2>/dev/null\n")});
+  EXPECT_EQ(made.exit_code, 0) << made.output;
+  return {.certificate = absl::StrCat(dir, "/node.pem"),
+          .key = absl::StrCat(dir, "/node.key"),
+          .ca = absl::StrCat(dir, "/ca.pem")};
+}
+
+std::vector<std::string> TlsFlags(const services::TlsFiles& files) {
+  return {"--tls-cert", files.certificate, "--tls-key", files.key, "--tls-ca", files.ca};
+}
+
+TEST(AuthTest, MutualTlsRefusesPlaintextAndStrangersAndRereadsRenewedCertificates) {
+  const std::string data_dir = testing::MakeTempDir();
+  // The cluster's files are copies, so that they can be renewed in place.
+  const std::string live = testing::MakeTempDir();
+  const services::TlsFiles first = MakeCertificates(testing::MakeTempDir());
+  const services::TlsFiles cluster_files{.certificate = absl::StrCat(live, "/node.pem"),
+                                         .key = absl::StrCat(live, "/node.key"),
+                                         .ca = absl::StrCat(live, "/ca.pem")};
+  auto install = [&](const services::TlsFiles& files) {
+    for (const auto& [from, to] :
+         {std::pair(files.certificate, cluster_files.certificate),
+          std::pair(files.key, cluster_files.key), std::pair(files.ca, cluster_files.ca)}) {
+      ASSERT_TRUE(WriteFileAtomically(to, ReadFile(from).value_or("")).ok());
+    }
+  };
+  install(first);
+  const std::string token = services::NewToken();
+  // This process dials the cluster as `dcs up` does, with the cluster's files.
+  services::SetClusterTls(cluster_files);
+  absl::Cleanup plaintext_again = [] { services::SetClusterTls({}); };
+  // Up means every worker registered with the coordinator: over mutual TLS, with the token.
+  absl::StatusOr<std::unique_ptr<services::cli::LocalCluster>> cluster =
+      services::cli::LocalCluster::Start({.data_dir = data_dir,
+                                          .bin_dir = BinDir(),
+                                          .actors = 1,
+                                          .token = token,
+                                          .tls = cluster_files});
+  ASSERT_TRUE(cluster.ok()) << cluster.status();
+  const std::string coordinator = (*cluster)->state().coordinator_address;
+  const std::string token_file = services::cli::TokenPath(data_dir);
+
+  // Plaintext is refused at the connection, with or without the token.
+  const grpc::Status plaintext =
+      CallWithEmptyRequest(coordinator, "/dcs.v1.CoordinatorService/ListSweeps", "Bearer " + token);
+  EXPECT_EQ(plaintext.error_code(), grpc::StatusCode::UNAVAILABLE) << plaintext.error_message();
+  const RunResult no_tls =
+      DcsAt({"status", "--token-file", token_file, "--timeout=2s"}, coordinator);
+  EXPECT_EQ(no_tls.exit_code, services::kExitUnavailable) << no_tls.output;
+
+  // A certificate from another CA is refused too.
+  const services::TlsFiles stranger = MakeCertificates(testing::MakeTempDir());
+  std::vector<std::string> args = {"status", "--token-file", token_file, "--timeout=2s"};
+  for (const std::string& flag : TlsFlags(stranger)) args.push_back(flag);
+  const RunResult strange = DcsAt(args, coordinator);
+  EXPECT_EQ(strange.exit_code, services::kExitUnavailable) << strange.output;
+
+  // The cluster's certificate and token are served; its certificate without the token is not.
+  args = {"status", "--token-file", token_file};
+  for (const std::string& flag : TlsFlags(first)) args.push_back(flag);
+  const RunResult served = DcsAt(args, coordinator);
+  EXPECT_EQ(served.exit_code, 0) << served.output;
+  std::vector<std::string> tokenless = {"status"};
+  for (const std::string& flag : TlsFlags(first)) tokenless.push_back(flag);
+  EXPECT_EQ(DcsAt(tokenless, coordinator).exit_code, services::kExitNoPermission);
+
+  // Renewed in place under a new CA: taken up without a restart, the old CA then refused.
+  const services::TlsFiles renewed = MakeCertificates(testing::MakeTempDir());
+  install(renewed);
+  std::vector<std::string> with_renewed = {"status", "--token-file", token_file, "--timeout=2s"};
+  for (const std::string& flag : TlsFlags(renewed)) with_renewed.push_back(flag);
+  const absl::Time deadline = absl::Now() + absl::Seconds(30);
+  int exit_code = -1;
+  while ((exit_code = DcsAt(with_renewed, coordinator).exit_code) != 0 && absl::Now() < deadline) {
+    absl::SleepFor(absl::Milliseconds(500));
+  }
+  EXPECT_EQ(exit_code, 0) << "the renewed certificates were not taken up";
+  args.push_back("--timeout=2s");
+  EXPECT_EQ(DcsAt(args, coordinator).exit_code, services::kExitUnavailable);
 }
 
 }  // namespace

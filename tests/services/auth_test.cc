@@ -56,6 +56,23 @@ TEST_F(LoadTokenTest, RefusesWeakOrUnprintableTokensNamingTheSource) {
   EXPECT_THAT(LoadToken(Path("missing")).status().message(), HasSubstr("missing"));
 }
 
+TEST_F(LoadTokenTest, TlsFilesComeAllThreeAsPem) {
+  EXPECT_TRUE(CheckTlsFiles({}).ok());
+  const std::string pem = Path("cert.pem");
+  ASSERT_TRUE(
+      WriteFileAtomically(pem, "-----BEGIN CERTIFICATE-----\nMII\n-----END CERTIFICATE-----\n")
+          .ok());
+  const std::string key = Path("key.pem");
+  ASSERT_TRUE(WriteFileAtomically(key, "-----BEGIN PRIVATE KEY-----\nMII\n").ok());
+  EXPECT_TRUE(CheckTlsFiles({.certificate = pem, .key = key, .ca = pem}).ok());
+  EXPECT_THAT(CheckTlsFiles({.certificate = pem, .key = key}).message(),
+              HasSubstr("--tls-ca is missing"));
+  EXPECT_THAT(CheckTlsFiles({.certificate = pem, .key = pem, .ca = pem}).message(),
+              HasSubstr("--tls-key: " + pem + " holds no PEM"));
+  EXPECT_THAT(CheckTlsFiles({.certificate = Path("none"), .key = key, .ca = pem}).message(),
+              HasSubstr("--tls-cert: cannot read"));
+}
+
 TEST(NewTokenTest, IsLongEnoughAndDiffersEachTime) {
   const std::string token = NewToken();
   EXPECT_EQ(token.size(), 64u);
