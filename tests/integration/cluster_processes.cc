@@ -58,8 +58,22 @@ std::string ClusterProcesses::Log(const std::string& name) const {
   return ReadFile(absl::StrCat(dir_, "/", name, ".log")).value_or("");
 }
 
+void ClusterProcesses::Restart(const std::string& name) {
+  ASSERT_TRUE(commands_.count(name)) << name << " was never started";
+  ASSERT_FALSE(processes_.count(name)) << name << " runs";
+  const auto [program, args] = commands_.at(name);
+  Start(name, program, args);
+}
+
+std::vector<std::string> ClusterProcesses::Running() const {
+  std::vector<std::string> names;
+  for (const auto& [name, process] : processes_) names.push_back(name);
+  return names;
+}
+
 void ClusterProcesses::Start(const std::string& name, const std::string& program,
                              std::vector<std::string> args) {
+  commands_[name] = {program, args};
   const std::string port_file = absl::StrCat(dir_, "/", name, ".ports");
   std::filesystem::remove(port_file);
   args.push_back("--port-file=" + port_file);
@@ -84,6 +98,20 @@ void StartCoordinatorLearnerAndActors(ClusterProcesses& cluster) {
   cluster.StartLearner("learner");
   cluster.StartActor("actor-1", 4);
   cluster.StartActor("actor-2", 4);
+}
+
+std::string SweepReports(const ClusterProcesses& cluster, const std::string& sweep_id) {
+  std::string reports;
+  for (const char* checkpoint : {"last", "best"}) {
+    for (const char* format : {"json", "table"}) {
+      const RunResult report = DcsAt(
+          {"report", sweep_id, "--checkpoint", checkpoint, "--format", format},
+          cluster.coordinator_address());
+      EXPECT_EQ(report.exit_code, 0) << report.output;
+      absl::StrAppend(&reports, report.output);
+    }
+  }
+  return reports;
 }
 
 }  // namespace dcs::integration

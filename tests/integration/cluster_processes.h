@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "absl/time/time.h"
@@ -39,6 +40,12 @@ class ClusterProcesses {
   // SIGKILL, and waits for it to die.
   void Kill(const std::string& name);
 
+  // Starts process `name`, killed before, again with the same program and arguments.
+  void Restart(const std::string& name);
+
+  // The names of the processes running now, in name order.
+  std::vector<std::string> Running() const;
+
   // Everything process `name` logged (across restarts).
   std::string Log(const std::string& name) const;
 
@@ -49,12 +56,18 @@ class ClusterProcesses {
   const absl::Duration lease_;
   const int coordinator_port_;
   std::map<std::string, services::cli::ChildProcess> processes_;
+  // Every process's program and arguments as first started, for Restart.
+  std::map<std::string, std::pair<std::string, std::vector<std::string>>> commands_;
   std::map<std::string, services::BoundPorts> ports_;
 };
 
 // Starts `cluster`'s coordinator, a learner ("learner") and two actors of 4 slots ("actor-1",
 // "actor-2").
 void StartCoordinatorLearnerAndActors(ClusterProcesses& cluster);
+
+// Every format's report of a finished sweep, best and last checkpoint, as `dcs report` prints
+// them: two clusters that ran the same sweep to the same results give the same text.
+std::string SweepReports(const ClusterProcesses& cluster, const std::string& sweep_id);
 
 }  // namespace dcs::integration
 

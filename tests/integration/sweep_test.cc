@@ -77,21 +77,6 @@ void WaitForCompleted(const ClusterProcesses& cluster, const std::string& sweep_
   FAIL() << sweep_id << " did not complete " << completed << " runs; logs in " << cluster.dir();
 }
 
-// Every format's report of a finished sweep, best and last, as the client prints it.
-std::string Reports(const ClusterProcesses& cluster, const std::string& sweep_id) {
-  std::string reports;
-  for (const char* checkpoint : {"last", "best"}) {
-    for (const char* format : {"json", "table"}) {
-      const RunResult report = DcsAt({"report", sweep_id, "--checkpoint", checkpoint, "--format",
-                                    format},
-                                   cluster.coordinator_address());
-      EXPECT_EQ(report.exit_code, 0) << report.output;
-      absl::StrAppend(&reports, report.output);
-    }
-  }
-  return reports;
-}
-
 TEST(SweepTest, ASweepSurvivesItsCoordinatorsDeathAndReportsTheSame) {
   const std::string spec = WriteSpec(kSpec);
 
@@ -102,7 +87,7 @@ TEST(SweepTest, ASweepSurvivesItsCoordinatorsDeathAndReportsTheSame) {
       DcsAt({"submit", spec, "--watch"}, calm.coordinator_address(), absl::Minutes(5));
   ASSERT_EQ(submitted.exit_code, 0) << submitted.output << "; logs in " << calm.dir();
   EXPECT_THAT(submitted.output, HasSubstr("sweep-1 small: completed, 8/8 runs done"));
-  const std::string undisturbed = Reports(calm, "sweep-1");
+  const std::string undisturbed = SweepReports(calm, "sweep-1");
   EXPECT_THAT(undisturbed, HasSubstr("static"));
   EXPECT_THAT(undisturbed, HasSubstr("sinusoidal amplitude_frac=0.5"));
   const std::string figures = calm.dir() + "/figures";
@@ -127,7 +112,7 @@ TEST(SweepTest, ASweepSurvivesItsCoordinatorsDeathAndReportsTheSame) {
   const RunResult watched =
       DcsAt({"watch", "sweep-1"}, faulty.coordinator_address(), absl::Minutes(5));
   ASSERT_EQ(watched.exit_code, 0) << watched.output << "; logs in " << faulty.dir();
-  EXPECT_EQ(Reports(faulty, "sweep-1"), undisturbed);
+  EXPECT_EQ(SweepReports(faulty, "sweep-1"), undisturbed);
 }
 
 TEST(SweepTest, ABadSpecIsRefusedWholeWithEveryProblemAndNothingIsStored) {
