@@ -214,8 +214,9 @@ absl::StatusOr<std::unique_ptr<RunStore>> RunStore::Open(const std::string& path
     job_grace.exec();
     return std::unique_ptr<RunStore>(new RunStore(std::move(db), options));
   } catch (const SQLite::Exception& e) {
-    return absl::InternalError(absl::StrCat("cannot open the coordinator database ", path, ": ",
-                                            e.what()));
+    const absl::Status error = StoreError(path, e);
+    return absl::Status(error.code(),
+                        absl::StrCat("cannot open the coordinator database: ", error.message()));
   }
 }
 

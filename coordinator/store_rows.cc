@@ -1,6 +1,8 @@
 // Copyright 2026 The DCS Authors.
 #include "coordinator/store_rows.h"
 
+#include <sqlite3.h>
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -171,6 +173,30 @@ absl::Status CancelRunRow(SQLite::Database& db, const RunRecord& run, absl::stri
   FreeLeases(db, *RunNumber(run.id), /*learner=*/true);
   DropEvaluationWeights(db, *RunNumber(run.id));
   return absl::OkStatus();
+}
+
+absl::Status StoreError(const std::string& path, const SQLite::Exception& error) {
+  switch (error.getErrorCode()) {
+    case SQLITE_FULL:
+      return absl::ResourceExhaustedError(absl::StrCat(
+          path, ": the disk is full; nothing of this change was stored (", error.what(), ")"));
+    case SQLITE_CORRUPT:
+    case SQLITE_NOTADB:
+      return absl::DataLossError(absl::StrCat(path, " is corrupt: ", error.what()));
+    case SQLITE_BUSY:
+    case SQLITE_LOCKED:
+      return absl::UnavailableError(absl::StrCat(path, " is locked: ", error.what()));
+    default:
+      return absl::InternalError(absl::StrCat(path, ": ", error.what()));
+  }
+}
+
+void RollBackIfActive(SQLite::Database& db) noexcept {
+  if (sqlite3_get_autocommit(db.getHandle()) != 0) return;  // no transaction is open
+  try {
+    db.exec("ROLLBACK");
+  } catch (const SQLite::Exception&) {  // the first error is the one to report
+  }
 }
 
 }  // namespace dcs::coordinator::store_rows

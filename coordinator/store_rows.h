@@ -79,6 +79,16 @@ int64_t InsertStudy(SQLite::Database& db, const StudySubmission& submission,
 // Fails the running trials of the study sweep `sweep` drives (it was cancelled).
 void FailRunningStudyTrials(SQLite::Database& db, int64_t sweep, absl::Time now);
 
+// An SQLite error on the store at `path` as a status naming the file: RESOURCE_EXHAUSTED for a
+// full disk (SQLITE_FULL), DATA_LOSS for a corrupt file or one that is not a database,
+// UNAVAILABLE for a locked one, else INTERNAL.
+absl::Status StoreError(const std::string& path, const SQLite::Exception& error);
+
+// Rolls back the open transaction, if one is still open: after some errors (a full disk among
+// them) SQLite has rolled it back already, and a ROLLBACK would fail and hide the first error.
+// Never throws.
+void RollBackIfActive(SQLite::Database& db) noexcept;
+
 }  // namespace dcs::coordinator::store_rows
 
 namespace dcs::coordinator {
@@ -95,11 +105,11 @@ auto RunStore::Transaction(Body body) -> decltype(body()) {
       db_->exec(result.ok() ? "COMMIT" : "ROLLBACK");
       return result;
     } catch (...) {
-      db_->exec("ROLLBACK");
+      store_rows::RollBackIfActive(*db_);
       throw;
     }
   } catch (const SQLite::Exception& e) {
-    return absl::InternalError(absl::StrCat(db_->getFilename(), ": ", e.what()));
+    return store_rows::StoreError(db_->getFilename(), e);
   }
 }
 

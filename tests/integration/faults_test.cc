@@ -1,0 +1,186 @@
+// Copyright 2026 The DCS Authors.
+//
+// Faults under a running sweep, with real processes on loopback (spec/operations.md §7). Each
+// faulty run of the same sweep must end with the report, in every format, of an undisturbed
+// run: no run or evaluation lost or counted twice, every run bit for bit the same.
+// - Chaos: a killer SIGKILLs a random process (the coordinator, the learner or an actor) every
+//   1 to 2.5 seconds and restarts it at once, from a seeded schedule.
+// - A full disk: the coordinator's data directory is a 3 MiB tmpfs, which the sweep's
+//   checkpoints fill. The coordinator stays up and says which file could not be written;
+//   workers wait rather than fail runs; once the disk is made larger the sweep completes.
+// - A corrupt store: the coordinator refuses to start, naming the file.
+
+#include <sys/mount.h>
+
+#include <filesystem>
+#include <cerrno>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "absl/cleanup/cleanup.h"
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "absl/time/clock.h"
+#include "common/atomic_file.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "services/cli/cluster_client.h"
+#include "services/cli/run_client.h"
+#include "tests/integration/cluster_processes.h"
+#include "tests/integration/test_util.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::integration {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr absl::Duration kLease = absl::Seconds(1);
+
+// Two conditions in two modes, two seeds: 8 runs, each evaluated and checkpointed 4 times,
+// long enough for the killer to strike while they run.
+constexpr char kSpec[] = R"(name: chaos
+seeds: 2
+observe: [none, live]
+env: cartpole
+total_timesteps: 131072
+feature: length
+training_range: [0.35, 0.75]
+pool: {size: 3}
+evaluation: {freq: 32768, episodes: 2, contexts: {id: [0.5], ood_low: [0.1], ood_high: [1.0]}}
+ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
+conditions:
+  - name: static
+  - schedule: {family: sinusoidal, period: 40}
+    grid: {schedule.amplitude_frac: [0.5]}
+)";
+
+// The sweep's state as `dcs` sees it, or UNSPECIFIED while the coordinator is down.
+v1::SweepState SweepState(const ClusterProcesses& cluster) {
+  absl::StatusOr<v1::GetSweepResponse> sweep =
+      services::cli::GetSweep(cluster.coordinator_address(), "sweep-1", absl::Seconds(2));
+  return sweep.ok() ? sweep->sweep().state() : v1::SWEEP_STATE_UNSPECIFIED;
+}
+
+// The sweep's spec, and its report as an undisturbed cluster gives it: computed once.
+class FaultsTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    spec_ = new std::string(absl::StrCat(testing::MakeTempDir(), "/faults.yaml"));
+    ASSERT_TRUE(WriteFileAtomically(*spec_, kSpec).ok());
+    ClusterProcesses calm(kLease);
+    StartCoordinatorLearnerAndActors(calm);
+    const RunResult watched =
+        DcsAt({"submit", *spec_, "--watch"}, calm.coordinator_address(), absl::Minutes(5));
+    ASSERT_EQ(watched.exit_code, 0) << watched.output << "; logs in " << calm.dir();
+    ASSERT_THAT(watched.output, HasSubstr("sweep-1 chaos: completed, 8/8 runs done"));
+    undisturbed_ = new std::string(SweepReports(calm, "sweep-1"));
+  }
+
+  // Waits for the sweep to complete; then expects it whole and its report the undisturbed one.
+  static void ExpectTheUndisturbedReport(const ClusterProcesses& cluster,
+                                         const std::string& faults) {
+    const absl::Time deadline = absl::Now() + absl::Minutes(5);
+    while (SweepState(cluster) != v1::SWEEP_STATE_COMPLETED) {
+      ASSERT_LT(absl::Now(), deadline) << faults << "; logs in " << cluster.dir();
+      absl::SleepFor(absl::Milliseconds(200));
+    }
+    const absl::StatusOr<v1::GetSweepResponse> sweep =
+        services::cli::GetSweep(cluster.coordinator_address(), "sweep-1", absl::Seconds(5));
+    ASSERT_TRUE(sweep.ok()) << sweep.status();
+    EXPECT_EQ(sweep->sweep().completed(), 8);
+    EXPECT_EQ(sweep->sweep().failed(), 0);
+    EXPECT_EQ(SweepReports(cluster, "sweep-1"), *undisturbed_)
+        << faults << "; logs in " << cluster.dir();
+  }
+
+  static std::string* spec_;
+  static std::string* undisturbed_;
+};
+
+std::string* FaultsTest::spec_ = nullptr;
+std::string* FaultsTest::undisturbed_ = nullptr;
+
+TEST_F(FaultsTest, ASweepUnderRandomKillsReportsAsAnUndisturbedOne) {
+  ClusterProcesses chaos(kLease);
+  StartCoordinatorLearnerAndActors(chaos);
+  const RunResult submitted = DcsAt({"submit", *spec_}, chaos.coordinator_address());
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  std::mt19937 random(20261125);  // the kill schedule is the same at every run of the test
+  std::uniform_int_distribution<int> pause_ms(1000, 2500);
+  std::vector<std::string> killed;
+  const absl::Time deadline = absl::Now() + absl::Minutes(5);
+  while (SweepState(chaos) != v1::SWEEP_STATE_COMPLETED) {
+    ASSERT_LT(absl::Now(), deadline)
+        << "killed " << absl::StrJoin(killed, ", ") << "; logs in " << chaos.dir();
+    absl::SleepFor(absl::Milliseconds(pause_ms(random)));
+    const std::vector<std::string> running = chaos.Running();
+    const std::string& victim = running[random() % running.size()];
+    killed.push_back(victim);
+    chaos.Kill(victim);
+    chaos.Restart(victim);
+  }
+  std::cerr << "chaos: " << killed.size() << " kills: " << absl::StrJoin(killed, ", ") << "\n";
+  // A sweep that ended before the killer struck would prove nothing.
+  EXPECT_GE(killed.size(), 3u) << "the sweep ended before the killer struck";
+  ExpectTheUndisturbedReport(chaos, absl::StrCat("killed ", absl::StrJoin(killed, ", ")));
+}
+
+TEST_F(FaultsTest, AFullDiskStallsTheSweepWithClearErrorsAndLosesNothing) {
+  std::string mount_point;  // unmounted after the cluster's processes are gone
+  absl::Cleanup unmount = [&mount_point] {
+    if (!mount_point.empty()) ::umount2(mount_point.c_str(), MNT_DETACH);
+  };
+  ClusterProcesses cluster(kLease);
+  mount_point = absl::StrCat(cluster.dir(), "/data");  // the coordinator's data directory
+  std::filesystem::create_directories(mount_point);
+  if (::mount("dcs-test", mount_point.c_str(), "tmpfs", 0, "size=3m") != 0) {
+    mount_point.clear();
+    GTEST_SKIP() << "mounting a tmpfs needs root (CAP_SYS_ADMIN): " << std::strerror(errno);
+  }
+  StartCoordinatorLearnerAndActors(cluster);
+  const RunResult submitted = DcsAt({"submit", *spec_}, cluster.coordinator_address());
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+
+  // The checkpoints fill the disk: the coordinator says so, naming the file, and stays up.
+  const absl::Time deadline = absl::Now() + absl::Minutes(2);
+  while (!absl::StrContains(cluster.Log("coordinator"), "the disk is full")) {
+    ASSERT_LT(absl::Now(), deadline) << "the disk never filled; logs in " << cluster.dir();
+    absl::SleepFor(absl::Milliseconds(200));
+  }
+  EXPECT_THAT(cluster.Log("coordinator"),
+              HasSubstr(absl::StrCat(mount_point, "/coordinator.db: the disk is full")));
+  absl::SleepFor(absl::Seconds(3));  // full for a while: leases come due, workers retry
+  absl::StatusOr<bool> serving =
+      services::cli::IsServing(cluster.coordinator_address(), "", absl::Seconds(5));
+  EXPECT_TRUE(serving.ok() && *serving) << serving.status();
+  const absl::StatusOr<v1::GetSweepResponse> stalled =
+      services::cli::GetSweep(cluster.coordinator_address(), "sweep-1", absl::Seconds(5));
+  ASSERT_TRUE(stalled.ok()) << stalled.status();
+  EXPECT_EQ(stalled->sweep().failed(), 0) << "a run failed for the coordinator's full disk";
+  EXPECT_LT(stalled->sweep().completed(), 8) << "the disk filled too late to matter";
+
+  // Room again: the sweep goes on to the undisturbed report.
+  ASSERT_EQ(::mount("dcs-test", mount_point.c_str(), "tmpfs", MS_REMOUNT, "size=256m"), 0)
+      << std::strerror(errno);
+  ExpectTheUndisturbedReport(cluster, "the disk was full for a while");
+}
+
+TEST(CorruptStoreTest, TheCoordinatorRefusesToStartNamingTheFile) {
+  const std::string data_dir = testing::MakeTempDir();
+  const std::string store = absl::StrCat(data_dir, "/coordinator.db");
+  ASSERT_TRUE(WriteFileAtomically(store, std::string(8192, 'x')).ok());
+  const RunResult started =
+      RunProgram(BinaryPath("dcs-coordinator"),
+                 {"--listen=127.0.0.1:0", "--metrics-listen=127.0.0.1:0", "--data-dir", data_dir},
+                 absl::Seconds(30));
+  EXPECT_NE(started.exit_code, 0) << started.output;
+  EXPECT_NE(started.exit_code, -1) << "it did not stop on its own";
+  EXPECT_THAT(started.output, HasSubstr(absl::StrCat(store, " is corrupt")));
+}
+
+}  // namespace
+}  // namespace dcs::integration
