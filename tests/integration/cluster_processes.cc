@@ -100,6 +100,25 @@ void StartCoordinatorLearnerAndActors(ClusterProcesses& cluster) {
   cluster.StartActor("actor-2", 4);
 }
 
+std::string EightRunSweepSpec(const std::string& name, int total_timesteps, int evaluation_freq) {
+  return absl::StrCat("name: ", name, R"(
+seeds: 2
+observe: [none, live]
+env: cartpole
+total_timesteps: )", total_timesteps, R"(
+feature: length
+training_range: [0.35, 0.75]
+pool: {size: 3}
+evaluation: {freq: )", evaluation_freq, R"(, episodes: 2,
+             contexts: {id: [0.5], ood_low: [0.1], ood_high: [1.0]}}
+ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
+conditions:
+  - name: static
+  - schedule: {family: sinusoidal, period: 40}
+    grid: {schedule.amplitude_frac: [0.5]}
+)");
+}
+
 std::string SweepReports(const ClusterProcesses& cluster, const std::string& sweep_id) {
   std::string reports;
   for (const char* checkpoint : {"last", "best"}) {

@@ -65,6 +65,10 @@ class ClusterProcesses {
 // "actor-2").
 void StartCoordinatorLearnerAndActors(ClusterProcesses& cluster);
 
+// A sweep spec of two conditions (static, a sinusoid) in two modes, two seeds: 8 CartPole
+// runs of `total_timesteps` steps each, evaluated every `evaluation_freq`.
+std::string EightRunSweepSpec(const std::string& name, int total_timesteps, int evaluation_freq);
+
 // Every format's report of a finished sweep, best and last checkpoint, as `dcs report` prints
 // them: two clusters that ran the same sweep to the same results give the same text.
 std::string SweepReports(const ClusterProcesses& cluster, const std::string& sweep_id);

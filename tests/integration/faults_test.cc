@@ -40,23 +40,6 @@ using ::testing::HasSubstr;
 
 constexpr absl::Duration kLease = absl::Seconds(1);
 
-// Two conditions in two modes, two seeds: 8 runs, each evaluated and checkpointed 4 times,
-// long enough for the killer to strike while they run.
-constexpr char kSpec[] = R"(name: chaos
-seeds: 2
-observe: [none, live]
-env: cartpole
-total_timesteps: 131072
-feature: length
-training_range: [0.35, 0.75]
-pool: {size: 3}
-evaluation: {freq: 32768, episodes: 2, contexts: {id: [0.5], ood_low: [0.1], ood_high: [1.0]}}
-ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
-conditions:
-  - name: static
-  - schedule: {family: sinusoidal, period: 40}
-    grid: {schedule.amplitude_frac: [0.5]}
-)";
 
 // The sweep's state as `dcs` sees it, or UNSPECIFIED while the coordinator is down.
 v1::SweepState SweepState(const ClusterProcesses& cluster) {
@@ -70,7 +53,9 @@ class FaultsTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     spec_ = new std::string(absl::StrCat(testing::MakeTempDir(), "/faults.yaml"));
-    ASSERT_TRUE(WriteFileAtomically(*spec_, kSpec).ok());
+    // 8 runs, each evaluated and checkpointed 4 times, long enough for the faults to strike
+    // while they run.
+    ASSERT_TRUE(WriteFileAtomically(*spec_, EightRunSweepSpec("chaos", 131072, 32768)).ok());
     ClusterProcesses calm(kLease);
     StartCoordinatorLearnerAndActors(calm);
     const RunResult watched =

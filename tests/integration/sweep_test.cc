@@ -28,22 +28,6 @@ using ::testing::HasSubstr;
 constexpr absl::Duration kLease = absl::Seconds(1);
 constexpr absl::Duration kTimeout = absl::Seconds(5);
 
-// Two conditions (static, a sinusoid) in two modes, two seeds: 8 short runs.
-constexpr char kSpec[] = R"(name: small
-seeds: 2
-observe: [none, live]
-env: cartpole
-total_timesteps: 1536
-feature: length
-training_range: [0.35, 0.75]
-pool: {size: 3}
-evaluation: {freq: 512, episodes: 2, contexts: {id: [0.5], ood_low: [0.1], ood_high: [1.0]}}
-ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
-conditions:
-  - name: static
-  - schedule: {family: sinusoidal, period: 40}
-    grid: {schedule.amplitude_frac: [0.5]}
-)";
 
 // Two problems in two places: a negative amplitude and an unknown family.
 constexpr char kBadSpec[] = R"(seeds: 2
@@ -78,7 +62,7 @@ void WaitForCompleted(const ClusterProcesses& cluster, const std::string& sweep_
 }
 
 TEST(SweepTest, ASweepSurvivesItsCoordinatorsDeathAndReportsTheSame) {
-  const std::string spec = WriteSpec(kSpec);
+  const std::string spec = WriteSpec(EightRunSweepSpec("small", 1536, 512));
 
   // Undisturbed: `dcs submit --watch` follows it to its end.
   ClusterProcesses calm(kLease);
