@@ -12,7 +12,7 @@ std::string HostOf(absl::string_view address) {
 }
 
 std::string WithPort(absl::string_view address, int port) {
-  return absl::StrCat(HostOf(address), ":", port);
+  return JoinHostPort(HostOf(address), port);
 }
 
 std::string JoinHostPort(absl::string_view host, int port) {

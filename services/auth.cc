@@ -34,15 +34,12 @@ std::string& Token() {
   return *token;
 }
 
-TlsFiles& Tls() {
-  static auto* files = new TlsFiles();  // as Token()
-  return *files;
-}
-
-std::shared_ptr<grpc::experimental::CertificateProviderInterface> CertificateProvider() {
-  const TlsFiles& files = Tls();
-  return std::make_shared<grpc::experimental::FileWatcherCertificateProvider>(
-      files.key, files.certificate, files.ca, kCertificateRefreshSeconds);
+// The files' watcher, shared by every server and channel of the process (each watcher is a
+// thread rereading the files); null without TLS.
+std::shared_ptr<grpc::experimental::CertificateProviderInterface>& CertificateProvider() {
+  static auto* provider =  // as Token()
+      new std::shared_ptr<grpc::experimental::CertificateProviderInterface>();
+  return *provider;
 }
 
 absl::StatusOr<std::string> CheckedToken(absl::string_view text, absl::string_view source) {
@@ -138,10 +135,15 @@ absl::Status CheckTlsFiles(const TlsFiles& files) {
   return absl::OkStatus();
 }
 
-void SetClusterTls(TlsFiles files) { Tls() = std::move(files); }
+void SetClusterTls(const TlsFiles& files) {
+  CertificateProvider() =
+      files.enabled() ? std::make_shared<grpc::experimental::FileWatcherCertificateProvider>(
+                            files.key, files.certificate, files.ca, kCertificateRefreshSeconds)
+                      : nullptr;
+}
 
 std::shared_ptr<grpc::ServerCredentials> ClusterServerCredentials() {
-  if (!Tls().enabled()) return grpc::InsecureServerCredentials();
+  if (CertificateProvider() == nullptr) return grpc::InsecureServerCredentials();
   grpc::experimental::TlsServerCredentialsOptions options(CertificateProvider());
   options.watch_root_certs();
   options.watch_identity_key_cert_pairs();
@@ -150,7 +152,7 @@ std::shared_ptr<grpc::ServerCredentials> ClusterServerCredentials() {
 }
 
 std::shared_ptr<grpc::ChannelCredentials> ClusterChannelCredentials() {
-  if (!Tls().enabled()) return grpc::InsecureChannelCredentials();
+  if (CertificateProvider() == nullptr) return grpc::InsecureChannelCredentials();
   grpc::experimental::TlsChannelCredentialsOptions options;
   options.set_certificate_provider(CertificateProvider());
   options.watch_root_certs();

@@ -78,8 +78,9 @@ void AddTlsFlags(CLI::App& app, TlsFiles& files);
 // INVALID_ARGUMENT naming the missing flag or the file and what is wrong with it.
 absl::Status CheckTlsFiles(const TlsFiles& files);
 
-// Sets the process's TLS files (see above); `files` must have passed CheckTlsFiles.
-void SetClusterTls(TlsFiles files);
+// Sets the process's TLS files (see above), none to go back to plaintext; `files` must have
+// passed CheckTlsFiles.
+void SetClusterTls(const TlsFiles& files);
 
 // What servers listen with and channels dial with: mutual TLS over the cluster's files, or
 // plaintext without them.
