@@ -8,6 +8,8 @@
 // - A full disk: the coordinator's data directory is a 3 MiB tmpfs, which the sweep's
 //   checkpoints fill. The coordinator stays up and says which file could not be written;
 //   workers wait rather than fail runs; once the disk is made larger the sweep completes.
+// - A damaged checkpoint: the newest checkpoint of a run whose learner died has a bit flipped;
+//   the run resumes from the one before it.
 // - A corrupt store: the coordinator refuses to start, naming the file.
 
 #include <sys/mount.h>
@@ -23,6 +25,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "absl/strings/strip.h"
 #include "absl/time/clock.h"
 #include "common/atomic_file.h"
 #include "gmock/gmock.h"
@@ -39,7 +42,6 @@ namespace {
 using ::testing::HasSubstr;
 
 constexpr absl::Duration kLease = absl::Seconds(1);
-
 
 // The sweep's state as `dcs` sees it, or UNSPECIFIED while the coordinator is down.
 v1::SweepState SweepState(const ClusterProcesses& cluster) {
@@ -152,6 +154,43 @@ TEST_F(FaultsTest, AFullDiskStallsTheSweepWithClearErrorsAndLosesNothing) {
   ASSERT_EQ(::mount("dcs-test", mount_point.c_str(), "tmpfs", MS_REMOUNT, "size=256m"), 0)
       << std::strerror(errno);
   ExpectTheUndisturbedReport(cluster, "the disk was full for a while");
+}
+
+TEST_F(FaultsTest, ABitFlippedCheckpointFallsBackToThePreviousOne) {
+  ClusterProcesses cluster(kLease);
+  StartCoordinatorLearnerAndActors(cluster);
+  const RunResult submitted = DcsAt({"submit", *spec_}, cluster.coordinator_address());
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+
+  // Once run-1 has two checkpoints, its learner dies and the newer one is damaged on the
+  // coordinator's disk: one bit of its learner.bin flipped.
+  const std::filesystem::path checkpoints =
+      std::filesystem::path(cluster.dir()) / "data/runs/run-1/checkpoints";
+  const absl::Time deadline = absl::Now() + absl::Minutes(2);
+  std::string latest;
+  while (true) {
+    ASSERT_LT(absl::Now(), deadline)
+        << "run-1 never had two checkpoints; logs in " << cluster.dir();
+    int stored = 0;
+    if (std::filesystem::exists(checkpoints)) {
+      for (const auto& entry : std::filesystem::directory_iterator(checkpoints)) {
+        stored += entry.is_directory();
+      }
+    }
+    if (stored >= 2) break;
+    absl::SleepFor(absl::Milliseconds(20));
+  }
+  cluster.Kill("learner");
+  latest = std::string(
+      absl::StripAsciiWhitespace(ReadFile((checkpoints / "latest").string()).value_or("")));
+  const std::string damaged = (checkpoints / latest / "learner.bin").string();
+  absl::StatusOr<std::string> bytes = ReadFile(damaged);
+  ASSERT_TRUE(bytes.ok()) << bytes.status();
+  (*bytes)[bytes->size() / 2] ^= 0x10;
+  ASSERT_TRUE(WriteFileAtomically(damaged, *bytes).ok());
+  cluster.Restart("learner");
+
+  ExpectTheUndisturbedReport(cluster, absl::StrCat("checkpoint ", latest, " of run-1 damaged"));
 }
 
 TEST(CorruptStoreTest, TheCoordinatorRefusesToStartNamingTheFile) {
