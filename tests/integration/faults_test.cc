@@ -4,7 +4,7 @@
 // faulty run of the same sweep must end with the report, in every format, of an undisturbed
 // run: no run or evaluation lost or counted twice, every run bit for bit the same.
 // - Chaos: a killer SIGKILLs a random process (the coordinator, the learner or an actor) every
-//   1 to 2.5 seconds and restarts it at once, from a seeded schedule.
+//   1 to 2.5 seconds and restarts it at once, from a seeded schedule, up to 8 times.
 // - A full disk: the coordinator's data directory is a 3 MiB tmpfs, which the sweep's
 //   checkpoints fill. The coordinator stays up and says which file could not be written;
 //   workers wait rather than fail runs; once the disk is made larger the sweep completes.
@@ -99,10 +99,10 @@ TEST_F(FaultsTest, ASweepUnderRandomKillsReportsAsAnUndisturbedOne) {
   std::mt19937 random(20261125);  // the kill schedule is the same at every run of the test
   std::uniform_int_distribution<int> pause_ms(1000, 2500);
   std::vector<std::string> killed;
-  const absl::Time deadline = absl::Now() + absl::Minutes(5);
-  while (SweepState(chaos) != v1::SWEEP_STATE_COMPLETED) {
-    ASSERT_LT(absl::Now(), deadline)
-        << "killed " << absl::StrJoin(killed, ", ") << "; logs in " << chaos.dir();
+  // Bounded: a learner killed more often than its runs checkpoint (on a loaded machine) would
+  // keep them from ever finishing.
+  constexpr size_t kMaxKills = 8;
+  while (killed.size() < kMaxKills && SweepState(chaos) != v1::SWEEP_STATE_COMPLETED) {
     absl::SleepFor(absl::Milliseconds(pause_ms(random)));
     const std::vector<std::string> running = chaos.Running();
     const std::string& victim = running[random() % running.size()];
