@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
@@ -13,6 +14,12 @@ namespace dcs::coordinator {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A write that failed for a full disk (RESOURCE_EXHAUSTED) as one its caller may retry.
+absl::Status RetryableWhenFull(absl::Status status) {
+  if (!absl::IsResourceExhausted(status)) return status;
+  return absl::UnavailableError(status.message());
+}
 
 }  // namespace
 
@@ -27,8 +34,8 @@ absl::StatusOr<CheckpointRecord> StoreCheckpoint(const std::string& run_dir,
   // the same run library, and decoding and encoding it again cost a fifth of the coordinator's
   // time. Its learner reads it back whole, falling back to an older one if it cannot.
   DCS_ASSIGN_OR_RETURN(const int64_t timesteps, run::CheckPackedCheckpoint(checkpoint));
-  DCS_RETURN_IF_ERROR(run::WritePackedCheckpoint(run_dir, checkpoint, keep));
-  DCS_RETURN_IF_ERROR(run::WriteEvaluationLog(run_dir, log));
+  DCS_RETURN_IF_ERROR(RetryableWhenFull(run::WritePackedCheckpoint(run_dir, checkpoint, keep)));
+  DCS_RETURN_IF_ERROR(RetryableWhenFull(run::WriteEvaluationLog(run_dir, log)));
   return CheckpointRecord{
       .name = checkpoint.name, .timesteps = timesteps, .sha256 = checkpoint.learner_sha256};
 }

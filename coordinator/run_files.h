@@ -31,7 +31,8 @@ std::string RunDirectory(absl::string_view data_dir, absl::string_view run_id);
 // Checks `checkpoint` (errors as run::CheckPackedCheckpoint), then stores it in `run_dir`
 // with `log` as run::WritePackedCheckpoint and run::WriteEvaluationLog do, keeping the newest
 // `keep`. Nothing is stored unless all of it checks. Returns its index entry (the SHA-256 is
-// learner.bin's).
+// learner.bin's). A full disk is UNAVAILABLE, not RESOURCE_EXHAUSTED: the learner may send the
+// same checkpoint again once there is room, as after a full store (store_rows::StoreError).
 absl::StatusOr<CheckpointRecord> StoreCheckpoint(const std::string& run_dir,
                                                  const run::PackedCheckpoint& checkpoint,
                                                  const v1::EvaluationLog& log, int keep);

@@ -177,8 +177,8 @@ absl::Status CancelRunRow(SQLite::Database& db, const RunRecord& run, absl::stri
 
 absl::Status StoreError(const std::string& path, const SQLite::Exception& error) {
   switch (error.getErrorCode()) {
-    case SQLITE_FULL:
-      return absl::ResourceExhaustedError(absl::StrCat(
+    case SQLITE_FULL:  // the caller may make the same call again once there is room
+      return absl::UnavailableError(absl::StrCat(
           path, ": the disk is full; nothing of this change was stored (", error.what(), ")"));
     case SQLITE_CORRUPT:
     case SQLITE_NOTADB:

@@ -79,9 +79,10 @@ int64_t InsertStudy(SQLite::Database& db, const StudySubmission& submission,
 // Fails the running trials of the study sweep `sweep` drives (it was cancelled).
 void FailRunningStudyTrials(SQLite::Database& db, int64_t sweep, absl::Time now);
 
-// An SQLite error on the store at `path` as a status naming the file: RESOURCE_EXHAUSTED for a
-// full disk (SQLITE_FULL), DATA_LOSS for a corrupt file or one that is not a database,
-// UNAVAILABLE for a locked one, else INTERNAL.
+// An SQLite error on the store at `path` as a status naming the file: UNAVAILABLE for a full
+// disk (SQLITE_FULL) or a locked file, since nothing was stored and the same call may succeed
+// later (status.h: "the client may retry just this call"); DATA_LOSS for a corrupt file or one
+// that is not a database; else INTERNAL.
 absl::Status StoreError(const std::string& path, const SQLite::Exception& error);
 
 // Rolls back the open transaction, if one is still open: after some errors (a full disk among

@@ -30,7 +30,8 @@ absl::StatusOr<std::string> ClientToken(const GlobalFlags& flags) {
   DCS_ASSIGN_OR_RETURN(std::string token, LoadToken(flags.token_file));
   if (!token.empty()) return token;
   const absl::StatusOr<ClusterState> local = ReadClusterState(flags.data_dir);
-  const bool calls_local = flags.addr.empty() || (local.ok() && flags.addr == local->coordinator_address);
+  const bool calls_local =
+      flags.addr.empty() || (local.ok() && flags.addr == local->coordinator_address);
   const std::string local_token = TokenPath(flags.data_dir);
   if (!calls_local || !std::filesystem::exists(local_token)) return "";
   return LoadToken(local_token);

@@ -14,9 +14,10 @@
 
 #include <sys/mount.h>
 
-#include <filesystem>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <iostream>
 #include <random>
 #include <string>
 #include <vector>
