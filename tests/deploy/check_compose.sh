@@ -33,6 +33,14 @@ for file in Dockerfile .dockerignore docker-compose.yml .env deploy/prometheus/c
 done
 
 # --- docker-compose.yml as Compose reads it -------------------------------------------------
+# The cluster's token comes from the environment, and without it Compose must refuse to start.
+step "docker-compose.yml requires DCS_TOKEN"
+if out=$(env -u DCS_TOKEN docker-compose -f docker-compose.yml config -q 2>&1) ||
+    [[ "$out" != *DCS_TOKEN* ]]; then
+  fail "docker-compose.yml starts a cluster without DCS_TOKEN (the services would take calls" \
+    "from anyone): ${out:-no error}"
+fi
+export DCS_TOKEN=check-compose-token-0123456789abcdef0123456789abcdef
 step "docker-compose $(docker-compose version --short) config -q docker-compose.yml"
 if ! out=$(docker-compose -f docker-compose.yml config -q 2>&1); then
   fail "docker-compose refuses docker-compose.yml: $out"
@@ -154,6 +162,9 @@ for name, service in dcs.items():
     for key in ("interval", "timeout", "retries", "start_period"):
         if key not in check:
             fail(f"docker-compose.yml: service '{name}' healthcheck has no explicit '{key}'")
+    if (service.get("environment") or {}).get("DCS_TOKEN") != os.environ["DCS_TOKEN"]:
+        fail(f"docker-compose.yml: service '{name}' does not take DCS_TOKEN from the "
+             "environment: it would not hold the cluster's token")
     if "stop_grace_period" not in service:
         fail(f"docker-compose.yml: service '{name}' has no stop_grace_period")
     if name != "coordinator":

@@ -39,6 +39,9 @@ for port in 50051 9090; do
   fi
 done
 
+# The cluster's token: every service requires it, and `dcs` in the coordinator's container has it.
+DCS_TOKEN=$(openssl rand -hex 32)
+export DCS_TOKEN
 work=$(mktemp -d)
 project="dcs-check-$$"
 compose=(docker-compose -p "$project" -f docker-compose.yml -f "$work/override.yml")

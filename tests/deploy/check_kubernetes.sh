@@ -251,6 +251,12 @@ for path in files:
             # The program's flags: its --config file from the ConfigMap, then the arguments
             # (which win), with $(VAR) taken from the container's environment.
             env = {e["name"]: e for e in c.get("env") or []}
+            # Every DCS program holds the cluster's one token, from the one Secret.
+            secret = (env.get("DCS_TOKEN", {}).get("valueFrom") or {}).get("secretKeyRef") or {}
+            if (secret.get("name"), secret.get("key")) != ("dcs-token", "token") or \
+                    secret.get("optional"):
+                fail(cwhere, "DCS_TOKEN is not taken from key 'token' of the Secret dcs-token "
+                     "(required): the program would not hold the cluster's token")
             def expand(text):
                 def value(m):
                     e = env.get(m.group(1))
