@@ -262,7 +262,7 @@ absl::StatusOr<std::optional<LearnerLease>> RunStore::AcquireRun(absl::string_vi
                                                                  absl::string_view numerics,
                                                                  absl::Time now) {
   return Transaction([&]() -> absl::StatusOr<std::optional<LearnerLease>> {
-    DCS_RETURN_IF_ERROR(ExpireLapsed(*db_, now).status());
+    DCS_RETURN_IF_ERROR(ExpireLapsedLeases(now));
     // Fair across sweeps: the fewest running runs of the same sweep first (a run alone has
     // none), then the oldest.
     SQLite::Statement query(*db_, "SELECT number FROM runs AS r WHERE state = 'queued' AND "
@@ -300,7 +300,7 @@ absl::StatusOr<std::optional<SlotLease>> RunStore::AcquireSlot(
     absl::string_view holder, absl::string_view numerics, const std::vector<std::string>& except,
     absl::Time now) {
   return Transaction([&]() -> absl::StatusOr<std::optional<SlotLease>> {
-    DCS_RETURN_IF_ERROR(ExpireLapsed(*db_, now).status());
+    DCS_RETURN_IF_ERROR(ExpireLapsedLeases(now));
     SQLite::Statement query(
         *db_,
         "SELECT s.run, s.slot, l.address, l.epoch FROM leases s "
@@ -416,7 +416,7 @@ absl::StatusOr<std::optional<EvaluationGrant>> RunStore::AcquireEvaluationJobs(
     absl::string_view holder, absl::string_view numerics, int max_jobs, int actors,
     absl::Time now) {
   return Transaction([&]() -> absl::StatusOr<std::optional<EvaluationGrant>> {
-    DCS_RETURN_IF_ERROR(ExpireLapsed(*db_, now).status());
+    DCS_RETURN_IF_ERROR(ExpireLapsedLeases(now));
     // First in, first out across runs: an evaluation waits behind those handed over before it.
     SQLite::Statement oldest(
         *db_,
@@ -528,7 +528,21 @@ absl::StatusOr<EvaluationProgress> RunStore::GetEvaluation(absl::string_view run
 }
 
 absl::StatusOr<int> RunStore::ExpireLeases(absl::Time now) {
-  return Transaction([&]() -> absl::StatusOr<int> { return ExpireLapsed(*db_, now); });
+  return Transaction([&]() -> absl::StatusOr<int> {
+    DCS_RETURN_IF_ERROR(ExpireLapsedLeases(now));
+    return static_cast<int>(leases_lapsing_);
+  });
+}
+
+int64_t RunStore::LeasesLapsed() {
+  absl::MutexLock lock(&mu_);
+  return leases_lapsed_;
+}
+
+absl::Status RunStore::ExpireLapsedLeases(absl::Time now) {
+  DCS_ASSIGN_OR_RETURN(const int lapsed, ExpireLapsed(*db_, now));
+  leases_lapsing_ += lapsed;
+  return absl::OkStatus();
 }
 
 absl::Status RunStore::ReportProgress(const LeaseKey& key, const RunProgress& progress,

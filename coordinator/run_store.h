@@ -409,6 +409,9 @@ class RunStore {
   // queued (and its slot leases are freed); a lapsed evaluation job goes back to the queue.
   // Returns how many leases lapsed.
   absl::StatusOr<int> ExpireLeases(absl::Time now);
+  // How many leases have lapsed since the store was opened, whichever call expired them
+  // (ExpireLeases or an Acquire): counted once each, when the expiring transaction commits.
+  int64_t LeasesLapsed();
 
   // The learner holding `key` (a learner lease) reports progress. Errors as RenewLease.
   absl::Status ReportProgress(const LeaseKey& key, const RunProgress& progress, absl::Time now);
@@ -432,10 +435,15 @@ class RunStore {
   // Runs `body` in one transaction (defined in coordinator/store_rows.h).
   template <typename Body>
   auto Transaction(Body body) -> decltype(body());
+  // Frees the leases lapsed at `now` (store_rows' ExpireLapsed), counting them for
+  // LeasesLapsed if the transaction commits. Inside Transaction only.
+  absl::Status ExpireLapsedLeases(absl::Time now) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_);
 
   absl::Mutex mu_;
   const std::unique_ptr<SQLite::Database> db_ ABSL_GUARDED_BY(mu_);
   const RunStoreOptions options_;
+  int64_t leases_lapsed_ ABSL_GUARDED_BY(mu_) = 0;
+  int64_t leases_lapsing_ ABSL_GUARDED_BY(mu_) = 0;  // by the open transaction
 };
 
 }  // namespace dcs::coordinator

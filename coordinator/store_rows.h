@@ -95,15 +95,17 @@ void RollBackIfActive(SQLite::Database& db) noexcept;
 namespace dcs::coordinator {
 
 // Runs `body` in one BEGIN IMMEDIATE transaction, committing if it returns OK; SQLite errors
-// (thrown by SQLiteCpp) become INTERNAL naming the database.
+// (thrown by SQLiteCpp) become statuses naming the database (store_rows::StoreError).
 template <typename Body>
 auto RunStore::Transaction(Body body) -> decltype(body()) {
   absl::MutexLock lock(&mu_);
+  leases_lapsing_ = 0;
   try {
     db_->exec("BEGIN IMMEDIATE");
     try {
       auto result = body();
       db_->exec(result.ok() ? "COMMIT" : "ROLLBACK");
+      if (result.ok()) leases_lapsed_ += leases_lapsing_;
       return result;
     } catch (...) {
       store_rows::RollBackIfActive(*db_);

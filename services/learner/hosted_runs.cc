@@ -4,19 +4,23 @@
 #include <grpcpp/grpcpp.h>
 
 #include <algorithm>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "absl/synchronization/blocking_counter.h"
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
+#include "common/status_util.h"
 #include "env/env_registry.h"
 #include "run/run_checkpoint.h"
 #include "run/run_spec_yaml.h"
 #include "services/backoff.h"
 #include "services/channel.h"
 #include "services/finished_threads.h"
+#include "services/grpc_status.h"
 #include "services/learner/remote_evaluation.h"
 #include "services/log.h"
 #include "services/run_proto.h"
@@ -135,32 +139,52 @@ void HostedRuns::Manage() {
 }
 
 void HostedRuns::RenewLeases() {
-  std::vector<std::shared_ptr<Run>> runs;
-  absl::Duration period;
+  // Every lease that falls due is renewed at once, each by its own call: on a loaded machine a
+  // call waits for the scheduler far longer than for the coordinator, and one call after
+  // another for 16 runs took longer than a lease lasts (bench/RESULTS.md, issue 14's load).
+  struct Renewal {
+    std::shared_ptr<Run> run;
+    grpc::ClientContext context;
+    v1::RenewLeaseRequest request;
+    v1::RenewLeaseResponse response;
+    grpc::Status status;
+  };
+  std::vector<std::unique_ptr<Renewal>> renewals;
   {
     absl::MutexLock lock(&mu_);
-    for (const auto& [key, run] : runs_) runs.push_back(run);
-    period = lease_duration_ / 3;
+    const absl::Duration period = lease_duration_ / 3;
+    for (const auto& [key, run] : runs_) {
+      if (run->lost || absl::Now() - run->renewed_at < period) continue;
+      renewals.push_back(std::make_unique<Renewal>());
+      renewals.back()->run = run;
+    }
   }
-  for (const std::shared_ptr<Run>& run : runs) {
-    if (run->lost || absl::Now() - run->renewed_at < period) continue;
-    v1::RenewLeaseRequest request;
-    *request.mutable_lease() = LeaseToProto(run->lease);
-    v1::RenewLeaseResponse response;
-    const absl::Status status =
-        CallUnary(*coordinator_, &v1::CoordinatorService::Stub::RenewLease, request, response,
-                  options_.rpc_timeout, "coordinator");
+  const absl::Time sent = absl::Now();
+  absl::BlockingCounter pending(static_cast<int>(renewals.size()));
+  for (const std::unique_ptr<Renewal>& renewal : renewals) {
+    *renewal->request.mutable_lease() = LeaseToProto(renewal->run->lease);
+    SetTimeout(renewal->context, options_.rpc_timeout);
+    coordinator_->async()->RenewLease(&renewal->context, &renewal->request, &renewal->response,
+                                      [&pending, &renewal](grpc::Status status) {
+                                        renewal->status = std::move(status);
+                                        pending.DecrementCount();
+                                      });
+  }
+  pending.Wait();
+  for (const std::unique_ptr<Renewal>& renewal : renewals) {
+    Run& run = *renewal->run;
+    const absl::Status status = Annotate(FromGrpcStatus(renewal->status), "coordinator");
     if (status.ok()) {
-      run->renewed_at = absl::Now();
+      run.renewed_at = sent;
       absl::MutexLock lock(&mu_);
-      lease_duration_ = DurationFromProto(response.lease_duration());
+      lease_duration_ = DurationFromProto(renewal->response.lease_duration());
     } else if (IsLeaseLost(status)) {
       Log(LogLevel::kWarning, "lost a run's lease",
-          {{"run_id", run->lease.run_id}, {"error", status.ToString()}});
-      run->Lose();
+          {{"run_id", run.lease.run_id}, {"error", status.ToString()}});
+      run.Lose();
     } else {
       Log(LogLevel::kWarning, "cannot renew a lease yet",
-          {{"run_id", run->lease.run_id}, {"error", status.ToString()}});
+          {{"run_id", run.lease.run_id}, {"error", status.ToString()}});
     }
   }
 }

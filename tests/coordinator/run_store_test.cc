@@ -175,10 +175,28 @@ TEST_F(RunStoreTest, ALapsedLeaseGoesBackToTheQueueAndItsOldHolderIsRefused) {
   absl::StatusOr<std::optional<LearnerLease>> second = store->AcquireRun("L2", "b", "N", later);
   ASSERT_TRUE(second.ok() && second->has_value());
   EXPECT_EQ((*second)->key.epoch, 2);
+  EXPECT_EQ(store->LeasesLapsed(), 2);
   stale = store->ReportProgress(first.key, {.timesteps = 5}, later);
   EXPECT_EQ(stale.code(), absl::StatusCode::kFailedPrecondition);
   EXPECT_THAT(stale.message(), HasSubstr("moved: epoch 2 was granted after epoch 1"));
   EXPECT_EQ(store->RenewLease((*slot)->key, later).code(), absl::StatusCode::kFailedPrecondition);
+}
+
+// Under load the workers' Acquire calls, which expire lapsed leases first, find nearly every
+// lapse before the coordinator's reaper does; the count must include those.
+TEST_F(RunStoreTest, LapsesFoundByAnAcquireAreCountedOnce) {
+  std::unique_ptr<RunStore> store = Open();
+  SubmitAndAcquire(*store);
+  ASSERT_TRUE(store->AcquireSlot("A", "N", {}, kStart).ok());
+  EXPECT_EQ(store->LeasesLapsed(), 0);
+  const absl::Time later = kStart + absl::Seconds(30);
+  // The learner's lease lapsed (A's slot lease goes with it: the run is queued again).
+  ASSERT_TRUE(store->AcquireSlot("B", "N", {}, later).ok());
+  EXPECT_EQ(store->LeasesLapsed(), 1);
+  absl::StatusOr<int> lapsed = store->ExpireLeases(later);
+  ASSERT_TRUE(lapsed.ok());
+  EXPECT_EQ(*lapsed, 0);
+  EXPECT_EQ(store->LeasesLapsed(), 1);
 }
 
 TEST_F(RunStoreTest, ANewLearnerLeaseFreesTheSlotLeases) {
