@@ -1,11 +1,13 @@
 # The two commands of README.md, and their parts. Each target does all set-up it needs.
 #   make demo   bootstrap, build, run the main job on the local default (scripts/demo): a small
 #               sweep of the paper's CartPole experiment on a local cluster, its table and figures
-#   make test   bootstrap, build, run every test with ctest
+#   make test   bootstrap, build, run every test with ctest; then build the fuzz targets
+#               (tests/fuzz/, in build-fuzz/ with clang) and give each a short pass
 BUILD_DIR ?= build
+FUZZ_BUILD_DIR ?= build-fuzz
 JOBS ?= $(shell nproc)
 
-.PHONY: all bootstrap configure build test demo bench clean
+.PHONY: all bootstrap configure build test fuzz-configure fuzz-build fuzz demo sanitize clean
 
 all: build
 
@@ -20,9 +22,24 @@ build: configure
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
+	$(MAKE) fuzz
+
+fuzz-configure: bootstrap
+	cmake -S . -B $(FUZZ_BUILD_DIR) -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DDCS_FUZZ=ON
+
+fuzz-build: fuzz-configure
+	cmake --build $(FUZZ_BUILD_DIR) -j $(JOBS)
+
+# Each fuzz target's seeds, then new inputs for DCS_FUZZ_SECONDS (tests/fuzz/CMakeLists.txt).
+fuzz: fuzz-build
+	ctest --test-dir $(FUZZ_BUILD_DIR) --output-on-failure -j $(JOBS) -L fuzz
 
 demo: build
 	scripts/demo $(BUILD_DIR)
 
+# The release check (README "Working on DCS"): every test under ASan+UBSan, then under TSan.
+sanitize:
+	scripts/sanitize
+
 clean:
-	rm -rf $(BUILD_DIR)
+	rm -rf $(BUILD_DIR) $(FUZZ_BUILD_DIR)

@@ -63,9 +63,10 @@ std::string Csv(const Heatmap& heatmap, double limit) {
       const bool has_value = !std::isnan(v);
       // White numbers on the darker ends of the scale.
       const int text_color = has_value && std::abs(v) > 0.6 * limit ? kWhite : kBlack;
-      const std::string text =
-          has_value ? absl::StrFormat(heatmap.diverging ? "%+.*f" : "%.*f", heatmap.decimals, v)
-                    : std::string("n/a");
+      // One format string per call: clang checks StrFormat's formats at compile time.
+      const std::string text = !has_value          ? std::string("n/a")
+                               : heatmap.diverging ? absl::StrFormat("%+.*f", heatmap.decimals, v)
+                                                   : absl::StrFormat("%.*f", heatmap.decimals, v);
       absl::StrAppend(&csv, r, ",", c, ",", has_value ? CsvNumber(v) : "", ",", text_color, ",",
                       CsvField(text), ",", CsvField(heatmap.row_labels[r]), ",",
                       CsvField(heatmap.column_labels[c]), "\n");

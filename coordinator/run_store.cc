@@ -505,14 +505,30 @@ absl::StatusOr<EvaluationProgress> RunStore::GetEvaluation(absl::string_view run
     EvaluationProgress progress{.contexts = query.getColumn(0).getInt(),
                                 .done = query.getColumn(1).getInt()};
     query.reset();
+    // SubmitEvaluation stores at least one context and jobs numbered below their count: other
+    // numbers mean a damaged file, not to be indexed with.
+    auto corrupt = [&](absl::string_view what, int64_t value) {
+      return absl::DataLossError(absl::StrCat(db_->getFilename(), " is corrupt: the evaluation of ",
+                                              "policy version ", policy_version, " of ", run_id,
+                                              " has ", what, " ", value));
+    };
+    if (progress.contexts < 1) return corrupt("contexts:", progress.contexts);
     if (progress.done < progress.contexts) return progress;
     progress.results.resize(progress.contexts);
+    auto context_of = [&](const SQLite::Column& column,
+                          absl::string_view what) -> absl::StatusOr<size_t> {
+      const int64_t context = column.getInt64();
+      if (context < 0 || context >= progress.contexts) return corrupt(what, context);
+      return static_cast<size_t>(context);
+    };
     SQLite::Statement seconds(*db_, "SELECT context, seconds FROM evaluation_jobs "
                                     "WHERE run = ? AND policy_version = ?");
     seconds.bind(1, number);
     seconds.bind(2, policy_version);
     while (seconds.executeStep()) {
-      progress.results[seconds.getColumn(0).getInt()].seconds = seconds.getColumn(1).getDouble();
+      DCS_ASSIGN_OR_RETURN(const size_t context,
+                           context_of(seconds.getColumn(0), "a job of context"));
+      progress.results[context].seconds = seconds.getColumn(1).getDouble();
     }
     SQLite::Statement returns(*db_, "SELECT context, value FROM evaluation_returns "
                                     "WHERE run = ? AND policy_version = ? "
@@ -520,8 +536,9 @@ absl::StatusOr<EvaluationProgress> RunStore::GetEvaluation(absl::string_view run
     returns.bind(1, number);
     returns.bind(2, policy_version);
     while (returns.executeStep()) {
-      progress.results[returns.getColumn(0).getInt()].returns.push_back(
-          returns.getColumn(1).getDouble());
+      DCS_ASSIGN_OR_RETURN(const size_t context,
+                           context_of(returns.getColumn(0), "returns of context"));
+      progress.results[context].returns.push_back(returns.getColumn(1).getDouble());
     }
     return progress;
   });
@@ -664,9 +681,15 @@ absl::StatusOr<StoreCounts> RunStore::Counts() {
         for (const auto& [state, name] : kRunStateNames) sweep.runs_by_state.emplace_back(state, 0);
       }
       ActiveSweepCounts& sweep = counts.active_sweeps.back();
-      // The schema's CHECK keeps states to the table's names.
-      const RunState state = *FindByName(kRunStateNames, sweeps.getColumn(1).getString());
-      sweep.runs_by_state[static_cast<int>(state)].second = sweeps.getColumn(2).getInt64();
+      // The schema's CHECK keeps states to the table's names: another means a damaged file.
+      const std::string name = sweeps.getColumn(1).getString();
+      const std::optional<RunState> state = FindByName(kRunStateNames, name);
+      if (!state.has_value()) {
+        return absl::DataLossError(
+            absl::StrCat(db_->getFilename(), " is corrupt: a run of ", sweep_id, " is in state '",
+                         name, "', which is not one of ", ListNames(kRunStateNames)));
+      }
+      sweep.runs_by_state[static_cast<int>(*state)].second = sweeps.getColumn(2).getInt64();
       sweep.steps_remaining += sweeps.getColumn(3).getInt64();
     }
     return counts;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,30 +29,54 @@ using namespace store_rows;  // NOLINT: the store's own rows
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::vector<StudyTrial> ReadTrials(SQLite::Database& db, int64_t study) {
+// The value a stored name stands for. The schema's CHECK constraints keep names to the table's,
+// so another one means the file was damaged: DATA_LOSS naming the database and `what`.
+template <typename E, size_t N>
+absl::StatusOr<E> StoredValue(SQLite::Database& db, const EnumName<E> (&names)[N],
+                              const std::string& name, absl::string_view what) {
+  if (const std::optional<E> value = FindByName(names, name); value.has_value()) return *value;
+  return absl::DataLossError(absl::StrCat(db.getFilename(), " is corrupt: ", what, " is '", name,
+                                          "', which is not one of ", ListNames(names)));
+}
+
+absl::StatusOr<std::vector<StudyTrial>> ReadTrials(SQLite::Database& db, int64_t study) {
   std::vector<StudyTrial> trials;
   std::map<int64_t, size_t> index;
   SQLite::Statement rows(
       db, "SELECT number, state, value FROM study_trials WHERE study = ? ORDER BY number");
   rows.bind(1, study);
   while (rows.executeStep()) {
-    index[rows.getColumn(0).getInt64()] = trials.size();
-    trials.push_back({.number = rows.getColumn(0).getInt64(),
-                      .state = *FindByName(kTrialStateNames, rows.getColumn(1).getString()),
-                      .value = DoubleOrNaN(rows.getColumn(2))});
+    const int64_t number = rows.getColumn(0).getInt64();
+    DCS_ASSIGN_OR_RETURN(
+        const TrialState state,
+        StoredValue(db, kTrialStateNames, rows.getColumn(1).getString(),
+                    absl::StrCat("the state of trial ", number, " of ", StudyId(study))));
+    index[number] = trials.size();
+    trials.push_back({.number = number, .state = state, .value = DoubleOrNaN(rows.getColumn(2))});
   }
+  // A value or report of a trial the study lacks: the foreign keys forbid it, so the file was
+  // damaged.
+  auto trial_of = [&](int64_t number) -> absl::StatusOr<StudyTrial*> {
+    const auto found = index.find(number);
+    if (found == index.end()) {
+      return absl::DataLossError(absl::StrCat(db.getFilename(), " is corrupt: ", StudyId(study),
+                                              " has values of trial ", number,
+                                              ", which it does not have"));
+    }
+    return &trials[found->second];
+  };
   SQLite::Statement values(db, "SELECT trial, name, value FROM study_trial_values WHERE study = ?");
   values.bind(1, study);
   while (values.executeStep()) {
-    trials[index.at(values.getColumn(0).getInt64())].values[values.getColumn(1).getString()] =
-        values.getColumn(2).getDouble();
+    DCS_ASSIGN_OR_RETURN(StudyTrial* const trial, trial_of(values.getColumn(0).getInt64()));
+    trial->values[values.getColumn(1).getString()] = values.getColumn(2).getDouble();
   }
   SQLite::Statement reports(db,
                             "SELECT trial, step, value FROM study_trial_reports WHERE study = ?");
   reports.bind(1, study);
   while (reports.executeStep()) {
-    trials[index.at(reports.getColumn(0).getInt64())].reported[reports.getColumn(1).getInt64()] =
-        DoubleOrNaN(reports.getColumn(2));
+    DCS_ASSIGN_OR_RETURN(StudyTrial* const trial, trial_of(reports.getColumn(0).getInt64()));
+    trial->reported[reports.getColumn(1).getInt64()] = DoubleOrNaN(reports.getColumn(2));
   }
   return trials;
 }
@@ -82,18 +107,22 @@ absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study
   s.request_id = query.getColumn(0).getString();
   s.name = query.getColumn(1).getString();
   s.space = query.getColumn(2).getString();
-  s.sampler = *FindByName(kSamplerKindNames, query.getColumn(3).getString());
+  row.record.id = StudyId(number);
+  DCS_ASSIGN_OR_RETURN(s.sampler, StoredValue(db, kSamplerKindNames, query.getColumn(3).getString(),
+                                              absl::StrCat("the sampler of ", row.record.id)));
   s.seed = static_cast<uint64_t>(query.getColumn(4).getInt64());
-  s.direction = *FindByName(kDirectionNames, query.getColumn(5).getString());
+  DCS_ASSIGN_OR_RETURN(s.direction, StoredValue(db, kDirectionNames, query.getColumn(5).getString(),
+                                                absl::StrCat("the direction of ", row.record.id)));
   s.tpe.startup_trials = query.getColumn(6).getInt();
   s.tpe.ei_candidates = query.getColumn(7).getInt();
   s.tpe.parzen.multivariate = query.getColumn(8).getInt() != 0;
   s.tpe.group = query.getColumn(9).getInt() != 0;
   s.tpe.constant_liar = query.getColumn(10).getInt() != 0;
-  row.record.id = StudyId(number);
   row.record.created_at = FromMicros(query.getColumn(11).getInt64());
   PrunerOptions& pruner = s.pruner;
-  pruner.kind = *FindByName(kPrunerKindNames, query.getColumn(12).getString());
+  DCS_ASSIGN_OR_RETURN(pruner.kind,
+                       StoredValue(db, kPrunerKindNames, query.getColumn(12).getString(),
+                                   absl::StrCat("the pruner of ", row.record.id)));
   pruner.median = {.percentile = query.getColumn(13).getDouble(),
                    .startup_trials = query.getColumn(14).getInt(),
                    .warmup_steps = query.getColumn(15).getInt64(),
@@ -104,13 +133,21 @@ absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study
   pruner.halving.min_early_stopping_rate = query.getColumn(20).getInt();
   pruner.halving.bootstrap_count = query.getColumn(21).getInt();
   if (!query.getColumn(22).isNull()) row.record.sweep_id = SweepId(query.getColumn(22).getInt64());
-  // Validated when the study was created.
-  DCS_ASSIGN_OR_RETURN(row.space, run::ParseSearchSpaceYaml(s.space, row.record.id));
+  // Validated when the study was created: one that no longer parses was damaged since.
+  absl::StatusOr<run::SearchSpace> space = run::ParseSearchSpaceYaml(s.space, row.record.id);
+  if (!space.ok()) {
+    return absl::DataLossError(absl::StrCat(db.getFilename(), " is corrupt: the search space of ",
+                                            row.record.id,
+                                            " does not parse: ", space.status().message()));
+  }
+  row.space = *std::move(space);
 
   row.number = number;
-  row.trials = ReadTrials(db, number);
+  DCS_ASSIGN_OR_RETURN(row.trials, ReadTrials(db, number));
   const std::vector<StudyTrial>& trials = row.trials;
-  for (const auto& [state, name] : kTrialStateNames) {
+  for (const EnumName<TrialState>& entry : kTrialStateNames) {
+    // Not a structured binding: lambdas may capture those since C++20, clang only from 16.
+    const TrialState state = entry.value;
     row.record.trials_by_state.emplace_back(
         state, std::count_if(trials.begin(), trials.end(),
                              [state](const StudyTrial& t) { return t.state == state; }));

@@ -35,8 +35,12 @@ struct CoverageWindow {
   int64_t new_cells = 0;  // of those, cells no earlier window visited
 };
 
-// The words of a bitset of `cells` bits: cell i is bit i % 64 of word i / 64.
-inline size_t BitsetWords(int64_t cells) { return static_cast<size_t>((cells + 63) / 64); }
+// The words of a bitset of `cells` bits: cell i is bit i % 64 of word i / 64. Defined for every
+// count (a checkpoint's, as read from disk, may be any): rounding up by `cells + 63` would
+// overflow near the largest int64_t.
+inline size_t BitsetWords(int64_t cells) {
+  return cells <= 0 ? 0 : static_cast<size_t>(cells / 64 + (cells % 64 != 0 ? 1 : 0));
+}
 
 // The counts of one projection so far, in bitsets of BitsetWords(cells) words.
 struct ProjectionCounts {

@@ -22,6 +22,16 @@
 
 namespace dcs::run {
 
+// The coverage diagnostic (spec/schedules.md §11; run/coverage.h), off unless asked for: the
+// cells of the environment's state projections that training visits, per window of `window`
+// environment steps and over the run. Declared outside RunSpec (as RunSpec::Coverage): a class
+// nested in RunSpec, with default member initialisers, would not be default-constructible inside
+// RunSpec's own definition, and clang then refuses std::optional<Coverage>::emplace().
+struct CoverageSpec {
+  int64_t window = 50'000;
+  std::vector<std::string> projections;  // by name; empty: every one the environment has
+};
+
 struct RunSpec {
   std::string env = "cartpole";
   uint64_t seed = 0;
@@ -67,14 +77,8 @@ struct RunSpec {
 
   PpoConfig ppo;
 
-  // The coverage diagnostic (spec/schedules.md §11; run/coverage.h), off unless asked for: the
-  // cells of the environment's state projections that training visits, per window of `window`
-  // environment steps and over the run.
-  struct Coverage {
-    int64_t window = 50'000;
-    std::vector<std::string> projections;  // by name; empty: every one the environment has
-  };
-  std::optional<Coverage> coverage;
+  using Coverage = CoverageSpec;
+  std::optional<Coverage> coverage;  // off unless asked for
 };
 
 }  // namespace dcs::run

@@ -15,6 +15,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// Deduced without this guide since C++20 (aggregate deduction), but not yet by clang 14.
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // Whether `steps` (a count of grid steps, as computed) is within rounding of an integer.
 bool IsWhole(double steps) { return std::abs(steps - std::round(steps)) <= 1e-8 * (1 + steps); }

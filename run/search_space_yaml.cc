@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "run/search_space_yaml.h"
 
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -85,9 +86,13 @@ absl::StatusOr<SearchParameter> ReadParameter(YamlReader& reader, const YAML::No
     parameter.distribution =
         FloatDistribution{.low = *low, .high = *high, .log = log, .step = step};
   } else if (*type == "int") {
-    const auto whole = [](double x) { return x == static_cast<double>(static_cast<int64_t>(x)); };
+    // An integer an int64_t holds: tested before casting, which is undefined out of its range.
+    const auto whole = [](double x) {
+      return x >= -0x1p63 && x < 0x1p63 && x == std::trunc(x);  // false for NaN too
+    };
     if (!whole(*low) || !whole(*high) || (step.has_value() && !whole(*step))) {
-      return reader.Error(path, node, "an int parameter's low, high and step are integers");
+      return reader.Error(path, node,
+                          "an int parameter's low, high and step are integers that fit in 64 bits");
     }
     parameter.distribution = IntDistribution{.low = static_cast<int64_t>(*low),
                                              .high = static_cast<int64_t>(*high),

@@ -76,7 +76,9 @@ absl::StatusOr<std::vector<T>> FromTensor(const v1::Tensor& tensor, absl::string
         tensor.data().size()));
   }
   std::vector<T> values(static_cast<size_t>(elements));
-  std::memcpy(values.data(), tensor.data().data(), tensor.data().size());
+  // Not for no elements (a dimension of 0): memcpy to an empty vector's null data() is undefined
+  // even for 0 bytes.
+  if (!values.empty()) std::memcpy(values.data(), tensor.data().data(), tensor.data().size());
   return values;
 }
 

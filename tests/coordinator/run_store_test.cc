@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -377,6 +378,37 @@ TEST_F(RunStoreTest, AnEvaluationIsOneJobPerContextForActorsAndIsCompleteOnceAll
   EXPECT_THAT(done->results[1].returns, ElementsAre(4.0, 5.0, 6.5));
   EXPECT_EQ(store->Counts()->free_evaluation_jobs, 0);
   EXPECT_EQ(store->GetEvaluation("run-1", 2).status().code(), absl::StatusCode::kNotFound);
+}
+
+// Issue 14 (found by tests/fuzz/run_store_fuzzer): an evaluation's job or returns numbered at or
+// past its count of contexts in a damaged file were written past the end of the results (heap
+// overflow); they are DATA_LOSS naming the file.
+TEST_F(RunStoreTest, AnEvaluationContextOutsideItsCountIsDataLoss) {
+  {
+    std::unique_ptr<RunStore> store = Open();
+    const LeaseKey learner = SubmitAndAcquire(*store).key;
+    ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1), kStart).ok());
+    std::optional<EvaluationGrant> grant = AcquireJobs(*store, 2, 1);
+    ASSERT_TRUE(grant.has_value() && grant->jobs.size() == 2u);
+    ASSERT_TRUE(Report(*store, grant->jobs[0], {{1.0, 2.0, 3.0}, 0.5}).ok());
+    ASSERT_TRUE(Report(*store, grant->jobs[1], {{4.0, 5.0, 6.0}, 0.5}).ok());
+  }
+  // Each damage on top of the ones before, and found before them.
+  for (const auto& [sql, found] : std::vector<std::pair<std::string, std::string>>{
+           {"UPDATE evaluation_returns SET context = 2 WHERE context = 1", "returns of context 2"},
+           {"UPDATE evaluation_jobs SET context = 9 WHERE context = 1", "a job of context 9"},
+           {"UPDATE evaluations SET contexts = 0", "contexts: 0"}}) {
+    {
+      SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READWRITE);
+      db.exec("PRAGMA ignore_check_constraints = ON");
+      db.exec(sql);
+    }
+    std::unique_ptr<RunStore> store = Open();
+    const absl::Status status = store->GetEvaluation("run-1", 1).status();
+    EXPECT_EQ(status.code(), absl::StatusCode::kDataLoss) << sql << ": " << status;
+    EXPECT_THAT(status.message(), HasSubstr("coordinator.db is corrupt: the evaluation of policy "
+                                            "version 1 of run-1 has " + found));
+  }
 }
 
 TEST_F(RunStoreTest, AnActorTakesItsShareOfAnEvaluationsFreeJobsInOneGrant) {

@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <SQLiteCpp/Database.h>
+
 #include "absl/status/status.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/time/time.h"
 #include "coordinator/run_store.h"
@@ -19,6 +22,7 @@
 namespace dcs::coordinator {
 namespace {
 
+using ::testing::Each;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::Pair;
@@ -242,6 +246,62 @@ TEST_F(StudyStoreTest, BadStudiesAreRefusedAndStoreNothing) {
   EXPECT_EQ(store->CreateStudy(Study(""), kStart).status().code(),
             absl::StatusCode::kInvalidArgument);
   EXPECT_TRUE(store->ListStudies()->empty());
+}
+
+// Issue 14 (found by tests/fuzz/run_store_fuzzer): a study row damaged in the file (a space that
+// no longer parses, a name outside its table, a value of a trial the study lacks) was read as
+// INVALID_ARGUMENT (the caller's fault), dereferenced as an absent name, or threw out of the
+// store (std::out_of_range, ending the coordinator). Each is DATA_LOSS naming the file.
+class DamagedStudyTest : public StudyStoreTest {
+ protected:
+  // A store with study-1 and one told trial, changed by `sql` behind the store's back (with the
+  // schema's checks off, as a damaged file escapes them); then every reader of the study.
+  std::vector<absl::Status> ReadAfter(const std::string& sql) {
+    const std::string file = absl::StrCat("damaged-", ++stores_, ".db");
+    {
+      std::unique_ptr<RunStore> store = Open(file);
+      const std::string study = store->CreateStudy(Study("r"), kStart)->id;
+      AskAndTell(*store, study, 1);
+    }
+    {
+      SQLite::Database db(Path(file), SQLite::OPEN_READWRITE);
+      db.exec("PRAGMA ignore_check_constraints = ON");
+      db.exec(sql);
+    }
+    std::unique_ptr<RunStore> store = Open(file);
+    return {store->GetStudy("study-1").status(), store->ListStudies().status(),
+            store->ListStudyTrials("study-1").status()};
+  }
+
+ private:
+  int stores_ = 0;
+};
+
+MATCHER_P(IsDataLossNaming, text, "") {
+  return arg.code() == absl::StatusCode::kDataLoss &&
+         absl::StrContains(arg.message(), ".db is corrupt") &&
+         absl::StrContains(arg.message(), text);
+}
+
+TEST_F(DamagedStudyTest, ASpaceThatNoLongerParsesIsDataLoss) {
+  EXPECT_THAT(ReadAfter("UPDATE studies SET space = 'parameters: [{name: x'"),
+              Each(IsDataLossNaming("the search space of study-1 does not parse")));
+}
+
+TEST_F(DamagedStudyTest, ANameOutsideItsTableIsDataLoss) {
+  EXPECT_THAT(ReadAfter("UPDATE studies SET sampler = 'tpx'"),
+              Each(IsDataLossNaming("the sampler of study-1 is 'tpx'")));
+  EXPECT_THAT(ReadAfter("UPDATE studies SET direction = 'up'"),
+              Each(IsDataLossNaming("the direction of study-1 is 'up'")));
+  EXPECT_THAT(ReadAfter("UPDATE studies SET pruner = 'hyper'"),
+              Each(IsDataLossNaming("the pruner of study-1 is 'hyper'")));
+  EXPECT_THAT(ReadAfter("UPDATE study_trials SET state = 'lost'"),
+              Each(IsDataLossNaming("the state of trial 0 of study-1 is 'lost'")));
+}
+
+TEST_F(DamagedStudyTest, AValueOfATrialTheStudyLacksIsDataLoss) {
+  EXPECT_THAT(ReadAfter("UPDATE study_trial_values SET trial = 7"),
+              Each(IsDataLossNaming("study-1 has values of trial 7")));
 }
 
 }  // namespace

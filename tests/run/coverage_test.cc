@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "run/coverage.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,29 @@ TEST(CoverageTest, ACheckpointWhoseBitsDoNotFitItsCellsIsDataLoss) {
   absl::StatusOr<RunState> read = DecodeRunState(wrong, "run.yaml");
   EXPECT_EQ(read.status().code(), absl::StatusCode::kDataLoss);
   EXPECT_THAT(read.status().message(), HasSubstr("run.yaml: the coverage of projection 'line'"));
+}
+
+// Issue 14 (found by tests/fuzz/checkpoint_fuzzer): a checkpoint's cell count near the largest
+// int64_t overflowed the rounding up of BitsetWords (UBSan: signed integer overflow), where it
+// must be a clean DATA_LOSS.
+TEST(CoverageTest, BitsetWordsOfAnyCountDoesNotOverflow) {
+  EXPECT_EQ(BitsetWords(0), 0u);
+  EXPECT_EQ(BitsetWords(1), 1u);
+  EXPECT_EQ(BitsetWords(64), 1u);
+  EXPECT_EQ(BitsetWords(65), 2u);
+  EXPECT_EQ(BitsetWords(-5), 0u);
+  EXPECT_EQ(BitsetWords(std::numeric_limits<int64_t>::max()), size_t{1} << 57);
+}
+
+TEST(CoverageTest, ACheckpointWithTheLargestCellCountIsDataLoss) {
+  RunState state{.coverage = NewCoverage(kLine)};
+  const std::string text = EncodeRunState(state);
+  const std::string wrong =
+      absl::StrReplaceAll(text, {{"cells: 4", "cells: 9223372036854775807"}});
+  ASSERT_NE(wrong, text);
+  absl::StatusOr<RunState> read = DecodeRunState(wrong, "run.yaml");
+  EXPECT_EQ(read.status().code(), absl::StatusCode::kDataLoss);
+  EXPECT_THAT(read.status().message(), HasSubstr("does not hold its 9223372036854775807 cells"));
 }
 
 TEST(CoverageTest, SelectsProjectionsByNameOrAll) {

@@ -105,5 +105,18 @@ TEST(SearchSpaceYamlTest, BadSpacesAreRefusedNamingTheProblem) {
   }
 }
 
+// Issue 14 (found by tests/fuzz/sweep_spec_fuzzer): an int parameter's bound beyond int64_t was
+// cast to it to see whether it is whole, which is undefined (UBSan: outside the range of
+// representable values; the sanitizer job runs this test). It is refused as any fraction is.
+TEST(SearchSpaceYamlTest, AnIntBoundBeyondSixtyFourBitsIsRefused) {
+  for (const char* text : {"parameters: [{name: x, type: int, low: 0, high: 5.0e+53}]",
+                           "parameters: [{name: x, type: int, low: -1.0e+19, high: 3}]",
+                           "parameters: [{name: x, type: int, low: 0, high: 9, step: 1.0e+30}]"}) {
+    const absl::StatusOr<SearchSpace> space = ParseSearchSpaceYaml(text, "space.yaml");
+    EXPECT_EQ(space.status().code(), absl::StatusCode::kInvalidArgument) << text;
+    EXPECT_THAT(space.status().message(), HasSubstr("integers that fit in 64 bits")) << text;
+  }
+}
+
 }  // namespace
 }  // namespace dcs::run

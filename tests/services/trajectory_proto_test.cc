@@ -64,6 +64,20 @@ TEST(TrajectoryProtoTest, RefusesHugeOrNegativeShapesWithoutAllocating) {
   EXPECT_EQ(SlotRolloutFromProto(proto).status().code(), absl::StatusCode::kInvalidArgument);
 }
 
+// Issue 14 (found by tests/fuzz/data_plane_fuzzer): a tensor with a dimension of 0 and no data
+// copied its 0 bytes to an empty vector's null data(), which is undefined (UBSan: null pointer
+// passed to memcpy; the sanitizer job runs this test). It is an empty array.
+TEST(TrajectoryProtoTest, ATensorWithADimensionOfZeroIsEmpty) {
+  v1::SlotJournal proto = JournalToProto(TwoSteps().journal);
+  proto.mutable_actions()->clear_shape();
+  proto.mutable_actions()->add_shape(0);
+  proto.mutable_actions()->add_shape(1);
+  proto.mutable_actions()->clear_data();
+  const absl::StatusOr<actor::SlotJournal> journal = JournalFromProto(proto);
+  ASSERT_TRUE(journal.ok()) << journal.status();
+  EXPECT_TRUE(journal->actions.empty());
+}
+
 TEST(TrajectoryProtoTest, RefusesTheWrongDtype) {
   v1::SlotRollout proto = SlotRolloutToProto(TwoSteps());
   proto.mutable_rewards()->set_dtype(v1::D_TYPE_UINT8);
