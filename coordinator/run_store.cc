@@ -508,9 +508,9 @@ absl::StatusOr<EvaluationProgress> RunStore::GetEvaluation(absl::string_view run
     // SubmitEvaluation stores at least one context and jobs numbered below their count: other
     // numbers mean a damaged file, not to be indexed with.
     auto corrupt = [&](absl::string_view what, int64_t value) {
-      return absl::DataLossError(absl::StrCat(db_->getFilename(), " is corrupt: the evaluation of ",
-                                              "policy version ", policy_version, " of ", run_id,
-                                              " has ", what, " ", value));
+      return CorruptStore(db_->getFilename(),
+                          absl::StrCat("the evaluation of policy version ", policy_version, " of ",
+                                       run_id, " has ", what, " ", value));
     };
     if (progress.contexts < 1) return corrupt("contexts:", progress.contexts);
     if (progress.done < progress.contexts) return progress;
@@ -682,14 +682,10 @@ absl::StatusOr<StoreCounts> RunStore::Counts() {
       }
       ActiveSweepCounts& sweep = counts.active_sweeps.back();
       // The schema's CHECK keeps states to the table's names: another means a damaged file.
-      const std::string name = sweeps.getColumn(1).getString();
-      const std::optional<RunState> state = FindByName(kRunStateNames, name);
-      if (!state.has_value()) {
-        return absl::DataLossError(
-            absl::StrCat(db_->getFilename(), " is corrupt: a run of ", sweep_id, " is in state '",
-                         name, "', which is not one of ", ListNames(kRunStateNames)));
-      }
-      sweep.runs_by_state[static_cast<int>(*state)].second = sweeps.getColumn(2).getInt64();
+      DCS_ASSIGN_OR_RETURN(const RunState state,
+                           StoredValue(*db_, kRunStateNames, sweeps.getColumn(1).getString(),
+                                       absl::StrCat("the state of a run of ", sweep_id)));
+      sweep.runs_by_state[static_cast<int>(state)].second = sweeps.getColumn(2).getInt64();
       sweep.steps_remaining += sweeps.getColumn(3).getInt64();
     }
     return counts;

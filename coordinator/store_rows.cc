@@ -182,13 +182,17 @@ absl::Status StoreError(const std::string& path, const SQLite::Exception& error)
           path, ": the disk is full; nothing of this change was stored (", error.what(), ")"));
     case SQLITE_CORRUPT:
     case SQLITE_NOTADB:
-      return absl::DataLossError(absl::StrCat(path, " is corrupt: ", error.what()));
+      return CorruptStore(path, error.what());
     case SQLITE_BUSY:
     case SQLITE_LOCKED:
       return absl::UnavailableError(absl::StrCat(path, " is locked: ", error.what()));
     default:
       return absl::InternalError(absl::StrCat(path, ": ", error.what()));
   }
+}
+
+absl::Status CorruptStore(const std::string& path, absl::string_view what) {
+  return absl::DataLossError(absl::StrCat(path, " is corrupt: ", what));
 }
 
 void RollBackIfActive(SQLite::Database& db) noexcept {

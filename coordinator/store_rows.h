@@ -20,6 +20,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
 #include "absl/time/time.h"
+#include "common/enum_names.h"
 #include "coordinator/run_store.h"
 
 namespace dcs::coordinator::store_rows {
@@ -84,6 +85,20 @@ void FailRunningStudyTrials(SQLite::Database& db, int64_t sweep, absl::Time now)
 // later (status.h: "the client may retry just this call"); DATA_LOSS for a corrupt file or one
 // that is not a database; else INTERNAL.
 absl::Status StoreError(const std::string& path, const SQLite::Exception& error);
+
+// DATA_LOSS naming the store at `path`: it holds `what`, which its schema or its writers
+// forbid, so the file was damaged (never the caller's fault, never to be indexed with).
+absl::Status CorruptStore(const std::string& path, absl::string_view what);
+
+// The value the name stored as `what` stands for in `names`; CorruptStore for any other name,
+// which the schema's CHECK constraints keep out of an undamaged file.
+template <typename E, size_t N>
+absl::StatusOr<E> StoredValue(SQLite::Database& db, const EnumName<E> (&names)[N],
+                              const std::string& name, absl::string_view what) {
+  if (const std::optional<E> value = FindByName(names, name); value.has_value()) return *value;
+  return CorruptStore(db.getFilename(), absl::StrCat(what, " is '", name,
+                                                     "', which is not one of ", ListNames(names)));
+}
 
 // Rolls back the open transaction, if one is still open: after some errors (a full disk among
 // them) SQLite has rolled it back already, and a ROLLBACK would fail and hide the first error.

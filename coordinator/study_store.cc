@@ -29,16 +29,6 @@ using namespace store_rows;  // NOLINT: the store's own rows
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The value a stored name stands for. The schema's CHECK constraints keep names to the table's,
-// so another one means the file was damaged: DATA_LOSS naming the database and `what`.
-template <typename E, size_t N>
-absl::StatusOr<E> StoredValue(SQLite::Database& db, const EnumName<E> (&names)[N],
-                              const std::string& name, absl::string_view what) {
-  if (const std::optional<E> value = FindByName(names, name); value.has_value()) return *value;
-  return absl::DataLossError(absl::StrCat(db.getFilename(), " is corrupt: ", what, " is '", name,
-                                          "', which is not one of ", ListNames(names)));
-}
-
 absl::StatusOr<std::vector<StudyTrial>> ReadTrials(SQLite::Database& db, int64_t study) {
   std::vector<StudyTrial> trials;
   std::map<int64_t, size_t> index;
@@ -59,9 +49,8 @@ absl::StatusOr<std::vector<StudyTrial>> ReadTrials(SQLite::Database& db, int64_t
   auto trial_of = [&](int64_t number) -> absl::StatusOr<StudyTrial*> {
     const auto found = index.find(number);
     if (found == index.end()) {
-      return absl::DataLossError(absl::StrCat(db.getFilename(), " is corrupt: ", StudyId(study),
-                                              " has values of trial ", number,
-                                              ", which it does not have"));
+      return CorruptStore(db.getFilename(), absl::StrCat(StudyId(study), " has values of trial ",
+                                                         number, ", which it does not have"));
     }
     return &trials[found->second];
   };
@@ -136,9 +125,9 @@ absl::StatusOr<StudyRow> FindStudy(SQLite::Database& db, absl::string_view study
   // Validated when the study was created: one that no longer parses was damaged since.
   absl::StatusOr<run::SearchSpace> space = run::ParseSearchSpaceYaml(s.space, row.record.id);
   if (!space.ok()) {
-    return absl::DataLossError(absl::StrCat(db.getFilename(), " is corrupt: the search space of ",
-                                            row.record.id,
-                                            " does not parse: ", space.status().message()));
+    return CorruptStore(db.getFilename(), absl::StrCat("the search space of ", row.record.id,
+                                                       " does not parse: ",
+                                                       space.status().message()));
   }
   row.space = *std::move(space);
 
