@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iterator>
 #include <map>
@@ -36,11 +37,18 @@ constexpr const char* kFiles[] = {"learner.bin", "run.yaml"};
 
 fs::path CheckpointsDir(const std::string& run_dir) { return fs::path(run_dir) / "checkpoints"; }
 
-// Doubles as exact text (YAML's own formatting would round them).
+// A double as exact text (YAML's own formatting would round it), in YAML's spelling when it is
+// not finite: the decoder reads back whatever the encoder writes, even a return that overflowed.
+std::string YamlNumber(double value) {
+  if (std::isnan(value)) return ".nan";
+  if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
+  return RoundTrip(value);
+}
+
 template <typename Values>
 void EmitNumbers(YAML::Emitter& out, const Values& values) {
   out << YAML::Flow << YAML::BeginSeq;
-  for (double value : values) out << RoundTrip(value);
+  for (double value : values) out << YamlNumber(value);
   out << YAML::EndSeq;
 }
 
@@ -156,7 +164,7 @@ std::string EncodeRunState(const RunState& state) {
     out << YAML::BeginMap;
     out << YAML::Key << "episode" << YAML::Value << journal.episode;
     out << YAML::Key << "reset_step" << YAML::Value << journal.reset_step;
-    out << YAML::Key << "episode_return" << YAML::Value << RoundTrip(journal.episode_return);
+    out << YAML::Key << "episode_return" << YAML::Value << YamlNumber(journal.episode_return);
     out << YAML::Key << "actions" << YAML::Value;
     EmitNumbers(out, journal.actions);
     out << YAML::EndMap;
@@ -171,8 +179,8 @@ std::string EncodeRunState(const RunState& state) {
       out << YAML::BeginMap;
       out << YAML::Key << "split" << YAML::Value
           << std::string(NameOf(actor::kSplitNames, context.context.split));
-      out << YAML::Key << "value" << YAML::Value << RoundTrip(context.context.value);
-      out << YAML::Key << "seconds" << YAML::Value << RoundTrip(context.seconds);
+      out << YAML::Key << "value" << YAML::Value << YamlNumber(context.context.value);
+      out << YAML::Key << "seconds" << YAML::Value << YamlNumber(context.seconds);
       out << YAML::Key << "returns" << YAML::Value;
       EmitNumbers(out, context.returns);
       out << YAML::EndMap;

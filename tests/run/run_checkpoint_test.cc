@@ -1,7 +1,9 @@
 // Copyright 2026 The DCS Authors.
 #include "run/run_checkpoint.h"
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <string>
 
@@ -71,6 +73,27 @@ TEST(RunCheckpointTest, ReadsBackExactlyWhatWasWritten) {
   EXPECT_EQ(evaluation.contexts[0].context.value, 0.1 + 0.2);  // bit for bit
   EXPECT_EQ(evaluation.contexts[0].returns, state.evaluations[0].contexts[0].returns);
   EXPECT_EQ(evaluation.avg_combined, state.evaluations[0].avg_combined);
+}
+
+// The decoder reads YAML's .inf and .nan, so the encoder must write them so: a run state that
+// decodes must encode to one that decodes to it again (found by tests/fuzz/checkpoint_fuzzer).
+TEST(RunCheckpointTest, NonFiniteValuesReadBackAsThemselves) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  RunState state = StateAt(64);
+  state.recent_returns = {kInf, -kInf, std::numeric_limits<double>::quiet_NaN()};
+  state.journals[0].actions = {0, std::numeric_limits<float>::infinity()};
+  state.journals[0].episode_return = -kInf;
+  state.evaluations[0].contexts[0].seconds = kInf;
+  const std::string text = EncodeRunState(state);
+  absl::StatusOr<RunState> read = DecodeRunState(text, "run.yaml");
+  ASSERT_TRUE(read.ok()) << read.status() << "\n" << text;
+  EXPECT_EQ(read->recent_returns[0], kInf);
+  EXPECT_EQ(read->recent_returns[1], -kInf);
+  EXPECT_TRUE(std::isnan(read->recent_returns[2]));
+  EXPECT_THAT(read->journals[0].actions, ElementsAre(0, std::numeric_limits<float>::infinity()));
+  EXPECT_EQ(read->journals[0].episode_return, -kInf);
+  EXPECT_EQ(read->evaluations[0].contexts[0].seconds, kInf);
+  EXPECT_EQ(EncodeRunState(*read), text);
 }
 
 TEST(RunCheckpointTest, KeepsTheNewestAndPointsLatestAtIt) {
