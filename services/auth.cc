@@ -42,6 +42,13 @@ std::shared_ptr<grpc::experimental::CertificateProviderInterface>& CertificatePr
   return *provider;
 }
 
+// What clients check servers' certificates against instead of the address dialled; "" for
+// the address.
+std::string& ServerName() {
+  static auto* name = new std::string();  // as Token()
+  return *name;
+}
+
 absl::StatusOr<std::string> CheckedToken(absl::string_view text, absl::string_view source) {
   const std::string token(absl::StripAsciiWhitespace(text));
   if (token.size() < kMinTokenLength) {
@@ -111,10 +118,18 @@ void AddTlsFlags(CLI::App& app, TlsFiles& files) {
   app.add_option("--tls-ca", files.ca,
                  "mutual TLS: the CA bundle every peer's certificate must chain to (PEM)")
       ->envname("DCS_TLS_CA");
+  app.add_option("--tls-server-name", files.server_name,
+                 "mutual TLS: the name every server's certificate must carry, checked instead "
+                 "of the address dialled (e.g. server.dcs, for servers in containers)")
+      ->envname("DCS_TLS_SERVER_NAME");
 }
 
 absl::Status CheckTlsFiles(const TlsFiles& files) {
-  if (!files.enabled()) return absl::OkStatus();
+  if (!files.enabled()) {
+    if (files.server_name.empty()) return absl::OkStatus();
+    return absl::InvalidArgumentError(
+        "--tls-server-name needs mutual TLS: --tls-cert, --tls-key and --tls-ca");
+  }
   for (const auto& [path, flag, marker] :
        {std::tuple(files.certificate, "--tls-cert", "-----BEGIN CERTIFICATE-----"),
         std::tuple(files.key, "--tls-key", "PRIVATE KEY-----"),
@@ -140,7 +155,10 @@ void SetClusterTls(const TlsFiles& files) {
       files.enabled() ? std::make_shared<grpc::experimental::FileWatcherCertificateProvider>(
                             files.key, files.certificate, files.ca, kCertificateRefreshSeconds)
                       : nullptr;
+  ServerName() = files.enabled() ? files.server_name : "";
 }
+
+const std::string& ClusterTlsServerName() { return ServerName(); }
 
 std::shared_ptr<grpc::ServerCredentials> ClusterServerCredentials() {
   if (CertificateProvider() == nullptr) return grpc::InsecureServerCredentials();

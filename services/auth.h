@@ -13,9 +13,15 @@
 //
 // Mutual TLS. With certificate files, servers accept only TLS connections from clients whose
 // certificate chains to the CA bundle, and clients accept only servers whose certificate does
-// and names the address dialled; every process presents its own certificate. gRPC's file
-// watcher rereads the three files every few seconds, so renewed certificates take effect
-// without a restart.
+// and names the address dialled, or the cluster's server name when one is set; every process
+// presents its own certificate. gRPC's file watcher rereads the three files every few
+// seconds, so renewed certificates take effect without a restart.
+//
+// Server name. In containers a learner is dialled at an address no certificate made in
+// advance can name (a container's short id, a pod IP), so every server of a cluster may hold
+// a certificate for one cluster-wide name (`server.dcs`) that clients check instead. That
+// weakens nothing the cluster relies on: only the cluster's private CA issues such
+// certificates, and every peer must present one (mutual TLS). Consul and Nomad do the same.
 //
 // Both are process-wide: set once at start-up, before any server starts or channel opens
 // (services/service_main.cc, the `dcs` client's main); read-only afterwards, hence safe from
@@ -67,20 +73,29 @@ struct TlsFiles {
   std::string certificate;  // this process's certificate chain
   std::string key;          // its private key
   std::string ca;           // the CA bundle peers' certificates must chain to
+  // The name every server's certificate must carry, checked by clients instead of the address
+  // dialled; "" to check the address.
+  std::string server_name;
+  // Whether there are files, hence mutual TLS (a server name alone is refused).
   bool enabled() const { return !certificate.empty() || !key.empty() || !ca.empty(); }
 };
 
-// Adds --tls-cert, --tls-key and --tls-ca (each with a DCS_TLS_... environment fallback),
-// bound to `files`.
+// Adds --tls-cert, --tls-key, --tls-ca and --tls-server-name (each with a DCS_TLS_...
+// environment fallback), bound to `files`.
 void AddTlsFlags(CLI::App& app, TlsFiles& files);
 
-// OK if none or all three files are given and each is a readable PEM file; else
-// INVALID_ARGUMENT naming the missing flag or the file and what is wrong with it.
+// OK if none or all three files are given and each is a readable PEM file, and a server name
+// only with the files; else INVALID_ARGUMENT naming the missing flag or the file and what is
+// wrong with it.
 absl::Status CheckTlsFiles(const TlsFiles& files);
 
-// Sets the process's TLS files (see above), none to go back to plaintext; `files` must have
-// passed CheckTlsFiles.
+// Sets the process's TLS files and server name (see above), none to go back to plaintext;
+// `files` must have passed CheckTlsFiles.
 void SetClusterTls(const TlsFiles& files);
+
+// The server name clients check instead of the address dialled (services/channel.cc); "" to
+// check the address, and always without TLS.
+const std::string& ClusterTlsServerName();
 
 // What servers listen with and channels dial with: mutual TLS over the cluster's files, or
 // plaintext without them.

@@ -49,6 +49,8 @@ std::shared_ptr<grpc::Channel> OpenChannel(const std::string& address) {
   // A sweep's results hold every run's evaluation log, about 10 KB a run without the episodes'
   // returns: gRPC's default 4 MiB stops at a few hundred runs; a sweep may have 10,000.
   args.SetMaxReceiveMessageSize(kMaxReceiveBytes);
+  // gRPC's TLS checks the server's certificate against this name instead of the address.
+  if (!ClusterTlsServerName().empty()) args.SetSslTargetNameOverride(ClusterTlsServerName());
   std::vector<std::unique_ptr<grpc::experimental::ClientInterceptorFactoryInterface>> token;
   if (!ClusterToken().empty()) token.push_back(std::make_unique<TokenInterceptorFactory>());
   return grpc::experimental::CreateCustomChannelWithInterceptors(

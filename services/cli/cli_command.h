@@ -27,7 +27,7 @@ struct GlobalFlags {
   std::string addr;  // --addr or DCS_ADDR
   std::string data_dir = "dcs-data";
   std::string token_file;  // --token-file or DCS_TOKEN_FILE
-  TlsFiles tls;            // --tls-cert, --tls-key, --tls-ca
+  TlsFiles tls;            // --tls-cert, --tls-key, --tls-ca, --tls-server-name
   absl::Duration timeout = absl::Seconds(5);
   OutputFormat output = OutputFormat::kTable;
   // This invocation's arguments, argv[0] first: a command may hand them to another program

@@ -217,6 +217,9 @@ absl::Status LocalCluster::StartProcess(const std::string& name, const std::stri
     args.push_back(absl::StrCat("--tls-cert=", options_.tls.certificate));
     args.push_back(absl::StrCat("--tls-key=", options_.tls.key));
     args.push_back(absl::StrCat("--tls-ca=", options_.tls.ca));
+    if (!options_.tls.server_name.empty()) {
+      args.push_back(absl::StrCat("--tls-server-name=", options_.tls.server_name));
+    }
   }
   absl::StatusOr<ChildProcess> child =
       ChildProcess::Start({.path = fs::path(options_.bin_dir) / executable,

@@ -2,7 +2,8 @@
 # Checks the container files without a container engine (shared/spec/operations.md §3.5):
 # docker-compose.yml as docker-compose parses it, Prometheus's compose scrape config
 # with promtool, the compose file against the conventions of §3.2-3.4 and the scrape config,
-# and the Dockerfile against §3.1 (by grep: hadolint is not packaged). Quick: no image is built.
+# docker-compose.tls.yml merged with it (mutual TLS for every DCS service), and the Dockerfile
+# against §3.1 (by grep: hadolint is not packaged). Quick: no image is built.
 #
 #   tests/deploy/check_compose.sh REPO_ROOT
 #
@@ -28,7 +29,8 @@ need promtool prometheus
 need python3 python3
 python3 -c 'import yaml' 2>/dev/null || fail "python3's yaml module is missing (Debian package python3-yaml)"
 
-for file in Dockerfile .dockerignore docker-compose.yml .env deploy/prometheus/compose.yml; do
+for file in Dockerfile .dockerignore docker-compose.yml docker-compose.tls.yml .env \
+    deploy/prometheus/compose.yml; do
   [ -f "$file" ] || fail "$file is missing"
 done
 
@@ -250,6 +252,120 @@ for name, port in sorted(metrics_ports.items()):
 jobs = {job.get("job_name"): job for job in prometheus.get("scrape_configs") or []}
 if not (jobs.get("actor") or {}).get("dns_sd_configs"):
     fail("deploy/prometheus/compose.yml: job 'actor' does not find the replicas by dns_sd_configs")
+EOF
+
+# --- docker-compose.tls.yml, merged with docker-compose.yml as it is used -------------------
+tls=(docker-compose -f docker-compose.yml -f docker-compose.tls.yml)
+step "docker-compose.tls.yml requires DCS_TLS_DIR"
+if out=$(env -u DCS_TLS_DIR "${tls[@]}" config -q 2>&1) || [[ "$out" != *DCS_TLS_DIR* ]]; then
+  fail "docker-compose.tls.yml starts without DCS_TLS_DIR (the services would have no" \
+    "certificates): ${out:-no error}"
+fi
+# Only named, not read: config does not look at a bind mount's source. The server name is
+# checked at its default.
+export DCS_TLS_DIR=/check-compose/certificates
+unset DCS_TLS_SERVER_NAME
+step "docker-compose config -q docker-compose.yml docker-compose.tls.yml"
+if ! out=$("${tls[@]}" config -q 2>&1); then
+  fail "docker-compose refuses docker-compose.yml with docker-compose.tls.yml: $out"
+fi
+if docker compose version >/dev/null 2>&1; then
+  step "docker compose config -q docker-compose.yml docker-compose.tls.yml"
+  if ! out=$(docker compose -f docker-compose.yml -f docker-compose.tls.yml config -q 2>&1); then
+    fail "docker compose (v2) refuses docker-compose.yml with docker-compose.tls.yml: $out"
+  fi
+fi
+image_uid=$(sed -nE 's/.*useradd .*--uid ([0-9]+).*/\1/p' Dockerfile)
+step "docker-compose.tls.yml: a one-shot copy for uid $image_uid; every DCS service's files," \
+  "variables, healthcheck and start-up order"
+RESOLVED="$("${tls[@]}" config)" IMAGE_UID="$image_uid" python3 - <<'EOF' || exit 1
+import os
+import sys
+
+import yaml
+
+def fail(message):
+    print(f"check_compose: FAIL: docker-compose.tls.yml: {message}", file=sys.stderr)
+    sys.exit(1)
+
+compose = yaml.safe_load(os.environ["RESOLVED"])
+services = compose.get("services", {})
+named_volumes = compose.get("volumes") or {}
+uid = os.environ["IMAGE_UID"]
+if not uid.isdigit():
+    fail("no `useradd --uid N` in the Dockerfile: whose should the copies be?")
+
+def mounts(service):
+    """(source, target, read_only) of every mount; docker-compose 1.29 prints them short."""
+    result = []
+    for v in services[service].get("volumes") or []:
+        if isinstance(v, dict):
+            result.append((v.get("source"), v.get("target"), bool(v.get("read_only"))))
+        else:
+            parts = str(v).split(":")
+            mode = parts[2] if len(parts) > 2 else "rw"
+            result.append((parts[0], parts[1], "ro" in mode.split(",")))
+    return result
+
+# The one-shot copy: the only service that mounts $DCS_TLS_DIR, read-only. It runs as root, to
+# read the host's keys (mode 0600, the host user's) and give the copies to the image's user,
+# and writes them into a named volume.
+copiers = [name for name in services
+           if any(source == os.environ["DCS_TLS_DIR"] for source, _, _ in mounts(name))]
+if copiers != ["tls"]:
+    fail(f"want one service 'tls' mounting $DCS_TLS_DIR, found {copiers}")
+copier = services["tls"]
+if not all(ro for source, _, ro in mounts("tls") if source == os.environ["DCS_TLS_DIR"]):
+    fail("tls mounts $DCS_TLS_DIR writable, want :ro")
+if str(copier.get("user", "")).split(":")[0] not in ("0", "root"):
+    fail(f"tls runs as user {copier.get('user')!r}, want root: uid {uid} could neither read "
+         "the host's keys of mode 0600 nor give the copies away")
+if copier.get("restart", "no") != "no":
+    fail(f"tls restarts ({copier['restart']}): it is a one-shot copy")
+script = " ".join(str(part) for part in copier.get("command") or [])
+install = f"install -o {uid} -g {uid} -m 0400"
+if install not in script:
+    fail(f"tls does not copy with `{install}` (the image's user, read-only): {script!r}")
+written = [(source, target) for source, target, ro in mounts("tls")
+           if source in named_volumes and not ro]
+if len(written) != 1:
+    fail(f"tls writes into {len(written)} named volumes, want 1")
+volume, copied_to = written[0]
+
+# Every DCS service: the variables, naming the files tls copies, in that volume mounted
+# read-only where tls wrote it, and the name scripts/make-certs gives by default; started only
+# once tls has succeeded; healthchecks `dcs health`, which reads the same variables (no --tls
+# flag of theirs may override them).
+dcs = [name for name, s in services.items() if (s.get("command") or [""])[0].startswith("dcs-")]
+if sorted(dcs) != ["actor", "coordinator", "learner"]:
+    fail(f"DCS services are {sorted(dcs)} once merged, want actor, coordinator, learner")
+files = {"DCS_TLS_CERT": "node.pem", "DCS_TLS_KEY": "node.key", "DCS_TLS_CA": "ca.pem"}
+for file_name in files.values():
+    if file_name not in script:
+        fail(f"tls does not copy {file_name}")
+for name in dcs:
+    service = services[name]
+    environment = service.get("environment") or {}
+    for variable, file_name in files.items():
+        if environment.get(variable) != f"{copied_to}/{file_name}":
+            fail(f"service '{name}': {variable} is {environment.get(variable)!r}, want "
+                 f"{copied_to}/{file_name}, which tls copies")
+    if environment.get("DCS_TLS_SERVER_NAME") != "server.dcs":
+        fail(f"service '{name}': DCS_TLS_SERVER_NAME is "
+             f"{environment.get('DCS_TLS_SERVER_NAME')!r}, want server.dcs (scripts/make-certs' "
+             "default): actors dial learners at container names no certificate names")
+    if not environment.get("DCS_TOKEN"):
+        fail(f"service '{name}' lost DCS_TOKEN in the merge")
+    if (volume, copied_to, True) not in mounts(name):
+        fail(f"service '{name}' does not mount the volume '{volume}' read-only at {copied_to}")
+    condition = ((service.get("depends_on") or {}).get("tls") or {}).get("condition")
+    if condition != "service_completed_successfully":
+        fail(f"service '{name}' does not wait for tls with condition "
+             f"service_completed_successfully (has {condition!r})")
+    test = (service.get("healthcheck") or {}).get("test") or []
+    if test[:2] != ["CMD", "dcs"] or "health" not in test or \
+            any(str(arg).startswith("--tls") for arg in test):
+        fail(f"service '{name}': healthcheck {test!r} is not `dcs ... health` reading DCS_TLS_*")
 EOF
 
 # --- Dockerfile against §3.1 (grep: hadolint is not packaged) ------------------------------

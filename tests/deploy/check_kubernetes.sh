@@ -3,7 +3,8 @@
 # overlay with `kubectl kustomize`, validates every object against the Kubernetes 1.33 API
 # schema (tests/deploy/kubernetes_schema/validate.js: types and values, and unknown fields),
 # and checks what DCS needs of the manifests (resources, probes and ports against the programs'
-# config files, the coordinator's volume, Services, disruption budgets, scrape annotations).
+# config files, the coordinator's volume, Services, disruption budgets, scrape annotations,
+# mutual TLS in overlays/cluster and none in overlays/local).
 # `kubectl apply --dry-run=client` is no substitute: it needs an API server.
 #
 #   tests/deploy/check_kubernetes.sh REPO_ROOT
@@ -72,9 +73,9 @@ if [ ! -f "$modules/node_modules/.dcs-installed" ]; then
 fi
 
 # --- render every overlay with every kubectl --------------------------------------------
-# kustomize v5 warns that `bases` and `patchesStrategicMerge` are deprecated; they stay for
-# Debian's kubectl 1.20 (deploy/kubernetes/base/kustomization.yaml), so those warnings are
-# expected. Any other word on stderr is shown.
+# kustomize v5 warns that `bases`, `patchesStrategicMerge` and `patchesJson6902` are
+# deprecated; they stay for Debian's kubectl 1.20 (deploy/kubernetes/base/kustomization.yaml),
+# so those warnings are expected. Any other word on stderr is shown.
 rendered=()
 for kubectl in ${KUBECTL:-kubectl} ${KUBECTL_EXTRA:-}; do
   command -v "$kubectl" >/dev/null 2>&1 || fail "$kubectl (KUBECTL, KUBECTL_EXTRA) is not a program"
@@ -86,7 +87,8 @@ for kubectl in ${KUBECTL:-kubectl} ${KUBECTL_EXTRA:-}; do
     out="$tmp/$(basename "$overlay")-$version.yaml"
     status=0
     "$kubectl" kustomize "$overlay" >"$out" 2>"$tmp/stderr" || status=$?
-    said=$(grep -vE "^# Warning: '(bases|patchesStrategicMerge)' is deprecated" "$tmp/stderr" || true)
+    said=$(grep -vE "^# Warning: '(bases|patchesStrategicMerge|patchesJson6902)' is deprecated" \
+             "$tmp/stderr" || true)
     [ "$status" -eq 0 ] || fail "kubectl $version kustomize $overlay: $said"
     [ -z "$said" ] || echo "$said" >&2
     rendered+=("$out")
@@ -106,7 +108,7 @@ fi
 step "${out//$tmp\//}"
 
 # --- what DCS needs of the manifests ----------------------------------------------------
-step "DCS: kinds, coordinator StatefulSet and volume, Deployments, probes and ports against the config files, resources, Services, PodDisruptionBudgets, scrape annotations, security"
+step "DCS: kinds, coordinator StatefulSet and volume, Deployments, probes and ports against the config files, resources, Services, PodDisruptionBudgets, scrape annotations, security, mutual TLS"
 python3 - "${rendered[@]}" <<'EOF' || exit 1
 import os
 import re
@@ -128,6 +130,11 @@ KINDS = {("v1", "ConfigMap"), ("v1", "Service"),
 HEALTH_NAMES = {"dcs-coordinator": {"", "dcs.v1.CoordinatorService"},
                 "dcs-learner": {"", "dcs.v1.LearnerService"},
                 "dcs-actor": {""}}
+# The overlays with mutual TLS (overlays/cluster/tls.yaml); any other is token-only.
+TLS_OVERLAYS = {"cluster"}
+# Where each DCS_TLS_* variable's file comes from: keys of the Secret dcs-tls, as cert-manager
+# writes them.
+TLS_KEYS = {"DCS_TLS_CERT": "tls.crt", "DCS_TLS_KEY": "tls.key", "DCS_TLS_CA": "ca.crt"}
 LABELS = ("app.kubernetes.io/name", "app.kubernetes.io/instance", "app.kubernetes.io/part-of",
           "app.kubernetes.io/managed-by")
 UNITS = {"": 1, "m": 1e-3, "k": 1e3, "M": 1e6, "G": 1e9, "T": 1e12,
@@ -155,8 +162,12 @@ def matches(selector, labels):
     return bool(selector) and all(labels.get(k) == v for k, v in selector.items())
 
 
+rendered_overlays = set()
 for path in files:
     name = os.path.basename(path)
+    overlay = re.match(r"(.*?)-v[0-9]", name).group(1)  # <overlay>-<kubectl version>.yaml
+    tls = overlay in TLS_OVERLAYS
+    server_names = set()  # DCS_TLS_SERVER_NAME of every container
 
     def fail(where, message):
         print(f"check_kubernetes: FAIL: {name}: {where}: {message}", file=sys.stderr)
@@ -257,6 +268,46 @@ for path in files:
                     secret.get("optional"):
                 fail(cwhere, "DCS_TOKEN is not taken from key 'token' of the Secret dcs-token "
                      "(required): the program would not hold the cluster's token")
+
+            # Mutual TLS: the files from the Secret dcs-tls, mounted read-only, readable by the
+            # program's group (fsGroup) and no other user (the files are root's); one
+            # cluster-wide server name, since learners are dialled at pod IPs no certificate
+            # names. Token-only overlays have none of it.
+            tls_volumes = {v for v, volume in volumes.items()
+                           if (volume.get("secret") or {}).get("secretName") == "dcs-tls"}
+            tls_mounts = {m["mountPath"]: m for m in c.get("volumeMounts") or []
+                          if m["name"] in tls_volumes}
+            tls_variables = sorted(e for e in env if e.startswith("DCS_TLS_"))
+            if not tls and (tls_variables or tls_mounts):
+                fail(cwhere, f"has {tls_variables or 'the Secret dcs-tls'}, but overlay "
+                     f"{overlay} is token-only (TLS_OVERLAYS: {sorted(TLS_OVERLAYS)})")
+            for variable, key in TLS_KEYS.items() if tls else ():
+                file_path = (env.get(variable) or {}).get("value")
+                if file_path is None:
+                    fail(cwhere, f"no {variable}: overlay {overlay} has mutual TLS")
+                directory, file_name = os.path.split(file_path)
+                mount = tls_mounts.get(directory)
+                if mount is None:
+                    fail(cwhere, f"{variable}={file_path}: the Secret dcs-tls is not mounted at "
+                         f"{directory}")
+                secret = volumes[mount["name"]]["secret"]
+                if file_name != key or secret.get("items"):
+                    fail(cwhere, f"{variable}={file_path}: want key {key} of dcs-tls, as "
+                         f"{directory}/{key} (no items:)")
+                if secret.get("optional") or mount.get("readOnly") is not True:
+                    fail(cwhere, f"the Secret dcs-tls at {directory} is optional or not readOnly")
+                mode = secret.get("defaultMode", 0o644)
+                if mode & 0o047 != 0o040 or security.get("fsGroup") is None:
+                    fail(cwhere, f"the Secret dcs-tls has mode {mode:04o}, fsGroup "
+                         f"{security.get('fsGroup')}: its files are root's, so uid 10001 reads "
+                         "them only as fsGroup; want 0440 (group-readable, no one else) and fsGroup")
+            if tls:
+                server_name = (env.get("DCS_TLS_SERVER_NAME") or {}).get("value")
+                if not server_name:
+                    fail(cwhere, "no DCS_TLS_SERVER_NAME: actors dial learners at pod IPs, "
+                         "which no certificate names")
+                server_names.add(server_name)
+
             def expand(text):
                 def value(m):
                     e = env.get(m.group(1))
@@ -305,31 +356,63 @@ for path in files:
                 fail(cwhere, f"shutdown_grace {flags.get('shutdown_grace')} does not fit in "
                      f"terminationGracePeriodSeconds {grace}")
 
-            # Probes: ready = gRPC health on the program's port, by a name it serves.
-            readiness = c.get("readinessProbe") or {}
-            if "grpc" not in readiness:
-                fail(cwhere, "no grpc readinessProbe")
-            if readiness["grpc"].get("port") != grpc_port:
-                fail(cwhere, f"readinessProbe asks port {readiness['grpc'].get('port')}, but "
-                     f"{program} listens on {grpc_port}")
-            service_name = readiness["grpc"].get("service", "")
-            if service_name not in HEALTH_NAMES[program]:
-                fail(cwhere, f"readinessProbe asks for health of {service_name!r}, which "
-                     f"{program} does not serve (it serves {sorted(HEALTH_NAMES[program])})")
+            # Probes: ready = gRPC health on the program's port, by a name it serves. Kubelet
+            # asks it itself (grpc), in plaintext only; under mutual TLS the program refuses
+            # plaintext, so the probe runs `dcs health` (exec), which reads DCS_TLS_*.
+            def health(probe_name):
+                """Checks a probe of the program's health; False if it is another probe."""
+                probe = c.get(probe_name) or {}
+                if "grpc" in probe:
+                    if tls:
+                        fail(cwhere, f"{probe_name} is grpc, in plaintext, which {program} "
+                             "refuses under mutual TLS: exec `dcs --timeout=2s health "
+                             "--addr=127.0.0.1:PORT`, which reads DCS_TLS_*")
+                    port, service = probe["grpc"].get("port"), probe["grpc"].get("service", "")
+                elif "exec" in probe:
+                    command = [str(a) for a in probe["exec"].get("command") or []]
+                    if not tls:
+                        fail(cwhere, f"{probe_name} runs {command}: without TLS, probe grpc "
+                             "(kubelet asks itself, no process)")
+                    if not command or os.path.basename(command[0]) != "dcs" or \
+                            "health" not in command:
+                        fail(cwhere, f"{probe_name} runs {command}, not `dcs ... health`")
+                    def value(flag):
+                        for i, a in enumerate(command):
+                            if a.startswith(f"--{flag}="):
+                                return a.split("=", 1)[1]
+                            if a == f"--{flag}" and i + 1 < len(command):
+                                return command[i + 1]
+                        return None
+                    host, port = port_of(value("addr"))
+                    if host not in ("127.0.0.1", "localhost"):
+                        fail(cwhere, f"{probe_name}: `dcs health --addr={value('addr')}`, want "
+                             "127.0.0.1:PORT, the container's own server")
+                    service = value("service") or ""
+                    timeout = value("timeout")
+                    if timeout is None or seconds(timeout) >= probe.get("timeoutSeconds", 1):
+                        fail(cwhere, f"{probe_name}: `dcs health --timeout={timeout}` does not "
+                             f"end within timeoutSeconds {probe.get('timeoutSeconds', 1)}")
+                else:
+                    return False
+                if port != grpc_port:
+                    fail(cwhere, f"{probe_name} asks port {port}, but {program} listens on "
+                         f"{grpc_port}")
+                if service not in HEALTH_NAMES[program]:
+                    fail(cwhere, f"{probe_name} asks for health of {service!r}, which {program} "
+                         f"does not serve (it serves {sorted(HEALTH_NAMES[program])})")
+                return True
+
+            if not health("readinessProbe"):
+                fail(cwhere, "no readinessProbe of gRPC health (grpc; exec `dcs health` under TLS)")
             for probe_name in ("livenessProbe", "startupProbe"):
                 probe = c.get(probe_name)
                 if probe is None:
                     if probe_name == "livenessProbe":
                         fail(cwhere, "no livenessProbe")
                     continue
-                if "grpc" in probe:
-                    if probe["grpc"].get("port") != grpc_port:
-                        fail(cwhere, f"{probe_name} asks port {probe['grpc'].get('port')}, but "
-                             f"{program} listens on {grpc_port}")
-                    if probe["grpc"].get("service", "") not in HEALTH_NAMES[program]:
-                        fail(cwhere, f"{probe_name} asks for health of "
-                             f"{probe['grpc'].get('service')!r}, not served by {program}")
-                elif "httpGet" in probe:
+                if health(probe_name):
+                    continue
+                if "httpGet" in probe:
                     http = probe["httpGet"]
                     port = named.get(http.get("port"), http.get("port"))
                     if port != metrics_port or http.get("path") != "/metrics":
@@ -337,12 +420,12 @@ for path in files:
                              f"{http.get('port')}; the only HTTP endpoint is /metrics on "
                              f"{metrics_port}")
                 else:
-                    fail(cwhere, f"{probe_name} is neither grpc nor httpGet /metrics")
-            liveness = c["livenessProbe"]
-            if program == "dcs-coordinator" and "grpc" not in liveness:
-                fail(cwhere, "the coordinator's livenessProbe is not grpc")
-            if program != "dcs-coordinator" and "grpc" in liveness:
-                fail(cwhere, "a worker's livenessProbe must not be grpc: a worker is SERVING "
+                    fail(cwhere, f"{probe_name} is neither gRPC health nor httpGet /metrics")
+            liveness_is_health = health("livenessProbe")
+            if program == "dcs-coordinator" and not liveness_is_health:
+                fail(cwhere, "the coordinator's livenessProbe is not gRPC health")
+            if program != "dcs-coordinator" and liveness_is_health:
+                fail(cwhere, "a worker's livenessProbe must not be gRPC health: a worker is SERVING "
                      "only while registered with the coordinator (every health name, \"\" "
                      "included), so it would be restarted whenever the coordinator is "
                      "unreachable; probe httpGet /metrics instead")
@@ -393,6 +476,10 @@ for path in files:
                  f"({[p for p, n in container_ports.items() if n == 'metrics']})")
         w["_ports"] = container_ports
 
+    if len(server_names) > 1:
+        fail("DCS_TLS_SERVER_NAME", f"differs between containers ({sorted(server_names)}): every "
+             "server holds a certificate for one cluster-wide name")
+
     if coordinator["spec"].get("replicas", 1) != 1:
         fail("StatefulSet/dcs-coordinator", f"replicas {coordinator['spec']['replicas']}: the "
              "coordinator's SQLite store has one writer; more replicas would be more stores")
@@ -441,8 +528,15 @@ for path in files:
     if tag in ("", "latest") and "@" not in image:
         fail("images", f"{image} has no tag, or :latest (set one with kustomize images:)")
 
+    security = f"mutual TLS as {server_names.pop()}" if tls else "token only"
     print(f"check_kubernetes: {name}: {len(objects)} objects as DCS needs them "
-          f"(image {image}; gRPC ports {grpc_ports})")
+          f"(image {image}; gRPC ports {grpc_ports}; {security})")
+    rendered_overlays.add(overlay)
+
+if TLS_OVERLAYS - rendered_overlays:
+    print(f"check_kubernetes: FAIL: TLS_OVERLAYS names {sorted(TLS_OVERLAYS - rendered_overlays)}, "
+          f"but the overlays are {sorted(rendered_overlays)}", file=sys.stderr)
+    sys.exit(1)
 EOF
 
 step "all checks passed"

@@ -9,10 +9,16 @@
 //
 // Mutual TLS: a cluster with certificates comes up; plaintext and a certificate of another CA
 // are refused; certificates renewed in place are taken up without a restart.
+//
+// Server name: with scripts/make-certs' certificate, which names only DNS:server.dcs as in
+// containers, a cluster comes up and runs a sweep (every process dialling 127.0.0.1 and
+// checking the name instead); a client dialling 127.0.0.1 is refused without the name.
 
 #include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
 #include <google/protobuf/descriptor.h>
+
+#include <stdlib.h>
 
 #include <memory>
 #include <optional>
@@ -191,6 +197,20 @@ services::TlsFiles MakeCertificates(const std::string& dir) {
           .ca = absl::StrCat(dir, "/ca.pem")};
 }
 
+// One CartPole run, a few seconds long.
+constexpr char kOneRunSweep[] = R"(name: tiny
+seeds: 1
+env: cartpole
+total_timesteps: 512
+feature: length
+training_range: [0.35, 0.75]
+pool: {size: 3}
+evaluation: {freq: 256, episodes: 2, contexts: {id: [0.5]}}
+ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
+conditions:
+  - name: static
+)";
+
 std::vector<std::string> TlsFlags(const services::TlsFiles& files) {
   return {"--tls-cert", files.certificate, "--tls-key", files.key, "--tls-ca", files.ca};
 }
@@ -263,6 +283,75 @@ TEST(AuthTest, MutualTlsRefusesPlaintextAndStrangersAndRereadsRenewedCertificate
   EXPECT_EQ(exit_code, 0) << "the renewed certificates were not taken up";
   args.push_back("--timeout=2s");
   EXPECT_EQ(DcsAt(args, coordinator).exit_code, services::kExitUnavailable);
+}
+
+// Sets the DCS_TLS_* variables to `files`, as the containers do (docker-compose.tls.yml,
+// deploy/kubernetes/overlays/cluster); empty files unset them.
+void SetTlsEnvironment(const services::TlsFiles& files) {
+  for (const auto& [variable, value] :
+       {std::pair("DCS_TLS_CERT", files.certificate), std::pair("DCS_TLS_KEY", files.key),
+        std::pair("DCS_TLS_CA", files.ca), std::pair("DCS_TLS_SERVER_NAME", files.server_name)}) {
+    if (value.empty()) {
+      ::unsetenv(variable);
+    } else {
+      ::setenv(variable, value.c_str(), 1);
+    }
+  }
+}
+
+// The certificate every server of a cluster in containers holds (scripts/make-certs): it names
+// server.dcs and nothing else, so dialling 127.0.0.1 passes only with that name given.
+TEST(AuthTest, ClientsCheckTheServerNameInsteadOfTheAddressDialled) {
+  const std::string certificates = testing::MakeTempDir();
+  const RunResult made =
+      RunProgram(absl::StrCat(DCS_SOURCE_DIR, "/scripts/make-certs"), {certificates});
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const services::TlsFiles files{.certificate = absl::StrCat(certificates, "/node.pem"),
+                                 .key = absl::StrCat(certificates, "/node.key"),
+                                 .ca = absl::StrCat(certificates, "/ca.pem"),
+                                 .server_name = "server.dcs"};
+  // This process waits for the cluster as `dcs up` does, which hands the name to the children.
+  services::SetClusterTls(files);
+  absl::Cleanup plaintext_again = [] {
+    services::SetClusterTls({});
+    SetTlsEnvironment({});
+  };
+  const std::string data_dir = testing::MakeTempDir();
+  absl::StatusOr<std::unique_ptr<services::cli::LocalCluster>> cluster =
+      services::cli::LocalCluster::Start({.data_dir = data_dir,
+                                          .bin_dir = BinDir(),
+                                          .actors = 1,
+                                          .token = services::NewToken(),
+                                          .tls = files});
+  // Up means the workers registered: each dialled the coordinator at 127.0.0.1.
+  ASSERT_TRUE(cluster.ok()) << cluster.status();
+  const std::string coordinator = (*cluster)->state().coordinator_address;
+  // The containers' probes: `dcs health` with nothing but the variables.
+  SetTlsEnvironment(files);
+  for (const services::cli::ClusterProcess& process : (*cluster)->state().processes) {
+    const RunResult probe = DcsAt({"--timeout=2s", "health"}, process.grpc_address);
+    EXPECT_EQ(probe.exit_code, 0) << process.name << ": " << probe.output;
+  }
+  SetTlsEnvironment({});
+
+  std::vector<std::string> args = {"--token-file", services::cli::TokenPath(data_dir)};
+  for (const std::string& flag : TlsFlags(files)) args.push_back(flag);
+  std::vector<std::string> status = {"status", "--timeout=2s"};
+  status.insert(status.end(), args.begin(), args.end());
+  const RunResult unnamed = DcsAt(status, coordinator);
+  EXPECT_EQ(unnamed.exit_code, services::kExitUnavailable) << unnamed.output;
+  status.insert(status.end(), {"--tls-server-name", "server.dcs"});
+  const RunResult named = DcsAt(status, coordinator);
+  EXPECT_EQ(named.exit_code, 0) << named.output;
+
+  // A sweep completes: the actor dials the learner, at the address it registered.
+  const std::string spec = absl::StrCat(testing::MakeTempDir(), "/tiny.yaml");
+  ASSERT_TRUE(WriteFileAtomically(spec, kOneRunSweep).ok());
+  std::vector<std::string> submit = {"submit", spec, "--watch", "--tls-server-name", "server.dcs"};
+  submit.insert(submit.end(), args.begin(), args.end());
+  const RunResult swept = DcsAt(submit, coordinator, absl::Minutes(3));
+  EXPECT_EQ(swept.exit_code, 0) << swept.output;
+  EXPECT_THAT(swept.output, HasSubstr("completed, 1/1 runs done"));
 }
 
 }  // namespace

@@ -71,6 +71,36 @@ TEST_F(LoadTokenTest, TlsFilesComeAllThreeAsPem) {
               HasSubstr("--tls-key: " + pem + " holds no PEM"));
   EXPECT_THAT(CheckTlsFiles({.certificate = Path("none"), .key = key, .ca = pem}).message(),
               HasSubstr("--tls-cert: cannot read"));
+
+  // A server name replaces the address a client checks, so it means nothing without TLS.
+  EXPECT_TRUE(
+      CheckTlsFiles({.certificate = pem, .key = key, .ca = pem, .server_name = "server.dcs"}).ok());
+  const absl::Status alone = CheckTlsFiles({.server_name = "server.dcs"});
+  EXPECT_EQ(alone.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(alone.message(), HasSubstr("--tls-server-name needs mutual TLS"));
+}
+
+class TlsFlagsTest : public ::testing::Test {
+ protected:
+  void SetUp() override { ::unsetenv("DCS_TLS_SERVER_NAME"); }
+  void TearDown() override { ::unsetenv("DCS_TLS_SERVER_NAME"); }
+
+  TlsFiles Parse(const std::string& command_line) {
+    CLI::App app;
+    TlsFiles files;
+    AddTlsFlags(app, files);
+    app.parse(command_line, /*program_name_included=*/false);
+    return files;
+  }
+};
+
+// Containers set DCS_TLS_SERVER_NAME; a flag wins over it.
+TEST_F(TlsFlagsTest, ServerNameComesFromItsFlagOrTheEnvironment) {
+  EXPECT_EQ(Parse("").server_name, "");
+  EXPECT_EQ(Parse("--tls-server-name server.dcs").server_name, "server.dcs");
+  ::setenv("DCS_TLS_SERVER_NAME", "env.dcs", 1);
+  EXPECT_EQ(Parse("").server_name, "env.dcs");
+  EXPECT_EQ(Parse("--tls-server-name=server.dcs").server_name, "server.dcs");
 }
 
 TEST(NewTokenTest, IsLongEnoughAndDiffersEachTime) {
