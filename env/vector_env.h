@@ -18,8 +18,8 @@
 // (env/staged_schedule.h), so a slot stepped alone, with run_slots() the run's, sees the stage
 // switches it would see in the full batch. Confined to one thread.
 
+#include <algorithm>
 #include <cstdint>
-#include <cstring>
 #include <span>
 #include <vector>
 
@@ -179,10 +179,9 @@ void VectorEnv<Env>::Step(std::span<const ActionElement> actions) {
     terminated_[i] = result.terminated;
     truncated_[i] = result.truncated;
     if (result.done()) {
-      std::memcpy(ObservationRow(final_observations_, i).data(), observation.data(),
-                  sizeof(Observation) * kObservationSize);
-      std::memcpy(ContextRow(final_contexts_, i).data(), context.data(),
-                  sizeof(float) * context_size_);
+      // Copies, not memcpy: a context-free env's context rows are empty, with null data().
+      std::ranges::copy(observation, ObservationRow(final_observations_, i).begin());
+      std::ranges::copy(context, ContextRow(final_contexts_, i).begin());
       slots_[i].Reset(global_steps_ + run_slots_, observation, context);
     }
   }
