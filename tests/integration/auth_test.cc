@@ -41,6 +41,7 @@
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/slowdown.h"
 
 namespace dcs::integration {
 namespace {
@@ -275,7 +276,7 @@ TEST(AuthTest, MutualTlsRefusesPlaintextAndStrangersAndRereadsRenewedCertificate
   install(renewed);
   std::vector<std::string> with_renewed = {"status", "--token-file", token_file, "--timeout=2s"};
   for (const std::string& flag : TlsFlags(renewed)) with_renewed.push_back(flag);
-  const absl::Time deadline = absl::Now() + absl::Seconds(30);
+  const absl::Time deadline = absl::Now() + testing::Patient(absl::Seconds(30));
   int exit_code = -1;
   while ((exit_code = DcsAt(with_renewed, coordinator).exit_code) != 0 && absl::Now() < deadline) {
     absl::SleepFor(absl::Milliseconds(500));

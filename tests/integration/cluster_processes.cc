@@ -14,6 +14,7 @@
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/slowdown.h"
 
 namespace dcs::integration {
 
@@ -83,7 +84,7 @@ void ClusterProcesses::Start(const std::string& name, const std::string& program
        .args = std::move(args),
        .output_path = absl::StrCat(dir_, "/", name, ".log")});
   ASSERT_TRUE(child.ok()) << child.status();
-  const absl::Time deadline = absl::Now() + absl::Seconds(30);
+  const absl::Time deadline = absl::Now() + testing::Patient(absl::Seconds(30));
   std::optional<services::BoundPorts> ports;
   while (!(ports = services::ReadPortFile(port_file)).has_value()) {
     ASSERT_LT(absl::Now(), deadline) << name << " did not start; see " << dir_;

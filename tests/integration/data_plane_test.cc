@@ -54,6 +54,7 @@
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/slowdown.h"
 
 namespace dcs::integration {
 namespace {
@@ -169,7 +170,7 @@ class Cluster : public ClusterProcesses {
 
   // Waits until run `run_id` has learnt from at least `timesteps` steps.
   void WaitForProgress(const std::string& run_id, int64_t timesteps) {
-    const absl::Time deadline = absl::Now() + absl::Minutes(2);
+    const absl::Time deadline = absl::Now() + testing::Patient(absl::Minutes(2));
     while (absl::Now() < deadline) {
       absl::StatusOr<v1::Run> run = services::cli::GetRun(coordinator_address(), run_id, kTimeout);
       if (run.ok() && run->progress().timesteps() >= timesteps) return;
@@ -180,7 +181,7 @@ class Cluster : public ClusterProcesses {
 
   // Waits for the run of `config` to end, downloads it, and reads what it left.
   std::optional<RunOutcome> Finish(const std::string& run_id, const char* config = kConfig) {
-    const absl::Time deadline = absl::Now() + absl::Minutes(4);
+    const absl::Time deadline = absl::Now() + testing::Patient(absl::Minutes(4));
     absl::StatusOr<v1::Run> run = services::cli::WatchRun(
         coordinator_address(), run_id, kTimeout, [](const v1::Run&) {},
         [deadline] { return absl::Now() > deadline; });
@@ -324,7 +325,7 @@ class FakeActor {
     v1::AcquireSlotRequest request;
     request.set_holder(holder);
     request.set_numerics(kActorNumerics);
-    const absl::Time deadline = absl::Now() + absl::Seconds(30);
+    const absl::Time deadline = absl::Now() + testing::Patient(absl::Seconds(30));
     while (absl::Now() < deadline) {
       v1::AcquireSlotResponse response;
       const absl::Status status =
@@ -350,7 +351,7 @@ class FakeActor {
     request.set_learner_epoch(slot.learner_epoch());
     request.set_positioned_at(-1);
     request.set_policy_version(-1);
-    const absl::Time deadline = absl::Now() + absl::Seconds(30);
+    const absl::Time deadline = absl::Now() + testing::Patient(absl::Seconds(30));
     while (true) {  // UNAVAILABLE while the learner loads the run
       services::PieceJoiner<v1::GetSlotWorkResponse> reply(
           &v1::GetSlotWorkResponse::mutable_weights, "the policy");

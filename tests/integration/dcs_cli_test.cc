@@ -26,6 +26,7 @@
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/slowdown.h"
 
 namespace dcs::integration {
 namespace {
@@ -59,7 +60,7 @@ std::optional<ForegroundUp> StartForegroundUp(const std::string& data_dir) {
        .output_path = output});
   EXPECT_TRUE(dcs.ok()) << dcs.status();
   if (!dcs.ok()) return std::nullopt;
-  const absl::Time deadline = absl::Now() + absl::Seconds(30);
+  const absl::Time deadline = absl::Now() + testing::Patient(absl::Seconds(30));
   while (absl::Now() < deadline) {
     if (ReadFile(output).value_or("").find("press Ctrl-C") != std::string::npos) {
       absl::StatusOr<services::cli::ClusterState> state = services::cli::ReadClusterState(data_dir);
@@ -127,7 +128,7 @@ TEST(DcsCliTest, CtrlCStopsTheForegroundClusterLeavingNothingBehind) {
   ASSERT_THAT(up->state.processes, SizeIs(4));
 
   ::kill(up->dcs.pid(), SIGINT);
-  std::optional<int> status = up->dcs.Wait(absl::Seconds(30));
+  std::optional<int> status = up->dcs.Wait(testing::Patient(absl::Seconds(30)));
   ASSERT_TRUE(status.has_value()) << "dcs up did not stop";
   EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == 0)
       << services::cli::DescribeExit(*status) << "\n" << ReadFile(up->output_path).value_or("");
@@ -141,7 +142,7 @@ TEST(DcsCliTest, DownStopsAForegroundClusterThroughItsSupervisor) {
 
   const RunResult down = Dcs({"down", "--data-dir", data_dir});
   EXPECT_EQ(down.exit_code, 0) << down.output;
-  std::optional<int> status = up->dcs.Wait(absl::Seconds(30));
+  std::optional<int> status = up->dcs.Wait(testing::Patient(absl::Seconds(30)));
   ASSERT_TRUE(status.has_value()) << "dcs up did not stop";
   EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == 0)
       << services::cli::DescribeExit(*status);
@@ -156,7 +157,7 @@ TEST(DcsCliTest, AProcessThatDiesStopsTheForegroundClusterWithAnError) {
   ASSERT_EQ(learner.name, "learner");
 
   ::kill(learner.pid, SIGKILL);
-  std::optional<int> status = up->dcs.Wait(absl::Seconds(30));
+  std::optional<int> status = up->dcs.Wait(testing::Patient(absl::Seconds(30)));
   ASSERT_TRUE(status.has_value()) << "dcs up did not notice";
   EXPECT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == services::kExitFailure)
       << services::cli::DescribeExit(*status);

@@ -33,6 +33,7 @@
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/slowdown.h"
 
 namespace dcs::integration {
 namespace {
@@ -114,7 +115,7 @@ class Prometheus {
 
   // Waits until Prometheus scrapes `targets` targets, every one up.
   bool WaitForTargetsUp(int targets) const {
-    const absl::Time deadline = absl::Now() + absl::Seconds(60);
+    const absl::Time deadline = absl::Now() + testing::Patient(absl::Seconds(60));
     while (absl::Now() < deadline) {
       absl::StatusOr<Struct> data = Api("/api/v1/targets?state=active");
       if (data.ok()) {

@@ -27,6 +27,7 @@
 #include "tests/integration/cluster_processes.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/slowdown.h"
 
 namespace dcs::integration {
 namespace {
@@ -81,7 +82,7 @@ std::vector<std::string> StudyTrials(const ClusterProcesses& cluster) {
 
 // Waits until the study has at least `complete` complete trials.
 void WaitForTrials(const ClusterProcesses& cluster, int complete) {
-  const absl::Time deadline = absl::Now() + absl::Minutes(4);
+  const absl::Time deadline = absl::Now() + testing::Patient(absl::Minutes(4));
   while (absl::Now() < deadline) {
     const RunResult trials =
         DcsAt({"study", "trials", "study-1", "-o", "json"}, cluster.coordinator_address());

@@ -19,6 +19,7 @@
 #include "tests/integration/cluster_processes.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/slowdown.h"
 
 namespace dcs::integration {
 namespace {
@@ -48,7 +49,7 @@ std::string WriteSpec(const std::string& text) {
 // Waits until sweep `sweep_id` has at least `completed` completed runs, or has ended.
 void WaitForCompleted(const ClusterProcesses& cluster, const std::string& sweep_id,
                       int completed) {
-  const absl::Time deadline = absl::Now() + absl::Minutes(4);
+  const absl::Time deadline = absl::Now() + testing::Patient(absl::Minutes(4));
   while (absl::Now() < deadline) {
     absl::StatusOr<v1::GetSweepResponse> sweep =
         services::cli::GetSweep(cluster.coordinator_address(), sweep_id, kTimeout);

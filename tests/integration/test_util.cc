@@ -8,6 +8,7 @@
 #include "common/atomic_file.h"
 #include "services/cli/child_process.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/slowdown.h"
 
 namespace dcs::integration {
 
@@ -21,7 +22,7 @@ RunResult RunProgram(const std::string& path, const std::vector<std::string>& ar
   absl::StatusOr<services::cli::ChildProcess> child =
       services::cli::ChildProcess::Start({.path = path, .args = args, .output_path = output_path});
   if (!child.ok()) return {.exit_code = -1, .output = child.status().ToString()};
-  std::optional<int> status = child->Wait(timeout);
+  std::optional<int> status = child->Wait(dcs::testing::Patient(timeout));
   const int wait_status = status ? *status : child->Stop(absl::ZeroDuration());
   RunResult result;
   result.exit_code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;

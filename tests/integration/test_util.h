@@ -23,7 +23,8 @@ struct RunResult {
   std::string output;  // stdout and stderr, interleaved as written
 };
 
-// Runs `path args...` to completion; kills it after `timeout`.
+// Runs `path args...` to completion; kills it after `timeout` (stretched in a sanitized build:
+// tests/testing/slowdown.h).
 RunResult RunProgram(const std::string& path, const std::vector<std::string>& args,
               absl::Duration timeout = absl::Seconds(60));
 

@@ -21,6 +21,7 @@
 #include "services/exit_codes.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/slowdown.h"
 
 namespace dcs::integration {
 namespace {
@@ -100,13 +101,13 @@ TEST(TrainCliTest, CtrlCStopsWithACheckpointThatResumeContinues) {
        .output_path = output});
   ASSERT_TRUE(train.ok()) << train.status();
   // Off a terminal, progress is a line per evaluation.
-  const absl::Time deadline = absl::Now() + absl::Seconds(30);
+  const absl::Time deadline = absl::Now() + testing::Patient(absl::Seconds(30));
   while (absl::Now() < deadline &&
          ReadFile(output).value_or("").find("eval@") == std::string::npos) {
     absl::SleepFor(absl::Milliseconds(10));
   }
   ::kill(train->pid(), SIGINT);
-  std::optional<int> status = train->Wait(absl::Seconds(30));
+  std::optional<int> status = train->Wait(testing::Patient(absl::Seconds(30)));
   ASSERT_TRUE(status.has_value()) << "dcs train did not stop";
   const std::string log = ReadFile(output).value_or("");
   ASSERT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == services::kExitInterrupted)

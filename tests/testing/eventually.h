@@ -9,8 +9,9 @@
 
 namespace dcs::testing {
 
-// Polls `condition` every `poll` until it holds (true) or `timeout` has passed; then asks once
-// more, so a condition that became true at the deadline is not missed.
+// Polls `condition` every `poll` until it holds (true) or `timeout` has passed (stretched in a
+// sanitized build: tests/testing/slowdown.h); then asks once more, so a condition that became
+// true at the deadline is not missed.
 bool Eventually(absl::FunctionRef<bool()> condition, absl::Duration timeout = absl::Seconds(20),
                 absl::Duration poll = absl::Milliseconds(10));
 
