@@ -96,7 +96,10 @@ evaluation: {freq: 96, episodes: 1, contexts: {id: [0.0]}}
 ppo: {n_steps: 48, batch_size: 48, n_epochs: 2}
 )";
 
-constexpr absl::Duration kLease = absl::Seconds(1);
+// A second, stretched like the tests' deadlines in a sanitized build (tests/testing/slowdown.h):
+// an actor renews its slot's lease between pieces of work, and a sanitized image policy takes
+// longer than a second over one, so the lease would lapse again and again.
+constexpr absl::Duration kLease = absl::Seconds(testing::kSlowdown);
 constexpr absl::Duration kTimeout = absl::Seconds(5);
 
 // What a finished run left: its evaluation log and its final weights.
@@ -296,11 +299,11 @@ TEST_F(DataPlaneTest, AKilledCoordinatorRestartsOnItsDataAndLosesNothing) {
   const std::string run_id = cluster.Submit();
   cluster.WaitForProgress(run_id, 2304);
   cluster.Kill("coordinator");
-  absl::SleepFor(absl::Seconds(2));  // longer than a lease
+  absl::SleepFor(2 * kLease);  // longer than a lease
   // A restarted coordinator gives held leases a full lease from its start to be renewed in.
   // Workers reconnect after gRPC's reconnect backoff (1 s, +-20 %), so the restarted one's
   // leases last longer than that; a 1 s lease could lapse before the learner is back.
-  cluster.StartCoordinator(absl::Seconds(3));
+  cluster.StartCoordinator(3 * kLease);
   std::optional<RunOutcome> outcome = cluster.Finish(run_id);
   ASSERT_TRUE(outcome.has_value());
   ExpectSameOutcome(*outcome, InOneProcess());
