@@ -75,6 +75,9 @@ import sys
 
 import yaml
 
+sys.path.insert(0, "tests/deploy")
+from command_flags import flag  # noqa: E402
+
 def fail(message):
     print(f"check_compose: FAIL: {message}", file=sys.stderr)
     sys.exit(1)
@@ -101,15 +104,6 @@ if len(networks) != 1:
 network = next(iter(networks))
 if (networks[network] or {}).get("driver", "bridge") != "bridge":
     fail(f"docker-compose.yml: network '{network}' is not a bridge")
-
-def flag(command, name):
-    """The value of --name=value or --name value in a command list, else None."""
-    for i, arg in enumerate(command):
-        if arg.startswith(f"--{name}="):
-            return arg.split("=", 1)[1]
-        if arg == f"--{name}" and i + 1 < len(command):
-            return command[i + 1]
-    return None
 
 def port_of(address, what):
     match = re.fullmatch(r"(.*):(\d+)", address or "")

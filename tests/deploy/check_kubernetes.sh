@@ -116,6 +116,9 @@ import sys
 
 import yaml
 
+sys.path.insert(0, "tests/deploy")
+from command_flags import flag  # noqa: E402
+
 files = sys.argv[1:]
 
 # Kinds this deployment uses, each served by Kubernetes 1.24 and later (grpc probes: 1.24,
@@ -376,19 +379,13 @@ for path in files:
                     if not command or os.path.basename(command[0]) != "dcs" or \
                             "health" not in command:
                         fail(cwhere, f"{probe_name} runs {command}, not `dcs ... health`")
-                    def value(flag):
-                        for i, a in enumerate(command):
-                            if a.startswith(f"--{flag}="):
-                                return a.split("=", 1)[1]
-                            if a == f"--{flag}" and i + 1 < len(command):
-                                return command[i + 1]
-                        return None
-                    host, port = port_of(value("addr"))
+                    addr = flag(command, "addr")
+                    host, port = port_of(addr)
                     if host not in ("127.0.0.1", "localhost"):
-                        fail(cwhere, f"{probe_name}: `dcs health --addr={value('addr')}`, want "
+                        fail(cwhere, f"{probe_name}: `dcs health --addr={addr}`, want "
                              "127.0.0.1:PORT, the container's own server")
-                    service = value("service") or ""
-                    timeout = value("timeout")
+                    service = flag(command, "service") or ""
+                    timeout = flag(command, "timeout")
                     if timeout is None or seconds(timeout) >= probe.get("timeoutSeconds", 1):
                         fail(cwhere, f"{probe_name}: `dcs health --timeout={timeout}` does not "
                              f"end within timeoutSeconds {probe.get('timeoutSeconds', 1)}")
