@@ -6,8 +6,8 @@
 // same code several times slower; its tests must fail on what is wrong, not on what is slow, so
 // every deadline a test sets for the code under test (a process to finish, a sweep to complete,
 // a condition to hold) goes through Patient. What a test asserts about speed is measured in
-// bench/, never here. The factors are gRPC's practice for its own tests, rounded up for
-// processes that share the machine's two cores.
+// bench/, never here. gRPC's tests stretch their deadlines the same way; these factors are
+// what the first sanitized runs of DCS's tests needed on two cores, with room to spare.
 
 #include "absl/time/time.h"
 
