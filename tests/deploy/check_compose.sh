@@ -76,6 +76,7 @@ import sys
 import yaml
 
 sys.path.insert(0, "tests/deploy")
+import compose_mounts  # noqa: E402
 from command_flags import flag  # noqa: E402
 
 def fail(message):
@@ -180,23 +181,10 @@ for key in ("container_name", "ports", "hostname"):
     if actor.get(key):
         fail(f"docker-compose.yml: the actor service is scaled (--scale actor=N) but sets '{key}'")
 
-# Mounts as (type, source, target, read_only): docker-compose 1.29 prints them short
-# ("src:target:mode"), v2 long (dicts).
 named_volumes = compose.get("volumes") or {}
 
 def mounts(service):
-    result = []
-    for v in services[service].get("volumes") or []:
-        if isinstance(v, dict):
-            result.append((v.get("type"), v.get("source"), v.get("target"),
-                           bool(v.get("read_only"))))
-            continue
-        parts = str(v).split(":")
-        source, target = parts[0], parts[1] if len(parts) > 1 else parts[0]
-        mode = parts[2] if len(parts) > 2 else "rw"
-        kind = "volume" if source in named_volumes else "bind"
-        result.append((kind, source, target, "ro" in mode.split(",")))
-    return result
+    return compose_mounts.mounts(compose, service)
 
 # The coordinator's store is a named volume at its --data-dir.
 data_dir = flag(services["coordinator"]["command"], "data-dir")
@@ -278,6 +266,9 @@ import sys
 
 import yaml
 
+sys.path.insert(0, "tests/deploy")
+import compose_mounts  # noqa: E402
+
 def fail(message):
     print(f"check_compose: FAIL: docker-compose.tls.yml: {message}", file=sys.stderr)
     sys.exit(1)
@@ -290,16 +281,9 @@ if not uid.isdigit():
     fail("no `useradd --uid N` in the Dockerfile: whose should the copies be?")
 
 def mounts(service):
-    """(source, target, read_only) of every mount; docker-compose 1.29 prints them short."""
-    result = []
-    for v in services[service].get("volumes") or []:
-        if isinstance(v, dict):
-            result.append((v.get("source"), v.get("target"), bool(v.get("read_only"))))
-        else:
-            parts = str(v).split(":")
-            mode = parts[2] if len(parts) > 2 else "rw"
-            result.append((parts[0], parts[1], "ro" in mode.split(",")))
-    return result
+    """(source, target, read_only) of every mount."""
+    return [(source, target, ro)
+            for _, source, target, ro in compose_mounts.mounts(compose, service)]
 
 # The one-shot copy: the only service that mounts $DCS_TLS_DIR, read-only. It runs as root, to
 # read the host's keys (mode 0600, the host user's) and give the copies to the image's user,
