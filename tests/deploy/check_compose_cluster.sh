@@ -3,10 +3,15 @@
 # from ./Dockerfile, the coordinator, a learner and two actors, Prometheus scraping all four;
 # the sweep is submitted and watched to its end with the image's own `dcs`, then Prometheus must
 # see every process up and the learner's steps. Grafana is left out (not packaged in Debian, and
-# no registry may be reachable); so is any image that cannot be found locally or pulled:
-# Prometheus then runs from a stand-in image of Debian's prometheus package (same flags).
+# no registry may be reachable). An image that cannot be found locally or pulled is made from
+# Debian's packages: the Dockerfile's Debian 12 bases by scripts/debian-base-image, Prometheus
+# as a stand-in image of Debian's prometheus package (same flags).
 #
-#   tests/deploy/check_compose_cluster.sh REPO_ROOT
+#   tests/deploy/check_compose_cluster.sh REPO_ROOT [--tls]
+#
+# With --tls, the cluster runs with docker-compose.tls.yml on certificates of scripts/make-certs:
+# every call between containers is mutual TLS checked against the cluster's one server name,
+# and a call without a certificate is refused.
 #
 # Runs only with DCS_CONTAINER_TESTS=1, a container engine that answers (`docker info`) and
 # docker-compose; else exits 77 (skipped). It builds the image: the first time as long as the
@@ -15,7 +20,12 @@
 # published ports (127.0.0.1:50051 and :9090) must be free.
 set -euo pipefail
 
-root=${1:?usage: check_compose_cluster.sh REPO_ROOT}
+root=${1:?usage: check_compose_cluster.sh REPO_ROOT [--tls]}
+mode=${2:-}
+case "$mode" in
+  ""|--tls) ;;
+  *) echo "usage: check_compose_cluster.sh REPO_ROOT [--tls]" >&2; exit 2 ;;
+esac
 cd "$root"
 
 step() { echo "check_compose_cluster: $*"; }
@@ -45,6 +55,10 @@ export DCS_TOKEN
 work=$(mktemp -d)
 project="dcs-check-$$"
 compose=(docker-compose -p "$project" -f docker-compose.yml -f "$work/override.yml")
+if [ "$mode" = --tls ]; then
+  compose+=(-f docker-compose.tls.yml)
+  export DCS_TLS_DIR="$work/certificates"
+fi
 cleanup() {
   local status=$?
   if [ "$status" -ne 0 ] && [ -f "$work/override.yml" ]; then
@@ -55,6 +69,15 @@ cleanup() {
   rm -rf "$work"
 }
 trap cleanup EXIT
+
+# The Dockerfile's base images: here, pulled, or made from Debian's packages.
+for base in $(sed -nE 's/^FROM ([^ ]+).*/\1/p' Dockerfile); do
+  if ! docker image inspect "$base" >/dev/null 2>&1 && ! docker pull -q "$base" >/dev/null 2>&1
+  then
+    step "$base is neither here nor in a registry: made from Debian's packages"
+    scripts/debian-base-image || fail "scripts/debian-base-image could not make $base"
+  fi
+done
 
 # Prometheus: the pinned image if it is here or can be pulled, else Debian's package.
 prometheus_image=$(docker-compose -f docker-compose.yml config \
@@ -88,7 +111,12 @@ EOF
 step "building the DCS image (docker-compose build coordinator)"
 "${compose[@]}" build -q coordinator >/dev/null || fail "docker-compose build coordinator failed"
 
-step "up: coordinator, learner, 2 actors, prometheus (not grafana)"
+if [ "$mode" = --tls ]; then
+  scripts/make-certs "$DCS_TLS_DIR" >/dev/null || fail "scripts/make-certs failed"
+  step "certificates for the one server name in $DCS_TLS_DIR"
+fi
+
+step "up: coordinator, learner, 2 actors, prometheus (not grafana)${mode:+, over mutual TLS}"
 "${compose[@]}" up -d --scale actor=2 coordinator learner actor prometheus \
   || fail "docker-compose up failed"
 
@@ -105,6 +133,17 @@ done
 step "healthy: $(tr '\n' ' ' <<<"$states")"
 
 dcs() { "${compose[@]}" exec -T coordinator dcs --addr 127.0.0.1:50051 "$@"; }
+if [ "$mode" = --tls ]; then
+  # The same `dcs status` in plaintext, without the container's certificate: the coordinator's
+  # TLS handshake refuses it (UNAVAILABLE, not the client's own refusal of its flags).
+  if out=$("${compose[@]}" exec -T coordinator \
+             env -u DCS_TLS_CERT -u DCS_TLS_KEY -u DCS_TLS_CA -u DCS_TLS_SERVER_NAME \
+             dcs --addr 127.0.0.1:50051 --timeout 5s status 2>&1); then
+    fail "the coordinator answered a call without TLS: $out"
+  fi
+  [[ "$out" == *UNAVAILABLE* ]] || fail "a call without TLS failed, but not at the server: $out"
+  step "refused without TLS: $(tail -1 <<<"$out")"
+fi
 status=$(dcs status)
 echo "$status"
 if [ "$(grep -cE '^learner .* alive ' <<<"$status")" -ne 1 ] \
