@@ -23,6 +23,7 @@
 #include "services/backoff.h"
 #include "services/channel.h"
 #include "services/finished_threads.h"
+#include "services/lease_renewals.h"
 #include "services/log.h"
 #include "services/pieces.h"
 #include "services/run_proto.h"
@@ -38,8 +39,10 @@ struct SlotWorkers::Slot {
   std::string learner_address;
   int64_t learner_epoch = 0;
   std::string config;
-  absl::Duration lease_duration;
-  std::atomic<bool> done{false};
+  absl::Time renewed_at;  // the manager thread's
+
+  std::atomic<bool> lost{false};  // the lease moved, lapsed or ended: stop
+  std::atomic<bool> done{false};  // the slot's thread is about to return
   std::thread thread;
 };
 
@@ -125,8 +128,15 @@ void SlotWorkers::Stop() {
 void SlotWorkers::Manage() {
   while (!stopping_.WaitForNotificationWithTimeout(options_.poll_interval)) {
     JoinFinished(mu_, slots_);
+    RenewDueLeases(*coordinator_, options_.rpc_timeout, mu_, slots_, lease_duration_,
+                   [](Slot& slot) { slot.lost = true; });
     AcquireSlot();
   }
+}
+
+absl::Duration SlotWorkers::LeaseDuration() {
+  absl::MutexLock lock(&mu_);
+  return lease_duration_;
 }
 
 void SlotWorkers::AcquireSlot() {
@@ -154,11 +164,12 @@ void SlotWorkers::AcquireSlot() {
   slot->learner_address = response.learner_address();
   slot->learner_epoch = response.learner_epoch();
   slot->config = response.config();
-  slot->lease_duration = DurationFromProto(response.lease_duration());
+  slot->renewed_at = absl::Now();
   Log(LogLevel::kInfo, "stepping a slot",
       {{"slot", SlotName(slot->lease)}, {"epoch", std::to_string(slot->lease.epoch)},
        {"learner", slot->learner_address}});
   absl::MutexLock lock(&mu_);
+  lease_duration_ = DurationFromProto(response.lease_duration());
   slot->thread = std::thread([this, slot] {
     Work(*slot);
     slot->done = true;
@@ -179,9 +190,7 @@ void SlotWorkers::Work(Slot& slot) {
   const v1::Lease lease = LeaseToProto(slot.lease);
   std::optional<actor::PolicyNetwork> policy;
   int64_t policy_version = -1;
-  absl::Time renewed_at = absl::Now();
   absl::Time learner_answered_at = absl::Now();
-  absl::Duration lease_duration = slot.lease_duration;
   absl::BitGen random;
   int failures = 0;
 
@@ -199,32 +208,16 @@ void SlotWorkers::Work(Slot& slot) {
         {{"slot", name}, {"error", status.ToString()}});
   };
   // The slot is worth keeping until its learner has been silent for a lease.
-  auto learner_alive = [&] { return absl::Now() - learner_answered_at < lease_duration; };
+  auto learner_alive = [&] { return absl::Now() - learner_answered_at < LeaseDuration(); };
 
-  while (!stopping_.HasBeenNotified()) {
-    if (absl::Now() - renewed_at >= lease_duration / 3) {
-      v1::RenewLeaseRequest request;
-      *request.mutable_lease() = lease;
-      v1::RenewLeaseResponse response;
-      const absl::Status renewed =
-          CallUnary(*coordinator_, &v1::CoordinatorService::Stub::RenewLease, request, response,
-                    options_.rpc_timeout, "coordinator");
-      if (renewed.ok()) {
-        renewed_at = absl::Now();
-        lease_duration = DurationFromProto(response.lease_duration());
-      } else if (!IsTransient(renewed)) {
-        Log(LogLevel::kInfo, "slot lease lost", {{"slot", name}, {"error", renewed.ToString()}});
-        return;
-      }
-    }
-
+  // The manager thread renews the lease meanwhile (RenewDueLeases) and says when it is lost.
+  while (!stopping_.HasBeenNotified() && !slot.lost) {
     v1::GetSlotWorkRequest ask;
     *ask.mutable_lease() = lease;
     ask.set_learner_epoch(slot.learner_epoch);
     ask.set_positioned_at((*stepper)->positioned_at());
     ask.set_policy_version(policy_version);
-    // Back in time to renew the lease: a wait as long as the lease would let it lapse.
-    *ask.mutable_wait() = DurationToProto(std::min(options_.work_wait, lease_duration / 3));
+    *ask.mutable_wait() = DurationToProto(options_.work_wait);
     PieceJoiner<v1::GetSlotWorkResponse> reply(&v1::GetSlotWorkResponse::mutable_weights,
                                                "the policy");
     const absl::Status asked = CallServerStream(
@@ -233,7 +226,7 @@ void SlotWorkers::Work(Slot& slot) {
         [&](v1::GetSlotWorkResponse& message) { return reply.Add(std::move(message)); });
     if (!asked.ok()) {
       if (IsTransient(asked)) {
-        // Back off here rather than in CallWithRetries: the loop renews the lease meanwhile.
+        // Back off here rather than in CallWithRetries: the loop asks only while the lease holds.
         log_failure(asked);
         absl::SleepFor(BackoffDelay(kRetryBackoff, ++failures, random));
         if (learner_alive()) continue;
@@ -296,17 +289,17 @@ void SlotWorkers::Work(Slot& slot) {
         *learner, &v1::LearnerService::Stub::PushRollout, push, pushed, options_.rpc_timeout,
         slot.learner_address, kRetryBackoff, [&](const absl::Status& failed) {
           log_failure(failed);
-          return !stopping_.HasBeenNotified() && learner_alive();
+          return !stopping_.HasBeenNotified() && !slot.lost && learner_alive();
         });
     if (!status.ok()) {
-      if (stopping_.HasBeenNotified()) break;
+      if (stopping_.HasBeenNotified() || slot.lost) break;
       Log(LogLevel::kInfo, "giving up a slot", {{"slot", name}, {"error", status.ToString()}});
       return;
     }
     rollouts_.Increment();
     learner_answered_at = absl::Now();
   }
-  release();
+  if (!slot.lost) release();  // a lost lease is another holder's now
 }
 
 }  // namespace dcs::services

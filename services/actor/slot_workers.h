@@ -4,13 +4,15 @@
 
 // An actor's work (DESIGN.md §3): env slots leased from the coordinator, stepped for their
 // runs' learners. Stateless between leases. A manager thread takes slot leases while fewer
-// than max_slots are held; each slot has a thread that renews its lease, asks the run's
-// learner for work (waiting there for the next policy version), rebuilds the slot from its
-// journal when it is not positioned where the learner says (actor/slot_stepper.h), collects
-// the slot's part of the rollout with the policy (Eigen) and pushes it, retrying a learner
-// that does not answer. Slots step holding the actor's core (a mutex shared with its
-// evaluation jobs: services/actor/evaluation_worker.h), so an actor uses one core and the
-// slots of many runs share it: while one waits for its run's update, another steps.
+// than max_slots are held and renews them (services/lease_renewals.h); each slot has a thread
+// that asks the run's learner for work (waiting there for the next policy version), rebuilds
+// the slot from its journal when it is not positioned where the learner says
+// (actor/slot_stepper.h), collects the slot's part of the rollout with the policy (Eigen) and
+// pushes it, retrying a learner that does not answer. A piece of work may thus take longer
+// than a lease (an image policy under a sanitizer, a slot waiting for the core). Slots step
+// holding the actor's core (a mutex shared with its evaluation jobs:
+// services/actor/evaluation_worker.h), so an actor uses one core and the slots of many runs
+// share it: while one waits for its run's update, another steps.
 //
 // A slot is given up when its lease is lost (it moved, lapsed, or the run ended) or its
 // learner stops answering for longer than a lease: the coordinator then hands it out again.
@@ -61,6 +63,8 @@ class SlotWorkers {
 
   void Manage();
   void AcquireSlot();
+  // The coordinator's lease duration, as it last said.
+  absl::Duration LeaseDuration();
   void Work(Slot& slot);
 
   const SlotWorkersOptions options_;
@@ -76,6 +80,7 @@ class SlotWorkers {
   absl::Mutex mu_;
   // By "run/slot@epoch".
   std::map<std::string, std::shared_ptr<Slot>> slots_ ABSL_GUARDED_BY(mu_);
+  absl::Duration lease_duration_ ABSL_GUARDED_BY(mu_);  // set with the first slot taken
 
   std::thread manager_;  // last: starts after everything above is initialised
 };

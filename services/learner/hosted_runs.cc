@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "absl/synchronization/blocking_counter.h"
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
 #include "common/status_util.h"
@@ -20,8 +19,8 @@
 #include "services/backoff.h"
 #include "services/channel.h"
 #include "services/finished_threads.h"
-#include "services/grpc_status.h"
 #include "services/learner/remote_evaluation.h"
+#include "services/lease_renewals.h"
 #include "services/log.h"
 #include "services/run_proto.h"
 #include "services/stream_call.h"
@@ -125,7 +124,8 @@ absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Find(const std::st
 void HostedRuns::Manage() {
   while (!stopping_.HasBeenNotified()) {
     JoinFinished(mu_, runs_);
-    RenewLeases();
+    RenewDueLeases(*coordinator_, options_.rpc_timeout, mu_, runs_, lease_duration_,
+                   [](Run& run) { run.Lose(); });
     AcquireRun();
     // Until the next round, or until a run ends and makes room for the next one at once.
     absl::MutexLock lock(&mu_);
@@ -135,57 +135,6 @@ void HostedRuns::Manage() {
                          [](const auto& entry) { return entry.second->done.load(); });
     };
     mu_.AwaitWithTimeout(absl::Condition(&woken), options_.poll_interval);
-  }
-}
-
-void HostedRuns::RenewLeases() {
-  // Every lease that falls due is renewed at once, each by its own call: on a loaded machine a
-  // call waits for the scheduler far longer than for the coordinator, and one call after
-  // another for 16 runs took longer than a lease lasts (bench/RESULTS.md, issue 14's load).
-  struct Renewal {
-    std::shared_ptr<Run> run;
-    grpc::ClientContext context;
-    v1::RenewLeaseRequest request;
-    v1::RenewLeaseResponse response;
-    grpc::Status status;
-  };
-  std::vector<std::unique_ptr<Renewal>> renewals;
-  {
-    absl::MutexLock lock(&mu_);
-    const absl::Duration period = lease_duration_ / 3;
-    for (const auto& [key, run] : runs_) {
-      if (run->lost || absl::Now() - run->renewed_at < period) continue;
-      renewals.push_back(std::make_unique<Renewal>());
-      renewals.back()->run = run;
-    }
-  }
-  const absl::Time sent = absl::Now();
-  absl::BlockingCounter pending(static_cast<int>(renewals.size()));
-  for (const std::unique_ptr<Renewal>& renewal : renewals) {
-    *renewal->request.mutable_lease() = LeaseToProto(renewal->run->lease);
-    SetTimeout(renewal->context, options_.rpc_timeout);
-    coordinator_->async()->RenewLease(&renewal->context, &renewal->request, &renewal->response,
-                                      [&pending, &renewal](grpc::Status status) {
-                                        renewal->status = std::move(status);
-                                        pending.DecrementCount();
-                                      });
-  }
-  pending.Wait();
-  for (const std::unique_ptr<Renewal>& renewal : renewals) {
-    Run& run = *renewal->run;
-    const absl::Status status = Annotate(FromGrpcStatus(renewal->status), "coordinator");
-    if (status.ok()) {
-      run.renewed_at = sent;
-      absl::MutexLock lock(&mu_);
-      lease_duration_ = DurationFromProto(renewal->response.lease_duration());
-    } else if (IsLeaseLost(status)) {
-      Log(LogLevel::kWarning, "lost a run's lease",
-          {{"run_id", run.lease.run_id}, {"error", status.ToString()}});
-      run.Lose();
-    } else {
-      Log(LogLevel::kWarning, "cannot renew a lease yet",
-          {{"run_id", run.lease.run_id}, {"error", status.ToString()}});
-    }
   }
 }
 

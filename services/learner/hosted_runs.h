@@ -3,13 +3,13 @@
 #define DCS_SERVICES_LEARNER_HOSTED_RUNS_H_
 
 // The runs a learner hosts (DESIGN.md §3, §5). A manager thread takes runs from the
-// coordinator while fewer than max_runs are hosted (AcquireRun), renews their leases, and
-// drops a run whose lease moved or whose run ended. Each run has its own thread, which loads
-// the run (from the coordinator's latest checkpoint, if any) into a learner::RunHost, then
-// steps it: after every update it reports progress, uploads the checkpoints that fall due
-// (retrying until the coordinator stored them or the lease is lost), and at the end finishes
-// the run. Updates of different runs thus run in parallel, each on its own thread with
-// libtorch pinned to one thread per process call (learner/torch_runtime.h).
+// coordinator while fewer than max_runs are hosted (AcquireRun), renews their leases
+// (services/lease_renewals.h), and drops a run whose lease moved or whose run ended. Each run
+// has its own thread, which loads the run (from the coordinator's latest checkpoint, if any)
+// into a learner::RunHost, then steps it: after every update it reports progress, uploads the
+// checkpoints that fall due (retrying until the coordinator stored them or the lease is lost),
+// and at the end finishes the run. Updates of different runs thus run in parallel, each on its
+// own thread with libtorch pinned to one thread per process call (learner/torch_runtime.h).
 //
 // A learner's own disk holds nothing: a learner that dies loses only the updates since the
 // run's last checkpoint, which the next learner to take the run repeats, bit for bit.
@@ -74,7 +74,6 @@ class HostedRuns {
 
   void Manage();
   void AcquireRun();
-  void RenewLeases();
   void Train(Run& run);
   // Loads the run's host. On an error the run is finished as failed.
   absl::StatusOr<std::shared_ptr<learner::RunHost>> Load(Run& run);

@@ -96,10 +96,7 @@ evaluation: {freq: 96, episodes: 1, contexts: {id: [0.0]}}
 ppo: {n_steps: 48, batch_size: 48, n_epochs: 2}
 )";
 
-// A second, stretched like the tests' deadlines in a sanitized build (tests/testing/slowdown.h):
-// an actor renews its slot's lease between pieces of work, and a sanitized image policy takes
-// longer than a second over one, so the lease would lapse again and again.
-constexpr absl::Duration kLease = absl::Seconds(testing::kSlowdown);
+constexpr absl::Duration kLease = absl::Seconds(1);
 constexpr absl::Duration kTimeout = absl::Seconds(5);
 
 // What a finished run left: its evaluation log and its final weights.
@@ -414,6 +411,33 @@ double MetricValue(const std::string& exposition, const std::string& series) {
     }
   }
   return -1;
+}
+
+// One slot whose two pieces of work (BipedalWalker rollouts of 2^16 steps) each take longer
+// than a lease: the actor's manager thread renews the lease while the slot's thread steps, so
+// no lease lapses and the slot is never taken again and rebuilt.
+constexpr char kLongPieceConfig[] = R"(env: bipedal_walker
+seed: 11
+total_timesteps: 131072
+n_envs: 1
+feature: GRAVITY_Y
+training_range: [-12.0, -8.0]
+evaluation: {freq: 131072, episodes: 1, contexts: {id: [-10.0]}}
+ppo: {n_steps: 65536, batch_size: 8192, n_epochs: 1}
+)";
+
+TEST_F(DataPlaneTest, AnActorKeepsASlotWhosePiecesOfWorkOutlastALease) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  cluster.StartLearner("learner");
+  cluster.StartActor("actor", 1);
+  const absl::Time submitted = absl::Now();
+  ASSERT_TRUE(cluster.Finish(cluster.Submit(kLongPieceConfig), kLongPieceConfig).has_value());
+  // What the test is about: more than a lease per piece.
+  ASSERT_GT(absl::Now() - submitted, 2 * kLease);
+  absl::StatusOr<std::string> metrics = testing::HttpGet(cluster.metrics_url("coordinator"));
+  ASSERT_TRUE(metrics.ok()) << metrics.status();
+  EXPECT_EQ(MetricValue(*metrics, "dcs_leases_expired_total"), 0) << "logs in " << cluster.dir();
 }
 
 TEST(DataPlaneBadInputTest, RefusesEachBadRolloutNamingItAndTakesTheGoodOne) {
