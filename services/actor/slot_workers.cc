@@ -140,13 +140,16 @@ absl::Duration SlotWorkers::LeaseDuration() {
 }
 
 void SlotWorkers::AcquireSlot() {
-  {
-    absl::MutexLock lock(&mu_);
-    if (static_cast<int>(slots_.size()) >= options_.max_slots) return;
-  }
   v1::AcquireSlotRequest request;
   request.set_holder(options_.holder);
   request.set_numerics(options_.numerics);
+  {
+    absl::MutexLock lock(&mu_);
+    if (static_cast<int>(slots_.size()) >= options_.max_slots) return;
+    const absl::Time now = absl::Now();
+    std::erase_if(complete_runs_, [now](const auto& run) { return run.second <= now; });
+    for (const auto& [run_id, until] : complete_runs_) request.add_except_run_ids(run_id);
+  }
   v1::AcquireSlotResponse response;
   const absl::Status status =
       CallUnary(*coordinator_, &v1::CoordinatorService::Stub::AcquireSlot, request, response,
@@ -238,6 +241,10 @@ void SlotWorkers::Work(Slot& slot) {
     failures = 0;
     const v1::GetSlotWorkResponse& work = reply.header();
     if (work.run_complete()) {
+      {
+        absl::MutexLock lock(&mu_);
+        complete_runs_[slot.lease.run_id] = absl::Now() + lease_duration_;
+      }
       release();
       return;
     }

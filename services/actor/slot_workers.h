@@ -81,6 +81,12 @@ class SlotWorkers {
   // By "run/slot@epoch".
   std::map<std::string, std::shared_ptr<Slot>> slots_ ABSL_GUARDED_BY(mu_);
   absl::Duration lease_duration_ ABSL_GUARDED_BY(mu_);  // set with the first slot taken
+  // The runs whose learner said they are complete, each until a lease after it said so: slots
+  // not to take again (AcquireSlotRequest.except_run_ids). The learner finishes such a run
+  // within moments; taking its slots in the meantime, every poll, only to be told again, costs
+  // the coordinator a transaction each time. After a lease, a run whose learner died before
+  // finishing it is back with another learner and may need its slots.
+  std::map<std::string, absl::Time> complete_runs_ ABSL_GUARDED_BY(mu_);
 
   std::thread manager_;  // last: starts after everything above is initialised
 };

@@ -212,10 +212,11 @@ TEST_F(DataPlaneTest, OneActorGivesTheRunOfOneProcess) {
 
   // The metrics of the run, on every process, pass promtool's lint; the run's own series left
   // the learner with the run. The actor ran every evaluation: 6 policy versions (steps 1536 to
-  // 7680, and the final policy) on 2 contexts.
+  // 7680, and the final policy) on 2 contexts. Each of the 3 slots was granted once: not again
+  // once the learner had said the run was complete.
   const std::map<std::string, std::vector<std::string>> expected = {
       {"coordinator",
-       {"dcs_runs{state=\"completed\"} 1", "dcs_leases_granted_total{kind=\"slot\"} ",
+       {"dcs_runs{state=\"completed\"} 1", "dcs_leases_granted_total{kind=\"slot\"} 3\n",
         "dcs_leases_granted_total{kind=\"evaluation\"} 12",
         "dcs_queue_depth{queue=\"evaluations\"} 0"}},
       {"learner", {"dcs_learner_update_seconds_count 10", "dcs_rollouts_received_total 30"}},
