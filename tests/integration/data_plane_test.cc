@@ -434,7 +434,7 @@ TEST_F(DataPlaneTest, AnActorKeepsASlotWhosePiecesOfWorkOutlastALease) {
   cluster.StartActor("actor", 1);
   const absl::Time submitted = absl::Now();
   ASSERT_TRUE(cluster.Finish(cluster.Submit(kLongPieceConfig), kLongPieceConfig).has_value());
-  // What the test is about: more than a lease per piece.
+  // The premise: two pieces (and two quick updates) took longer than two leases.
   ASSERT_GT(absl::Now() - submitted, 2 * kLease);
   absl::StatusOr<std::string> metrics = testing::HttpGet(cluster.metrics_url("coordinator"));
   ASSERT_TRUE(metrics.ok()) << metrics.status();
