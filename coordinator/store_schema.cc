@@ -210,6 +210,10 @@ int CurrentSchemaVersion() { return static_cast<int>(std::size(kMigrations)); }
 
 absl::Status MigrateSchema(SQLite::Database& db, int target) {
   const int found = UserVersion(db);
+  if (found < 0) {
+    return absl::DataLossError(absl::StrCat(db.getFilename(), " is corrupt: schema version ",
+                                            found, " (no DCS writes a negative one)"));
+  }
   if (found > CurrentSchemaVersion()) {
     return absl::FailedPreconditionError(absl::StrCat(
         db.getFilename(), " has schema version ", found, "; this DCS knows versions up to ",

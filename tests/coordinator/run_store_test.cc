@@ -296,6 +296,19 @@ TEST_F(RunStoreTest, RefusesADatabaseOfANewerSchema) {
   EXPECT_THAT(store.status().message(), HasSubstr("newer DCS"));
 }
 
+TEST_F(RunStoreTest, RefusesADatabaseOfANegativeSchemaVersionAsCorrupt) {
+  Open();
+  {
+    SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READWRITE);
+    db.exec("PRAGMA user_version = -251");
+  }
+  absl::StatusOr<std::unique_ptr<RunStore>> store =
+      RunStore::Open(Path("coordinator.db"), {.lease_duration = kLease}, kStart);
+  EXPECT_EQ(store.status().code(), absl::StatusCode::kDataLoss);
+  EXPECT_THAT(store.status().message(), HasSubstr("coordinator.db is corrupt"));
+  EXPECT_THAT(store.status().message(), HasSubstr("schema version -251"));
+}
+
 TEST_F(RunStoreTest, CountsRunsByStateAndWaitingWork) {
   std::unique_ptr<RunStore> store = Open();
   SubmitAndAcquire(*store);
