@@ -5,7 +5,6 @@
 #include <prometheus/counter.h>
 #include <prometheus/histogram.h>
 
-#include <algorithm>
 #include <optional>
 #include <utility>
 #include <vector>
