@@ -113,9 +113,13 @@ absl::StatusOr<bool> RecordJobResult(SQLite::Database& db, const EvaluationJobKe
   const int episodes = query.getColumn(2).getInt();
   const int contexts = query.getColumn(3).getInt();
   query.reset();
-  if (epoch != key.epoch) {
-    return absl::FailedPreconditionError(absl::StrCat(JobName(key), " moved: epoch ", epoch,
-                                                      " was granted after epoch ", key.epoch));
+  // Any holder the job was granted to may deliver it, even after its lease lapsed and the job
+  // went to another: the result is the same whoever computes it, and a job longer than a lease
+  // would otherwise pass from actor to actor for ever. The first delivery is kept.
+  if (key.epoch < 1 || key.epoch > epoch) {
+    return absl::FailedPreconditionError(absl::StrCat(JobName(key), " was never granted at epoch ",
+                                                      key.epoch, " (its latest is epoch ", epoch,
+                                                      ")"));
   }
   if (done) return true;
   if (static_cast<int>(result.returns.size()) != episodes) {

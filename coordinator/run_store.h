@@ -394,9 +394,10 @@ class RunStore {
                                                                        absl::Time now);
 
   // The holder delivers jobs' results, all of them or (on an error) none; returns, for each,
-  // whether it was delivered before (a retry). A lapsed job not yet granted again is still
-  // accepted: its result is the same whoever computes it. Errors name the job: NOT_FOUND for
-  // an unknown one; FAILED_PRECONDITION if it moved to a newer epoch; INVALID_ARGUMENT for a
+  // whether it was delivered before (a retry). Any holder the job was granted to may deliver
+  // it, also after its lease lapsed and the job went to another: its result is the same whoever
+  // computes it, and the first delivery is kept. Errors name the job: NOT_FOUND for an unknown
+  // one; FAILED_PRECONDITION for an epoch it was never granted at; INVALID_ARGUMENT for a
   // number of returns other than the evaluation's episodes or a non-finite one.
   absl::StatusOr<std::vector<bool>> ReportEvaluationJobs(absl::Span<const JobResult> results);
 

@@ -482,7 +482,7 @@ TEST_F(RunStoreTest, SubmittingAnEvaluationAgainIsIdempotentAndNeedsTheLearnerLe
             absl::StatusCode::kFailedPrecondition);
 }
 
-TEST_F(RunStoreTest, ALapsedJobGoesBackToTheQueueAndItsOldHolderIsRefusedOnceRegranted) {
+TEST_F(RunStoreTest, ALapsedJobGoesBackToTheQueueAndWhicheverHolderDeliversFirstIsKept) {
   std::unique_ptr<RunStore> store = Open();
   const LeaseKey learner = SubmitAndAcquire(*store).key;
   ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/1), kStart).ok());
@@ -490,16 +490,27 @@ TEST_F(RunStoreTest, ALapsedJobGoesBackToTheQueueAndItsOldHolderIsRefusedOnceReg
   ASSERT_TRUE(old.has_value());
   EXPECT_FALSE(AcquireJob(*store, kStart + kLease / 2).has_value());
 
-  // The learner renews its own lease; the job's holder went silent.
+  // The learner renews its own lease; the job outlasts its holder's.
   const absl::Time later = kStart + kLease + absl::Seconds(1);
   ASSERT_TRUE(store->RenewLease(learner, kStart + kLease / 2).ok());
   std::optional<EvaluationJobKey> again = AcquireJob(*store, later);
   ASSERT_TRUE(again.has_value());
   EXPECT_EQ(again->epoch, old->epoch + 1);
-  const absl::StatusOr<bool> refused = Report(*store, *old, {{1, 2, 3}, 0});
+
+  // An epoch the job was never granted at is refused.
+  EvaluationJobKey forged = *again;
+  forged.epoch = again->epoch + 1;
+  const absl::StatusOr<bool> refused = Report(*store, forged, {{1, 2, 3}, 0});
   EXPECT_EQ(refused.status().code(), absl::StatusCode::kFailedPrecondition);
-  EXPECT_THAT(refused.status().message(), HasSubstr("moved"));
-  EXPECT_EQ(Report(*store, *again, {{1, 2, 3}, 0}).value_or(true), false);
+  EXPECT_THAT(refused.status().message(), HasSubstr("never granted at epoch 3"));
+  forged.epoch = 0;
+  EXPECT_EQ(Report(*store, forged, {{1, 2, 3}, 0}).status().code(),
+            absl::StatusCode::kFailedPrecondition);
+
+  // The old holder finishes first: its result is the job's, and the new holder's a duplicate.
+  EXPECT_EQ(Report(*store, *old, {{1, 2, 3}, 0}).value_or(true), false);
+  EXPECT_EQ(store->GetEvaluation("run-1", 1)->done, 1);
+  EXPECT_EQ(Report(*store, *again, {{1, 2, 3}, 0}).value_or(false), true);
 }
 
 TEST_F(RunStoreTest, ABadResultIsRefusedAndTheJobStaysOpen) {

@@ -677,7 +677,8 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
   EXPECT_FALSE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, good).duplicate(0));
   EXPECT_TRUE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, good).duplicate(0));
 
-  // A holder whose job lapsed and went to another is refused.
+  // A holder whose job lapsed and went to another still delivers it: the result is the same
+  // whoever computes it. The new holder's is then a duplicate; an epoch never granted is refused.
   const v1::AcquireEvaluationResponse lapsing = AcquireJob(*coordinator, acquire_job).job;
   ASSERT_EQ(lapsing.jobs(0).context(), 1);
   absl::SleepFor(kLease * 0.6);
@@ -690,11 +691,17 @@ TEST(DataPlaneBadInputTest, RefusesEachBadEvaluationResultNamingItAndTakesTheGoo
   EXPECT_GT(again.jobs(0).epoch(), lapsing.jobs(0).epoch());
   v1::ReportEvaluationRequest late = good;
   *late.mutable_results(0)->mutable_job() = lapsing.jobs(0);
+  EXPECT_FALSE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, late).duplicate(0));
+  v1::ReportEvaluationRequest current = good;
+  *current.mutable_results(0)->mutable_job() = again.jobs(0);
+  EXPECT_TRUE(CallCoordinator(*coordinator, &Stub::ReportEvaluation, current).duplicate(0));
+  v1::ReportEvaluationRequest forged = current;
+  forged.mutable_results(0)->mutable_job()->set_epoch(again.jobs(0).epoch() + 1);
   v1::ReportEvaluationResponse refused;
-  const absl::Status moved = services::CallUnary(*coordinator, &Stub::ReportEvaluation, late,
+  const absl::Status never = services::CallUnary(*coordinator, &Stub::ReportEvaluation, forged,
                                                  refused, kTimeout, "coordinator");
-  EXPECT_EQ(moved.code(), absl::StatusCode::kFailedPrecondition) << moved;
-  EXPECT_THAT(moved.message(), HasSubstr("moved"));
+  EXPECT_EQ(never.code(), absl::StatusCode::kFailedPrecondition) << never;
+  EXPECT_THAT(never.message(), HasSubstr("never granted"));
 
   // Each refusal is counted under its reason.
   absl::StatusOr<std::string> metrics = testing::HttpGet(cluster.metrics_url("coordinator"));
