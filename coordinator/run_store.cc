@@ -301,8 +301,8 @@ absl::StatusOr<std::optional<LearnerLease>> RunStore::AcquireRun(absl::string_vi
 }
 
 absl::StatusOr<std::optional<SlotLease>> RunStore::AcquireSlot(
-    absl::string_view holder, absl::string_view numerics, const std::vector<std::string>& except,
-    absl::Time now) {
+    absl::string_view holder, absl::string_view numerics,
+    absl::Span<const LeaseKey> complete_learners, absl::Time now) {
   return Transaction([&]() -> absl::StatusOr<std::optional<SlotLease>> {
     DCS_RETURN_IF_ERROR(ExpireLapsedLeases(now));
     SQLite::Statement query(
@@ -314,10 +314,14 @@ absl::StatusOr<std::optional<SlotLease>> RunStore::AcquireSlot(
     query.bind(1, std::string(numerics));
     while (query.executeStep()) {
       const int64_t number = query.getColumn(0).getInt64();
-      if (std::find(except.begin(), except.end(), RunId(number)) != except.end()) continue;
+      const int64_t learner_epoch = query.getColumn(3).getInt64();
+      const bool complete = std::ranges::any_of(complete_learners, [&](const LeaseKey& learner) {
+        return learner.slot == kLearnerSlot && learner.epoch == learner_epoch &&
+               learner.run_id == RunId(number);
+      });
+      if (complete) continue;
       const int slot = query.getColumn(1).getInt();
       std::string learner_address = query.getColumn(2).getString();
-      const int64_t learner_epoch = query.getColumn(3).getInt64();
       query.reset();
       DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(*db_, RunId(number)));
       const int64_t epoch = Grant(*db_, number, slot, holder, "", now + options_.lease_duration);

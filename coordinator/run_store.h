@@ -361,11 +361,14 @@ class RunStore {
                                                          absl::Time now);
 
   // A free env slot of a running run (whose learner holds its lease) that an actor with
-  // `numerics` may step, skipping the runs in `except`. nullopt if there is none;
-  // FAILED_PRECONDITION as AcquireRun when the runs waiting for actors compute with others.
+  // `numerics` may step, skipping the runs whose learner lease is, at the same epoch, among
+  // `complete_learners` (learners that told the actor they have all their steps: their runs
+  // need no slots while they evaluate; the run's next learner, after one dies, does). nullopt
+  // if there is none; FAILED_PRECONDITION as AcquireRun when the runs waiting for actors
+  // compute with others.
   absl::StatusOr<std::optional<SlotLease>> AcquireSlot(absl::string_view holder,
                                                        absl::string_view numerics,
-                                                       const std::vector<std::string>& except,
+                                                       absl::Span<const LeaseKey> complete_learners,
                                                        absl::Time now);
 
   // Extends a held lease to now + lease_duration. FAILED_PRECONDITION if the lease moved (its

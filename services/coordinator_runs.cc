@@ -12,6 +12,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
+#include "common/status_util.h"
 #include "coordinator/run_files.h"
 #include "coordinator/run_submission.h"
 #include "dcs/v1/trajectory.pb.h"
@@ -293,10 +294,14 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireSlot(grpc::CallbackServerCo
   if (absl::Status refused = Authenticate(*context); !refused.ok()) {
     return Finish(context, refused);
   }
-  const std::vector<std::string> except(request->except_run_ids().begin(),
-                                        request->except_run_ids().end());
-  absl::StatusOr<std::optional<coordinator::SlotLease>> lease =
-      runs_.store->AcquireSlot(request->holder(), request->numerics(), except, absl::Now());
+  std::vector<coordinator::LeaseKey> complete_learners;
+  for (const v1::Lease& learner : request->complete_learners()) {
+    absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(learner);
+    if (!key.ok()) return Finish(context, Annotate(key.status(), "complete_learners"));
+    complete_learners.push_back(*std::move(key));
+  }
+  absl::StatusOr<std::optional<coordinator::SlotLease>> lease = runs_.store->AcquireSlot(
+      request->holder(), request->numerics(), complete_learners, absl::Now());
   if (lease.ok() && lease->has_value()) {
     const coordinator::SlotLease& slot = **lease;
     slot_leases_.Increment();

@@ -50,6 +50,11 @@ namespace {
 constexpr BackoffPolicy kRetryBackoff{.initial = absl::Milliseconds(50),
                                       .max = absl::Seconds(1)};
 
+// How many leases an actor remembers that a learner said its run is complete (10 minutes at
+// the default 10 s lease): more than a final evaluation takes on a slow machine, short enough
+// that a long sweep's ended runs do not pile up in every AcquireSlot.
+constexpr int kCompleteLearnerLeases = 60;
+
 std::string SlotName(const coordinator::LeaseKey& lease) {
   return absl::StrCat(lease.run_id, "/", lease.slot);
 }
@@ -146,8 +151,11 @@ void SlotWorkers::AcquireSlot() {
     absl::MutexLock lock(&mu_);
     if (static_cast<int>(slots_.size()) >= options_.max_slots) return;
     const absl::Time now = absl::Now();
-    std::erase_if(complete_runs_, [now](const auto& run) { return run.second <= now; });
-    for (const auto& [run_id, until] : complete_runs_) request.add_except_run_ids(run_id);
+    std::erase_if(complete_learners_,
+                  [now](const auto& entry) { return entry.second.until <= now; });
+    for (const auto& [name, learner] : complete_learners_) {
+      *request.add_complete_learners() = LeaseToProto(learner.lease);
+    }
   }
   v1::AcquireSlotResponse response;
   const absl::Status status =
@@ -241,8 +249,12 @@ void SlotWorkers::Work(Slot& slot) {
     const v1::GetSlotWorkResponse& work = reply.header();
     if (work.run_complete()) {
       {
+        const coordinator::LeaseKey complete{.run_id = slot.lease.run_id,
+                                             .slot = coordinator::kLearnerSlot,
+                                             .epoch = slot.learner_epoch};
         absl::MutexLock lock(&mu_);
-        complete_runs_[slot.lease.run_id] = absl::Now() + lease_duration_;
+        complete_learners_[LeaseName(complete)] = {
+            .lease = complete, .until = absl::Now() + kCompleteLearnerLeases * lease_duration_};
       }
       release();
       return;

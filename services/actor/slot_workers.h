@@ -33,6 +33,7 @@
 #include "absl/synchronization/mutex.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
+#include "coordinator/run_store.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 
 namespace dcs::services {
@@ -81,12 +82,19 @@ class SlotWorkers {
   // By "run/slot@epoch".
   std::map<std::string, std::shared_ptr<Slot>> slots_ ABSL_GUARDED_BY(mu_);
   absl::Duration lease_duration_ ABSL_GUARDED_BY(mu_);  // set with the first slot taken
-  // The runs whose learner said they are complete, each until a lease after it said so: slots
-  // not to take again (AcquireSlotRequest.except_run_ids). The learner finishes such a run
-  // within moments; taking its slots in the meantime, every poll, only to be told again, costs
-  // the coordinator a transaction each time. After a lease, a run whose learner died before
-  // finishing it is back with another learner and may need its slots.
-  std::map<std::string, absl::Time> complete_runs_ ABSL_GUARDED_BY(mu_);
+  // The learner leases whose holder said its run is complete, by lease name: slots not to take
+  // while that learner holds the run (AcquireSlotRequest.complete_learners), which it does
+  // while it evaluates the final policy, for as long as that takes (an image policy's, or a
+  // CarRacing one's, can take many leases). Taking the run's slots meanwhile, every lease,
+  // only to be told again, costs the coordinator transactions and the log a line each time. A
+  // learner that dies before ending the run hands it to the next learner, at a new epoch, which
+  // gets its slots. Each is forgotten some leases after it was said (kCompleteLearnerLeases):
+  // by then its run has ended or, evaluated at length, is said complete once more.
+  struct CompleteLearner {
+    coordinator::LeaseKey lease;
+    absl::Time until;
+  };
+  std::map<std::string, CompleteLearner> complete_learners_ ABSL_GUARDED_BY(mu_);
 
   std::thread manager_;  // last: starts after everything above is initialised
 };

@@ -144,12 +144,26 @@ TEST_F(RunStoreTest, WorkersWithOtherNumericLibrariesGetNoLeaseOfTheRun) {
   EXPECT_TRUE(taken->has_value());
 }
 
-TEST_F(RunStoreTest, AnActorSkipsTheRunsItIsToldTo) {
+TEST_F(RunStoreTest, AnActorSkipsTheRunsOfLearnersItWasToldAreCompleteButNotTheirNextLearner) {
   std::unique_ptr<RunStore> store = Open();
-  SubmitAndAcquire(*store);
-  absl::StatusOr<std::optional<SlotLease>> slot = store->AcquireSlot("A", "N", {"run-1"}, kStart);
+  const LearnerLease first = SubmitAndAcquire(*store);
+  const LeaseKey complete = first.key;
+  // Another run's learner, or another epoch of this one's, is not this learner.
+  const LeaseKey others[] = {{.run_id = "run-2", .slot = kLearnerSlot, .epoch = 1},
+                             {.run_id = "run-1", .slot = kLearnerSlot, .epoch = 2}};
+  absl::StatusOr<std::optional<SlotLease>> slot = store->AcquireSlot("A", "N", others, kStart);
+  ASSERT_TRUE(slot.ok() && slot->has_value()) << slot.status();
+  slot = store->AcquireSlot("A", "N", {&complete, 1}, kStart);
   ASSERT_TRUE(slot.ok());
   EXPECT_FALSE(slot->has_value());
+
+  // The learner dies before ending the run; the next one needs the slots.
+  const absl::Time later = kStart + absl::Seconds(30);
+  absl::StatusOr<std::optional<LearnerLease>> second = store->AcquireRun("L2", "b", "N", later);
+  ASSERT_TRUE(second.ok() && second->has_value());
+  slot = store->AcquireSlot("A", "N", {&complete, 1}, later);
+  ASSERT_TRUE(slot.ok() && slot->has_value()) << slot.status();
+  EXPECT_EQ((*slot)->learner_epoch, 2);
 }
 
 TEST_F(RunStoreTest, ALapsedLeaseGoesBackToTheQueueAndItsOldHolderIsRefused) {
