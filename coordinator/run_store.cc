@@ -314,16 +314,17 @@ absl::StatusOr<std::optional<SlotLease>> RunStore::AcquireSlot(
     query.bind(1, std::string(numerics));
     while (query.executeStep()) {
       const int64_t number = query.getColumn(0).getInt64();
+      const std::string run_id = RunId(number);
       const int64_t learner_epoch = query.getColumn(3).getInt64();
       const bool complete = std::ranges::any_of(complete_learners, [&](const LeaseKey& learner) {
         return learner.slot == kLearnerSlot && learner.epoch == learner_epoch &&
-               learner.run_id == RunId(number);
+               learner.run_id == run_id;
       });
       if (complete) continue;
       const int slot = query.getColumn(1).getInt();
       std::string learner_address = query.getColumn(2).getString();
       query.reset();
-      DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(*db_, RunId(number)));
+      DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(*db_, run_id));
       const int64_t epoch = Grant(*db_, number, slot, holder, "", now + options_.lease_duration);
       PinNumerics(*db_, "actor_numerics", number, numerics);
       return SlotLease{.key = {.run_id = run.id, .slot = slot, .epoch = epoch},
