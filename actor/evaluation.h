@@ -10,11 +10,14 @@
 // checkpoint or worker, so every evaluation of a run sees the same episodes.
 // Thread-compatible.
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -108,15 +111,9 @@ absl::StatusOr<ContextResult> EvaluateContext(Policy& policy,
                                               const env::DynamicContextOptions& base, int feature,
                                               const EvaluationContext& context, size_t index,
                                               int episodes, uint64_t seed) {
+  constexpr int kObs = Env::kObservationSize;
+  constexpr int kAct = Env::kActionSize;
   const auto start = std::chrono::steady_clock::now();
-  std::vector<typename Env::Observation> observation(Env::kObservationSize);
-  const std::span<typename Env::Observation, Env::kObservationSize> obs(observation.data(),
-                                                                        Env::kObservationSize);
-  std::vector<float> action(Env::kActionSize);
-  std::vector<typename Env::ActionElement> env_action(Env::kActionSize);
-  std::vector<float> input;
-  std::vector<uint8_t> image;
-  Random unused(0);  // deterministic acting draws nothing
   env::DynamicContextOptions options{
       .context = base.context,
       .observe = base.observe,
@@ -124,27 +121,53 @@ absl::StatusOr<ContextResult> EvaluateContext(Policy& policy,
       .run_seed = StreamSeed(seed, "eval", {index}).GenerateState64(1)[0]};
   if (options.context.empty()) options.context = Env::Features().Defaults();
   options.context[feature] = context.value;
-  DCS_ASSIGN_OR_RETURN(env::DynamicContextEnv<Env> environment,
-                       env::DynamicContextEnv<Env>::Create(std::move(options)));
-  std::vector<float> features(environment.context_size());
-  ContextResult result{.context = context};
-  for (int episode = 0; episode < episodes; ++episode) {
-    environment.Reset(0, obs, features);
-    double total = 0;
-    while (true) {
-      input.clear();
-      image.clear();
-      AppendPolicyInput<Env>(obs, features, input, image);
-      policy.Act(input, image, /*deterministic=*/true, unused, action);
-      ToEnvAction<Env>(action, env_action);
-      const env::StepResult step = environment.Step(
-          std::span<const typename Env::ActionElement, Env::kActionSize>(env_action.data(),
-                                                                         Env::kActionSize),
-          obs, features);
-      total += step.reward;
-      if (step.done()) break;
+  // One environment per episode, all stepped together: environment e plays episode e of the
+  // context's stream, as it would were the episodes played one after another.
+  std::vector<env::DynamicContextEnv<Env>> environments;
+  environments.reserve(episodes);
+  for (int e = 0; e < episodes; ++e) {
+    DCS_ASSIGN_OR_RETURN(env::DynamicContextEnv<Env> environment,
+                         env::DynamicContextEnv<Env>::Create(options));
+    environment.SetNextEpisode(e);
+    environments.push_back(std::move(environment));
+  }
+  const size_t context_size = episodes > 0 ? environments.front().context_size() : 0;
+  std::vector<typename Env::Observation> observations(static_cast<size_t>(episodes) * kObs);
+  std::vector<float> contexts(episodes * context_size);
+  const auto observation_of = [&](int e) {
+    return std::span<typename Env::Observation, kObs>(observations.data() + e * kObs, kObs);
+  };
+  const auto context_of = [&](int e) {
+    return std::span<float>(contexts).subspan(e * context_size, context_size);
+  };
+  for (int e = 0; e < episodes; ++e) environments[e].Reset(0, observation_of(e), context_of(e));
+
+  ContextResult result{.context = context, .returns = std::vector<double>(episodes, 0.0)};
+  std::vector<int> running(episodes);  // the episodes not yet done, in order
+  std::iota(running.begin(), running.end(), 0);
+  std::vector<float> inputs;
+  std::vector<uint8_t> images;
+  std::vector<float> actions;
+  std::array<typename Env::ActionElement, kAct> env_action;
+  while (!running.empty()) {
+    inputs.clear();
+    images.clear();
+    for (int e : running) {
+      AppendPolicyInput<Env>(observation_of(e), context_of(e), inputs, images);
     }
-    result.returns.push_back(total);
+    actions.resize(running.size() * kAct);
+    policy.Act(static_cast<int>(running.size()), inputs, images, /*deterministic=*/true,
+               /*randoms=*/{}, actions);
+    size_t still_running = 0;
+    for (size_t k = 0; k < running.size(); ++k) {
+      const int e = running[k];
+      ToEnvAction<Env>(std::span<const float>(actions).subspan(k * kAct, kAct), env_action);
+      const env::StepResult step =
+          environments[e].Step(env_action, observation_of(e), context_of(e));
+      result.returns[e] += step.reward;
+      if (!step.done()) running[still_running++] = e;
+    }
+    running.resize(still_running);
   }
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -7,9 +7,13 @@
 // observations, SB3's MlpPolicy: tanh hidden layers on the observation and context, then a
 // linear head giving categorical logits or a Gaussian mean with a state-independent log-std.
 // For images, its MultiInputPolicy: NatureCNN on the image (actor/image_encoder.h), the context
-// appended, then the same layers. It computes the same function as the learner's torch network
+// appended, then the same layers. It computes the same function as the learner's network
 // (tested to 1e-5); actors and `dcs train` both act with it, so they act alike bit for bit.
-// Thread-compatible: one instance per thread.
+//
+// A batch of samples goes through each layer at once (actor/dense_forward.h), and each sample's
+// outputs are a function of its own input alone, bit for bit, whatever the batch holds besides.
+//
+// Thread-compatible: one instance per thread (it owns its scratch).
 
 #include <cstdint>
 #include <optional>
@@ -19,6 +23,7 @@
 #include <Eigen/Core>
 
 #include "absl/status/statusor.h"
+#include "actor/dense_forward.h"
 #include "actor/image_encoder.h"
 #include "actor/policy.h"
 #include "actor/policy_weights.h"
@@ -36,39 +41,47 @@ class PolicyNetwork final : public Policy {
   // Bytes of the image; 0 for a policy without one.
   int image_size() const { return encoder_.has_value() ? encoder_->image_size() : 0; }
   // Floats per action: 1 (an index) for discrete policies.
-  int action_size() const { return discrete() ? 1 : static_cast<int>(log_std_.size()); }
+  int action_size() const { return discrete() ? 1 : static_cast<int>(std_.size()); }
+  // Floats of the head's output: logits (discrete) or the Gaussian mean (continuous).
+  int head_size() const { return head_size_; }
   bool discrete() const { return num_actions_ > 0; }
 
-  // The head's output for one input: logits (discrete) or the Gaussian mean (continuous).
-  // REQUIRES: input.size() == input_size(), image.size() == image_size(), output.size() ==
-  // head size.
-  void Forward(std::span<const float> input, std::span<const uint8_t> image,
-               std::span<float> output);
+  // The head's outputs of `count` samples, sample by sample, into `head`.
+  // REQUIRES: inputs.size() == count * input_size(), images.size() == count * image_size(),
+  // head.size() == count * head_size().
+  void Forward(int count, std::span<const float> inputs, std::span<const uint8_t> images,
+               std::span<float> head);
 
-  // Policy: an action sampled from the policy's distribution (categorical, or mean + std *
+  // Policy: actions sampled from the policy's distribution (categorical, or mean + std *
   // N(0, 1)), unclipped; or its mode when `deterministic` (argmax, or the mean).
-  void Act(std::span<const float> input, std::span<const uint8_t> image, bool deterministic,
-           Random& random, std::span<float> action) override;
+  void Act(int count, std::span<const float> inputs, std::span<const uint8_t> images,
+           bool deterministic, std::span<Random> randoms, std::span<float> actions) override;
 
  private:
-  PolicyNetwork() = default;
-
-  // Runs the network; the head's output, valid until the next call.
-  const Eigen::VectorXf& Run(std::span<const float> input, std::span<const uint8_t> image);
-
   struct Layer {
-    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> weight;
+    // The weight in one of two storage orders, whichever Eigen's matrix-vector kernel runs
+    // faster for its shape: by columns when its outputs fill a vector register (one
+    // multiply-add per input and register), else by rows (one dot product per output). The other
+    // is empty.
+    Eigen::MatrixXf by_columns;
+    RowMajorMatrix by_rows;
     Eigen::VectorXf bias;
     Activation activation;
   };
+
+  PolicyNetwork() = default;
+
   std::optional<ImageEncoder> encoder_;
   std::vector<Layer> layers_;
-  Eigen::VectorXf log_std_;
-  Eigen::VectorXf std_;
+  Eigen::VectorXf std_;  // exp(log_std); continuous policies only
   int num_actions_ = 0;
   int input_size_ = 0;
-  Eigen::VectorXf features_;                  // image policies: the encoding, then the input
-  std::vector<Eigen::VectorXf> activations_;  // scratch, one per layer
+  int head_size_ = 0;
+  // Scratch: an image policy's first batch (image features, then the flat input), each layer's
+  // output, and the head's outputs of Act.
+  Eigen::MatrixXf features_;
+  std::vector<Eigen::MatrixXf> activations_;
+  std::vector<float> head_;
 };
 
 }  // namespace dcs::actor

@@ -134,25 +134,26 @@ void RolloutCollector<Env>::Collect(Policy& policy, int n_steps, int64_t rollout
                                     {envs_.slot(i).slot_index(),
                                      static_cast<uint64_t>(rollout_index)}));
   }
-  std::vector<float> input;
-  std::vector<uint8_t> image;
-  std::vector<float> action(kAct);
-  std::vector<typename Env::ActionElement> env_actions(static_cast<size_t>(slots) * kAct);
+  std::vector<float> actions(static_cast<size_t>(slots) * kAct);
+  std::vector<typename Env::ActionElement> env_actions(actions.size());
   for (int t = 0; t < n_steps; ++t) {
+    // Every slot's input goes into the rollout, and from there to the policy, in one batch.
+    const size_t first_input = out.inputs.size();
+    const size_t first_image = out.images.size();
     for (int i = 0; i < slots; ++i) {
-      const auto observation = envs_.observations().subspan(static_cast<size_t>(i) * kObs, kObs);
-      const auto context = envs_.contexts().subspan(static_cast<size_t>(i) * context_size,
-                                                    context_size);
-      input.clear();
-      image.clear();
-      AppendPolicyInput<Env>(observation, context, input, image);
-      policy.Act(input, image, /*deterministic=*/false, randoms[i], action);
-      out.inputs.insert(out.inputs.end(), input.begin(), input.end());
-      out.images.insert(out.images.end(), image.begin(), image.end());
-      out.actions.insert(out.actions.end(), action.begin(), action.end());
+      AppendPolicyInput<Env>(
+          envs_.observations().subspan(static_cast<size_t>(i) * kObs, kObs),
+          envs_.contexts().subspan(static_cast<size_t>(i) * context_size, context_size),
+          out.inputs, out.images);
+    }
+    policy.Act(slots, std::span<const float>(out.inputs).subspan(first_input),
+               std::span<const uint8_t>(out.images).subspan(first_image),
+               /*deterministic=*/false, randoms, actions);
+    out.actions.insert(out.actions.end(), actions.begin(), actions.end());
+    for (int i = 0; i < slots; ++i) {
       out.episode_starts.push_back(episode_starts_[i]);
-      ToEnvAction<Env>(action, std::span(env_actions).subspan(static_cast<size_t>(i) * kAct,
-                                                              kAct));
+      ToEnvAction<Env>(std::span<const float>(actions).subspan(static_cast<size_t>(i) * kAct, kAct),
+                       std::span(env_actions).subspan(static_cast<size_t>(i) * kAct, kAct));
     }
     const int64_t next_reset_step = envs_.global_steps() + envs_.run_slots();
     envs_.Step(env_actions);

@@ -1,14 +1,14 @@
 // Copyright 2026 The DCS Authors.
 #include "learner/actor_critic.h"
 
-#include <ATen/CPUFunctions.h>
-
 #include <cmath>
 #include <numbers>
 #include <tuple>
 
 #include "absl/strings/str_cat.h"
 #include "absl/synchronization/mutex.h"
+#include "actor/dense_forward.h"
+#include "actor/eigen_blocking.h"
 #include "learner/torch_runtime.h"
 
 namespace dcs::learner {
@@ -47,76 +47,87 @@ int OutputsOf(const std::vector<int>& widths, int inputs) {
   return widths.empty() ? inputs : widths.back();
 }
 
-// `buffer`, (re)allocated if it does not have `sizes`.
-torch::Tensor& Buffer(torch::Tensor& buffer, torch::IntArrayRef sizes) {
-  if (!buffer.defined() || buffer.sizes() != sizes) buffer = torch::empty(sizes);
-  return buffer;
-}
-
 // A parameter's gradient, allocated if it has none yet.
 torch::Tensor& Gradient(torch::Tensor& parameter) {
   if (!parameter.grad().defined()) parameter.mutable_grad() = torch::zeros_like(parameter);
   return parameter.mutable_grad();
 }
 
-// out = a b, and out = c + a b (c broadcast): libtorch's matrix products, under BlasMutex.
-void Product(torch::Tensor& out, const torch::Tensor& a, const torch::Tensor& b) {
-  absl::MutexLockMaybe blas(BlasMutex());
-  at::cpu::mm_out(out, a, b);
+using ConstView = Eigen::Map<const Eigen::MatrixXf>;
+
+// A Linear's weight, [outputs x inputs] row-major as torch stores it, and its bias.
+Eigen::Map<const actor::RowMajorMatrix> WeightOf(const torch::nn::LinearImpl& linear) {
+  return {linear.weight.data_ptr<float>(), linear.weight.size(0), linear.weight.size(1)};
 }
-void ProductPlus(torch::Tensor& out, const torch::Tensor& c, const torch::Tensor& a,
-                 const torch::Tensor& b) {
-  absl::MutexLockMaybe blas(BlasMutex());
-  at::cpu::addmm_out(out, c, a, b);
+Eigen::Map<const Eigen::VectorXf> BiasOf(const torch::nn::LinearImpl& linear) {
+  return {linear.bias.data_ptr<float>(), linear.bias.size(0)};
 }
 
-// out = input W^T + b, as torch::nn::Linear computes it.
-void LinearForward(const torch::nn::LinearImpl& linear, const torch::Tensor& input,
-                   torch::Tensor& out) {
-  ProductPlus(Buffer(out, {input.size(0), linear.weight.size(0)}), linear.bias, input,
-              linear.weight.t());
+ConstView View(const Eigen::MatrixXf& matrix) {
+  return {matrix.data(), matrix.rows(), matrix.cols()};
+}
+
+// `tensor` [B, F] (contiguous) as a batch of B columns.
+ConstView BatchView(const torch::Tensor& tensor) {
+  return {tensor.data_ptr<float>(), tensor.size(1), tensor.size(0)};
 }
 
 // The gradients of `linear`'s weight and bias from the gradient at its output.
-void LinearGradients(torch::nn::LinearImpl& linear, const torch::Tensor& input,
-                     const torch::Tensor& d_output) {
-  Product(Gradient(linear.weight), d_output.t(), input);
-  at::cpu::sum_out(Gradient(linear.bias), d_output, {0});
+void LinearGradients(torch::nn::LinearImpl& linear, ConstView input,
+                     const Eigen::MatrixXf& d_output) {
+  torch::Tensor& d_weight = Gradient(linear.weight);
+  Eigen::Map<actor::RowMajorMatrix>(d_weight.data_ptr<float>(), d_weight.size(0),
+                                    d_weight.size(1))
+      .noalias() = d_output * input.transpose();
+  Eigen::Map<Eigen::VectorXf>(Gradient(linear.bias).data_ptr<float>(), d_output.rows()) =
+      d_output.rowwise().sum();
+}
+
+// outputs = activation(W input + b) for the whole batch at once: one matrix-matrix product
+// (the learner's batches have fixed shapes, so it needs no per-sample bits as actors do).
+void LinearForward(const torch::nn::LinearImpl& linear, actor::Activation activation,
+                   ConstView input, Eigen::MatrixXf& outputs) {
+  outputs.resize(linear.weight.size(0), input.cols());
+  outputs.noalias() = WeightOf(linear) * input;
+  actor::AddBiasAndActivate(BiasOf(linear), activation, outputs);
 }
 
 }  // namespace
 
-const torch::Tensor& ActorCriticImpl::TanhMlp::Forward(const torch::Tensor& input,
-                                                       std::vector<torch::Tensor>& outputs) {
+void ActorCriticImpl::TanhMlp::Forward(ConstView input, const torch::nn::Linear& head,
+                                       std::vector<Eigen::MatrixXf>& outputs,
+                                       Eigen::MatrixXf& head_output) const {
+  actor::PinEigenBlocking();
   outputs.resize(layers.size());
-  const torch::Tensor* x = &input;
   for (size_t l = 0; l < layers.size(); ++l) {
-    LinearForward(*layers[l], *x, outputs[l]);
-    at::cpu::tanh_out(outputs[l], outputs[l]);
-    x = &outputs[l];
+    LinearForward(*layers[l], actor::Activation::kTanh, l == 0 ? input : View(outputs[l - 1]),
+                  outputs[l]);
   }
-  return *x;
+  LinearForward(*head, actor::Activation::kNone, layers.empty() ? input : View(outputs.back()),
+                head_output);
 }
 
-void ActorCriticImpl::TanhMlp::Backward(torch::nn::Linear& head, const torch::Tensor& input,
-                                        const std::vector<torch::Tensor>& outputs,
-                                        const torch::Tensor& d_head,
-                                        std::vector<torch::Tensor>& d_outputs,
-                                        torch::Tensor* d_input) {
+void ActorCriticImpl::TanhMlp::Backward(torch::nn::Linear& head, ConstView input,
+                                        const std::vector<Eigen::MatrixXf>& outputs,
+                                        const Eigen::MatrixXf& d_head,
+                                        std::vector<Eigen::MatrixXf>& d_outputs,
+                                        Eigen::MatrixXf* d_input) {
+  actor::PinEigenBlocking();
   d_outputs.resize(layers.size());
-  LinearGradients(*head, outputs.empty() ? input : outputs.back(), d_head);
+  const auto input_of = [&](size_t l) { return l == 0 ? input : View(outputs[l - 1]); };
+  LinearGradients(*head, input_of(layers.size()), d_head);
   // Down the layers: `d` is the gradient at the output of the linear layer `weight` belongs to.
-  const torch::Tensor* d = &d_head;
-  const torch::Tensor* weight = &head->weight;
+  const Eigen::MatrixXf* d = &d_head;
+  const torch::nn::LinearImpl* linear = head.get();
   for (size_t l = layers.size(); l-- > 0;) {
-    torch::Tensor& d_output = Buffer(d_outputs[l], outputs[l].sizes());
-    Product(d_output, *d, *weight);
-    at::cpu::tanh_backward_out(d_output, d_output, outputs[l]);
-    LinearGradients(*layers[l], l == 0 ? input : outputs[l - 1], d_output);
+    Eigen::MatrixXf& d_output = d_outputs[l];
+    d_output.noalias() = WeightOf(*linear).transpose() * *d;
+    d_output.array() *= 1 - outputs[l].array().square();  // tanh' = 1 - tanh^2
+    LinearGradients(*layers[l], input_of(l), d_output);
     d = &d_output;
-    weight = &layers[l]->weight;
+    linear = layers[l].get();
   }
-  if (d_input != nullptr) ProductPlus(*d_input, *d_input, *d, *weight);
+  if (d_input != nullptr) d_input->noalias() += WeightOf(*linear).transpose() * *d;
 }
 
 ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConfig& config)
@@ -168,8 +179,6 @@ ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConf
 
 void ActorCriticImpl::Forward(const ObservationBatch& batch, bool record_image_graph,
                               Pass& pass) {
-  // Not recorded: some of libtorch's kernels call dispatched operators (addmm copies the bias
-  // into its output), which would otherwise chain autograd nodes on the reused buffers.
   torch::NoGradGuard no_grad;
   if (spec_.has_image()) {
     {
@@ -178,31 +187,38 @@ void ActorCriticImpl::Forward(const ObservationBatch& batch, bool record_image_g
       pass.image_features = cnn_->forward(batch.images);
     }
     const torch::Tensor image_features = pass.image_features.detach();
-    pass.features = spec_.context_size == 0 ? image_features
+    pass.features = spec_.context_size == 0 ? image_features.contiguous()
                                             : torch::cat({image_features, batch.flat}, 1);
   } else {
-    pass.features = batch.flat;
+    pass.features = batch.flat.contiguous();
   }
-  LinearForward(*action_net_, pi_.Forward(pass.features, pass.pi), pass.head);
-  LinearForward(*value_net_, vf_.Forward(pass.features, pass.vf), pass.values);
+  const ConstView features = BatchView(pass.features);
+  pi_.Forward(features, action_net_, pass.pi, pass.head);
+  vf_.Forward(features, value_net_, pass.vf, pass.values);
 }
 
-void ActorCriticImpl::Backward(Pass& pass, const torch::Tensor& d_head,
-                               const torch::Tensor& d_values, const torch::Tensor& d_log_std) {
+void ActorCriticImpl::Backward(Pass& pass, const Eigen::MatrixXf& d_head,
+                               const Eigen::MatrixXf& d_values,
+                               std::span<const float> d_log_std) {
   torch::NoGradGuard no_grad;
-  torch::Tensor* d_features = nullptr;
+  const ConstView features = BatchView(pass.features);
+  Eigen::MatrixXf* d_features = nullptr;
   if (spec_.has_image()) {
-    Buffer(pass.d_features, pass.features.sizes()).zero_();
+    pass.d_features.setZero(features.rows(), features.cols());
     d_features = &pass.d_features;
   }
-  pi_.Backward(action_net_, pass.features, pass.pi, d_head, pass.d_pi, d_features);
-  vf_.Backward(value_net_, pass.features, pass.vf, d_values, pass.d_vf, d_features);
-  if (!spec_.discrete()) Gradient(log_std_).copy_(d_log_std);
+  pi_.Backward(action_net_, features, pass.pi, d_head, pass.d_pi, d_features);
+  vf_.Backward(value_net_, features, pass.vf, d_values, pass.d_vf, d_features);
+  if (!spec_.discrete()) {
+    std::copy(d_log_std.begin(), d_log_std.end(), Gradient(log_std_).data_ptr<float>());
+  }
   if (spec_.has_image()) {
     // NatureCNN's gradients through autograd, from the image features' part of d_features.
     for (torch::Tensor& parameter : cnn_->parameters()) Gradient(parameter).zero_();
+    const torch::Tensor d_all = torch::from_blob(pass.d_features.data(),
+                                                 {features.cols(), features.rows()});
     absl::MutexLockMaybe blas(BlasMutex());
-    pass.image_features.backward(pass.d_features.narrow(1, 0, pass.image_features.size(1)));
+    pass.image_features.backward(d_all.narrow(1, 0, pass.image_features.size(1)));
   }
 }
 

@@ -11,15 +11,21 @@
 // SB3's CombinedExtractor: NatureCNN (256 features) on the image / 255, then the context
 // appended.
 // Forward and backward passes are explicit (Forward, Backward), for PPO's update: the loss's
-// gradient with respect to the heads' outputs (learner/ppo_loss.h) goes down the MLPs through
-// libtorch's kernels, and through autograd only in NatureCNN.
+// gradient with respect to the heads' outputs (learner/ppo_loss.h) goes down the MLPs as Eigen
+// matrix products on the parameters' own memory (actor/dense_forward.h: the layers actors
+// compute), and through autograd only in NatureCNN. In a pass, a batch holds one sample per
+// column ([values x samples], column-major): the memory of a row-major [samples x values]
+// tensor.
 //
 // Internal to learner/: only learner translation units include libtorch headers.
 // Confined to one thread (libtorch is pinned to one thread per run).
 
 #include <torch/torch.h>
 
+#include <span>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "actor/policy_weights.h"
 #include "run/ppo_config.h"
@@ -42,27 +48,27 @@ class ActorCriticImpl : public torch::nn::Module {
   // scratch. Buffers are reused by the next pass of the same batch size.
   struct Pass {
     torch::Tensor image_features;  // NatureCNN's output (image policies), maybe with its graph
-    torch::Tensor features;        // [B, F], the MLPs' input
-    std::vector<torch::Tensor> pi;  // each policy layer's output, after tanh
-    std::vector<torch::Tensor> vf;  // each value layer's output, after tanh
-    torch::Tensor head;             // [B, A]: logits, or the Gaussian mean
-    torch::Tensor values;           // [B, 1]
-    std::vector<torch::Tensor> d_pi;
-    std::vector<torch::Tensor> d_vf;
-    torch::Tensor d_features;
+    torch::Tensor features;        // [B, F] contiguous, the MLPs' input
+    std::vector<Eigen::MatrixXf> pi;  // each policy layer's output, after tanh: [width x B]
+    std::vector<Eigen::MatrixXf> vf;  // each value layer's output, after tanh
+    Eigen::MatrixXf head;             // [A x B]: logits, or the Gaussian mean
+    Eigen::MatrixXf values;           // [1 x B]
+    std::vector<Eigen::MatrixXf> d_pi;
+    std::vector<Eigen::MatrixXf> d_vf;
+    Eigen::MatrixXf d_features;
   };
 
-  // The forward pass of `batch`, computed with libtorch's kernels but not recorded for autograd
-  // (the MLPs' backward pass is explicit, below). `record_image_graph`: NatureCNN's part is
-  // recorded, for a Backward of this pass. Leaves `pass.head` and `pass.values` contiguous.
+  // The forward pass of `batch`, not recorded for autograd (the MLPs' backward pass is
+  // explicit, below). `record_image_graph`: NatureCNN's part is recorded, for a Backward of this
+  // pass. `pass.features` shares the memory of `batch.flat` for policies without image.
   void Forward(const ObservationBatch& batch, bool record_image_graph, Pass& pass);
 
   // Sets the gradient (each parameter's .grad, allocated if undefined) of every parameter from
   // the gradient of the loss with respect to the outputs of `pass`, a Forward with
-  // `record_image_graph` for image policies: `d_head` [B, A], `d_values` [B, 1], `d_log_std`
-  // [action_size] (Gaussian policies; undefined otherwise).
-  void Backward(Pass& pass, const torch::Tensor& d_head, const torch::Tensor& d_values,
-                const torch::Tensor& d_log_std);
+  // `record_image_graph` for image policies: `d_head` [A x B], `d_values` [1 x B], `d_log_std`
+  // [action_size] (Gaussian policies; empty otherwise).
+  void Backward(Pass& pass, const Eigen::MatrixXf& d_head, const Eigen::MatrixXf& d_values,
+                std::span<const float> d_log_std);
 
   // The actor half, for Eigen inference (actor/policy_network.h).
   actor::PolicyWeights ExportActor() const;
@@ -70,19 +76,19 @@ class ActorCriticImpl : public torch::nn::Module {
   const torch::Tensor& log_std() const { return log_std_; }
 
  private:
-  // Linear layers each followed by tanh. Their passes call libtorch's kernels directly
-  // (matrix products, tanh and its derivative into reused buffers): on layers this small,
-  // autograd's recording and the operators' dispatch cost more than the arithmetic.
+  // Linear layers each followed by tanh, and the linear head on them.
   struct TanhMlp {
+    using ConstView = Eigen::Map<const Eigen::MatrixXf>;
     std::vector<torch::nn::Linear> layers;
-    // `outputs`: each layer's; returns the last (or `input` with no layers).
-    const torch::Tensor& Forward(const torch::Tensor& input, std::vector<torch::Tensor>& outputs);
+    // Each layer's output into `outputs`, the head's into `head_output`.
+    void Forward(ConstView input, const torch::nn::Linear& head,
+                 std::vector<Eigen::MatrixXf>& outputs, Eigen::MatrixXf& head_output) const;
     // Gradients of the layers' and `head`'s parameters from `d_head` (the gradient at the
-    // output of `head`, the linear layer on this MLP), given the forward pass's `input` and
-    // `outputs`; if `d_input` is defined, adds the gradient with respect to `input` to it.
-    void Backward(torch::nn::Linear& head, const torch::Tensor& input,
-                  const std::vector<torch::Tensor>& outputs, const torch::Tensor& d_head,
-                  std::vector<torch::Tensor>& d_outputs, torch::Tensor* d_input);
+    // output of `head`), given the forward pass's `input` and `outputs`; if `d_input` is not
+    // null, adds the gradient with respect to `input` to it.
+    void Backward(torch::nn::Linear& head, ConstView input,
+                  const std::vector<Eigen::MatrixXf>& outputs, const Eigen::MatrixXf& d_head,
+                  std::vector<Eigen::MatrixXf>& d_outputs, Eigen::MatrixXf* d_input);
   };
 
   const run::PolicySpec spec_;

@@ -14,6 +14,7 @@
 #include "common/random.h"
 #include "common/status_macros.h"
 #include "learner/actor_critic.h"
+#include "learner/adam_step.h"
 #include "learner/gae.h"
 #include "learner/ppo_loss.h"
 
@@ -47,12 +48,22 @@ absl::Status CheckFinite(const std::vector<float>& values, int per_transition, i
   return absl::OkStatus();
 }
 
-// The elements of a contiguous float tensor.
+// The elements of a contiguous float tensor, and of an Eigen matrix (column by column).
 std::span<const float> Floats(const torch::Tensor& tensor) {
   return {tensor.data_ptr<float>(), static_cast<size_t>(tensor.numel())};
 }
-std::span<float> MutableFloats(torch::Tensor& tensor) {
-  return {tensor.data_ptr<float>(), static_cast<size_t>(tensor.numel())};
+std::span<const float> Floats(const Eigen::MatrixXf& matrix) {
+  return {matrix.data(), static_cast<size_t>(matrix.size())};
+}
+std::span<float> MutableFloats(Eigen::MatrixXf& matrix) {
+  return {matrix.data(), static_cast<size_t>(matrix.size())};
+}
+
+// The Euclidean norm of `values` as torch.nn.utils.clip_grad_norm_ uses it, summed in double.
+float Norm(std::span<const float> values) {
+  double squares = 0;
+  for (float v : values) squares += static_cast<double>(v) * v;
+  return static_cast<float>(std::sqrt(squares));
 }
 
 // `values` in the order `order`.
@@ -114,9 +125,8 @@ struct PpoLearner::Impl {
   uint64_t seed = 0;
   ActorCritic network{nullptr};
   // Every parameter is a view into flat_parameters and its gradient a view into
-  // flat_gradients, so Adam and the gradient-norm clip each run on one tensor rather than one
-  // per layer: libtorch's per-operation overhead dominates networks this small. Elementwise the
-  // arithmetic is the same.
+  // flat_gradients, so the gradient-norm clip and Adam run over one array in one pass
+  // (learner/adam_step.h). Elementwise the arithmetic is the same as per layer.
   torch::Tensor flat_parameters;
   torch::Tensor flat_gradients;
   std::unique_ptr<torch::optim::Adam> optimizer;
@@ -222,7 +232,7 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   for (const actor::Rollout::Truncation& cut : r.truncations) {
     network->Forward(Batch(cut.input, cut.image, 1), false, bootstrap_pass);
     rewards[static_cast<size_t>(cut.step) * r.num_envs + cut.env] +=
-        gamma * bootstrap_pass.values.item<float>();
+        gamma * bootstrap_pass.values(0, 0);
   }
   network->Forward(Batch(r.last_inputs, r.last_images, r.num_envs), false, bootstrap_pass);
   std::ranges::copy(Floats(bootstrap_pass.values), last_values.begin());
@@ -237,9 +247,9 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   // Sums over minibatches of what SB3 logs.
   PpoLoss sums;
   int minibatches = 0;
-  torch::Tensor d_head = torch::empty({config.batch_size, spec.head_size()});
-  torch::Tensor d_values = torch::empty({config.batch_size, 1});
-  torch::Tensor d_log_std = torch::empty({spec.discrete() ? 0 : spec.action_size});
+  Eigen::MatrixXf d_head;
+  Eigen::MatrixXf d_values;
+  std::vector<float> d_log_std(spec.discrete() ? 0 : spec.action_size);
   std::vector<int64_t> order(n);
   for (int epoch = 0; epoch < config.n_epochs && !stats.stopped_early; ++epoch) {
     // A fresh permutation each epoch (Fisher-Yates), from a stream of (update, epoch); the
@@ -248,10 +258,11 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
     Random random(StreamSeed(seed, "minibatch", {static_cast<uint64_t>(updates),
                                                  static_cast<uint64_t>(epoch)}));
     for (int64_t i = n - 1; i > 0; --i) std::swap(order[i], order[random.Integers(0, i + 1)]);
-    const torch::Tensor permutation = torch::from_blob(order.data(), {n}, torch::kLong);
-    const torch::Tensor flat = all.flat.index_select(0, permutation);
+    std::vector<float> epoch_inputs = Gather(r.inputs, order, spec.flat_input_size());
     const torch::Tensor images =
-        spec.has_image() ? all.images.index_select(0, permutation) : torch::Tensor();
+        spec.has_image()
+            ? all.images.index_select(0, torch::from_blob(order.data(), {n}, torch::kLong))
+            : torch::Tensor();
     const std::vector<float> epoch_actions = Gather(r.actions, order, spec.action_size);
     const std::vector<float> epoch_returns = Gather(returns, order, 1);
     const std::vector<float> epoch_log_probs = Gather(old_log_probs, order, 1);
@@ -267,11 +278,13 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
 
     for (int64_t start = 0; start < n; start += config.batch_size) {
       const int64_t size = std::min<int64_t>(config.batch_size, n - start);
-      ObservationBatch batch{.flat = flat.narrow(0, start, size)};
+      ObservationBatch batch{
+          .flat = torch::from_blob(epoch_inputs.data() + start * spec.flat_input_size(),
+                                   {size, spec.flat_input_size()})};
       if (spec.has_image()) batch.images = images.narrow(0, start, size);
       network->Forward(batch, /*record_image_graph=*/true, minibatch_pass);
-      torch::Tensor minibatch_d_head = d_head.narrow(0, 0, size);
-      torch::Tensor minibatch_d_values = d_values.narrow(0, 0, size);
+      d_head.resize(spec.head_size(), size);
+      d_values.resize(1, size);
       const auto slice = [start, size](const std::vector<float>& v, int64_t width = 1) {
         return std::span<const float>(v).subspan(start * width, size * width);
       };
@@ -286,9 +299,7 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
            .returns = slice(epoch_returns),
            .old_log_probs = slice(epoch_log_probs),
            .old_values = slice(epoch_values)},
-          {.head = MutableFloats(minibatch_d_head),
-           .values = MutableFloats(minibatch_d_values),
-           .log_std = MutableFloats(d_log_std)});
+          {.head = MutableFloats(d_head), .values = MutableFloats(d_values), .log_std = d_log_std});
       sums.policy += loss.policy;
       sums.value += loss.value;
       sums.entropy += loss.entropy;
@@ -305,18 +316,13 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
                                                 updates, ", epoch ", epoch,
                                                 "; the minibatch was not applied"));
       }
-      network->Backward(minibatch_pass, minibatch_d_head, minibatch_d_values, d_log_std);
-      {
-        // torch.nn.utils.clip_grad_norm_ over every parameter: one norm of the flat gradient,
-        // coefficient max_norm / (norm + 1e-6) in float32 as torch computes it, clamped to 1
-        // (multiplying by 1 changes nothing, so it is skipped).
-        torch::NoGradGuard no_grad;
-        const float norm = flat_gradients.norm().item<float>();
-        const float coefficient =
-            static_cast<float>(config.max_grad_norm) / (norm + static_cast<float>(1e-6));
-        if (coefficient < 1.0f) flat_gradients.mul_(coefficient);
-      }
-      optimizer->step();
+      network->Backward(minibatch_pass, d_head, d_values, d_log_std);
+      // torch.nn.utils.clip_grad_norm_ over every parameter: one norm of the flat gradient,
+      // coefficient max_norm / (norm + 1e-6) in float32 as torch computes it, clamped to 1;
+      // Adam's step applies it to the gradient.
+      const float coefficient = static_cast<float>(config.max_grad_norm) /
+                                (Norm(Floats(flat_gradients)) + static_cast<float>(1e-6));
+      AdamStep(*optimizer, flat_parameters, std::min(coefficient, 1.0f));
       ++stats.gradient_steps;
     }
   }

@@ -61,7 +61,7 @@ void BM_ActorInferenceCartPole(benchmark::State& state) {
   std::vector<float> input = {0.01f, -0.2f, 0.03f, 0.1f, -0.5f};
   float action = 0;
   for (auto _ : state) {
-    policy.Act(input, /*image=*/{}, /*deterministic=*/false, random, {&action, 1});
+    policy.Act(1, input, /*images=*/{}, /*deterministic=*/false, {&random, 1}, {&action, 1});
     benchmark::DoNotOptimize(action);
   }
   state.SetItemsProcessed(state.iterations());
@@ -88,7 +88,7 @@ void BM_ActorInferenceCarRacing(benchmark::State& state) {
   std::vector<float> context = {0.25f};
   std::vector<float> action(3);
   for (auto _ : state) {
-    policy.Act(context, frame, /*deterministic=*/false, random, action);
+    policy.Act(1, context, frame, /*deterministic=*/false, {&random, 1}, action);
     benchmark::DoNotOptimize(action.data());
   }
   state.SetItemsProcessed(state.iterations());
@@ -111,7 +111,7 @@ void BM_TorchForwardCarRacing(benchmark::State& state) {
                       .to(torch::kFloat32)
                       .div(255.0)};
     network->Forward(batch, /*record_image_graph=*/false, pass);
-    benchmark::DoNotOptimize(pass.head.data_ptr<float>());
+    benchmark::DoNotOptimize(pass.head.data());
   }
   state.SetItemsProcessed(state.iterations());
 }

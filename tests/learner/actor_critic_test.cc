@@ -34,7 +34,7 @@ void ExpectEigenMatchesTorch(const run::PolicySpec& spec, int samples) {
     std::vector<uint8_t> image(image_size);
     for (uint8_t& byte : image) byte = static_cast<uint8_t>(random.Integers(0, 256));
     std::vector<float> eigen(head);
-    policy->Forward(input, image, eigen);
+    policy->Forward(1, input, image, eigen);
     torch::NoGradGuard no_grad;
     ObservationBatch batch{.flat = torch::from_blob(input.data(), {1, spec.flat_input_size()})};
     if (spec.has_image()) {
@@ -49,7 +49,7 @@ void ExpectEigenMatchesTorch(const run::PolicySpec& spec, int samples) {
     ActorCriticImpl::Pass pass;
     network->Forward(batch, /*record_image_graph=*/false, pass);
     for (int i = 0; i < head; ++i) {
-      EXPECT_NEAR(eigen[i], pass.head[0][i].item<float>(), 1e-5) << "sample " << sample;
+      EXPECT_NEAR(eigen[i], pass.head(i, 0), 1e-5) << "sample " << sample;
     }
   }
 }
@@ -99,30 +99,32 @@ TEST(ActorCriticTest, ImagePoliciesRunNatureCnnOnTheImageAndAppendTheContext) {
   ActorCriticImpl::Pass pass;
   network->Forward(batch, /*record_image_graph=*/false, pass);
   EXPECT_EQ(pass.features.sizes(), torch::IntArrayRef({5, 256 + 2}));
-  EXPECT_EQ(pass.head.sizes(), torch::IntArrayRef({5, 3}));
-  EXPECT_EQ(pass.values.sizes(), torch::IntArrayRef({5, 1}));
+  EXPECT_EQ(pass.head.rows(), 3);
+  EXPECT_EQ(pass.head.cols(), 5);
+  EXPECT_EQ(pass.values.rows(), 1);
+  EXPECT_EQ(pass.values.cols(), 5);
   // The context reaches the heads: changing it changes the value.
-  const torch::Tensor values = pass.values.clone();
+  const Eigen::MatrixXf values = pass.values;
   network->Forward({.flat = torch::ones({5, 2}), .images = batch.images}, false, pass);
-  EXPECT_FALSE(torch::equal(values, pass.values));
+  EXPECT_FALSE((values.array() == pass.values.array()).all());
 }
 
-TEST(ActorCriticTest, PassesLeaveNoAutogradGraphOnTheirBuffers) {
-  // Buffers are reused pass after pass: a graph recorded on them would chain across passes
-  // (growing without bound, then overflowing the stack when freed).
+TEST(ActorCriticTest, PassesLeaveNoAutogradGraphOnTheirFeatures) {
+  // Passes are made again and again: a graph recorded on what they keep, other than NatureCNN's
+  // output for its own backward pass, would chain across passes (growing without bound, then
+  // overflowing the stack when freed).
   torch::manual_seed(5);
-  ActorCritic network(CartPoleSpec(), run::PpoConfig{});
+  ActorCritic network(ImageSpec(36), run::PpoConfig{});
   ActorCriticImpl::Pass pass;
-  const ObservationBatch batch{.flat = torch::randn({8, 5})};
+  const ObservationBatch batch{.flat = torch::randn({8, 2}), .images = torch::rand({8, 3, 36, 36})};
   for (int i = 0; i < 2; ++i) {
     network->Forward(batch, /*record_image_graph=*/true, pass);
-    network->Backward(pass, torch::ones({8, 2}), torch::ones({8, 1}), torch::Tensor());
+    network->Backward(pass, Eigen::MatrixXf::Ones(3, 8), Eigen::MatrixXf::Ones(1, 8),
+                      std::vector<float>(3, 1.0f));
   }
-  for (const torch::Tensor* buffer : {&pass.pi[0], &pass.pi[1], &pass.vf[1], &pass.head,
-                                      &pass.values, &pass.d_pi[0], &pass.d_vf[1]}) {
-    EXPECT_FALSE(buffer->requires_grad());
-    EXPECT_EQ(buffer->grad_fn(), nullptr);
-  }
+  EXPECT_FALSE(pass.features.requires_grad());
+  EXPECT_EQ(pass.features.grad_fn(), nullptr);
+  EXPECT_NE(pass.image_features.grad_fn(), nullptr);
 }
 
 }  // namespace

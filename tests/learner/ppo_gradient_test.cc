@@ -25,6 +25,11 @@ std::vector<float> Floats(const torch::Tensor& tensor) {
   return std::vector<float>(t.data_ptr<float>(), t.data_ptr<float>() + t.numel());
 }
 
+// A pass's [rows x B] batch as a tensor [B, rows], copied.
+torch::Tensor Tensor(const Eigen::MatrixXf& batch) {
+  return torch::from_blob(const_cast<float*>(batch.data()), {batch.cols(), batch.rows()}).clone();
+}
+
 // One minibatch of made-up inputs to the loss.
 struct Minibatch {
   ObservationBatch observations;
@@ -103,12 +108,12 @@ void ExpectExplicitGradientsMatchAutograd(const run::PolicySpec& spec,
   // ratios and value changes fall outside their clips.
   m.actions = spec.discrete()
                   ? torch::randint(spec.num_actions, {b, 1}).to(torch::kFloat32)
-                  : pass.head.detach() + 0.5 * torch::randn({b, spec.action_size});
+                  : Tensor(pass.head) + 0.5 * torch::randn({b, spec.action_size});
   m.advantages = torch::randn({b});
   m.returns = torch::randn({b});
-  m.old_values = pass.values.detach().squeeze(1) + 0.4 * torch::randn({b});
+  m.old_values = Tensor(pass.values).squeeze(1) + 0.4 * torch::randn({b});
   std::vector<float> log_probs(b);
-  const std::vector<float> head = Floats(pass.head);
+  const std::vector<float> head = Floats(Tensor(pass.head));
   const std::vector<float> actions = Floats(m.actions);
   const std::vector<float> log_std =
       spec.discrete() ? std::vector<float>() : Floats(network->log_std());
@@ -116,10 +121,10 @@ void ExpectExplicitGradientsMatchAutograd(const run::PolicySpec& spec,
   m.old_log_probs = torch::tensor(log_probs) + 0.3 * torch::randn({b});
 
   const int head_size = spec.head_size();
-  torch::Tensor d_head = torch::empty({b, head_size});
-  torch::Tensor d_values = torch::empty({b, 1});
-  torch::Tensor d_log_std = torch::empty({spec.discrete() ? 0 : spec.action_size});
-  const std::vector<float> values = Floats(pass.values);
+  Eigen::MatrixXf d_head(head_size, b);
+  Eigen::MatrixXf d_values(1, b);
+  std::vector<float> d_log_std(spec.discrete() ? 0 : spec.action_size);
+  const std::vector<float> values = Floats(Tensor(pass.values));
   const std::vector<float> advantages = Floats(m.advantages);
   const std::vector<float> returns = Floats(m.returns);
   const std::vector<float> old_log_probs = Floats(m.old_log_probs);
@@ -129,9 +134,9 @@ void ExpectExplicitGradientsMatchAutograd(const run::PolicySpec& spec,
       {.size = b, .head = head, .values = values, .log_std = log_std, .actions = actions,
        .advantages = advantages, .returns = returns, .old_log_probs = old_log_probs,
        .old_values = old_values},
-      {.head = {d_head.data_ptr<float>(), static_cast<size_t>(d_head.numel())},
-       .values = {d_values.data_ptr<float>(), static_cast<size_t>(b)},
-       .log_std = {d_log_std.data_ptr<float>(), static_cast<size_t>(d_log_std.numel())}});
+      {.head = {d_head.data(), static_cast<size_t>(d_head.size())},
+       .values = {d_values.data(), static_cast<size_t>(b)},
+       .log_std = d_log_std});
   network->Backward(pass, d_head, d_values, d_log_std);
   std::map<std::string, torch::Tensor> explicit_gradients;
   for (auto& item : network->named_parameters()) {

@@ -35,7 +35,7 @@ actor::Rollout BanditRollout(PpoLearner& learner, uint64_t seed) {
     std::vector<float> input(5);
     for (float& x : input) x = static_cast<float>(random.Uniform(-1, 1));
     float action = 0;
-    policy.Act(input, /*image=*/{}, /*deterministic=*/false, random, {&action, 1});
+    policy.Act(1, input, /*images=*/{}, /*deterministic=*/false, {&random, 1}, {&action, 1});
     rollout.inputs.insert(rollout.inputs.end(), input.begin(), input.end());
     rollout.actions.push_back(action);
     rollout.rewards.push_back(action);
@@ -72,7 +72,7 @@ TEST_F(PpoLearnerTest, LearnsToPreferTheRewardedAction) {
     std::vector<float> input(5);
     for (float& x : input) x = static_cast<float>(random.Uniform(-1, 1));
     float action = 0;
-    policy.Act(input, /*image=*/{}, false, random, {&action, 1});
+    policy.Act(1, input, /*images=*/{}, false, {&random, 1}, {&action, 1});
     rewarded += action == 1;
   }
   EXPECT_GT(rewarded, 900);  // from about 500 before training

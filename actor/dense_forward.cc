@@ -1,0 +1,21 @@
+// Copyright 2026 The DCS Authors.
+#include "actor/dense_forward.h"
+
+namespace dcs::actor {
+
+void AddBiasAndActivate(const Eigen::Ref<const Eigen::VectorXf>& bias, Activation activation,
+                        Eigen::MatrixXf& outputs) {
+  outputs.colwise() += bias;
+  switch (activation) {
+    case Activation::kNone:
+      break;
+    case Activation::kTanh:
+      outputs = outputs.array().tanh();
+      break;
+    case Activation::kRelu:
+      outputs = outputs.cwiseMax(0.0f);
+      break;
+  }
+}
+
+}  // namespace dcs::actor
