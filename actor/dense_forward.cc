@@ -3,9 +3,7 @@
 
 namespace dcs::actor {
 
-void AddBiasAndActivate(const Eigen::Ref<const Eigen::VectorXf>& bias, Activation activation,
-                        Eigen::MatrixXf& outputs) {
-  outputs.colwise() += bias;
+void Activate(Activation activation, Eigen::MatrixXf& outputs) {
   switch (activation) {
     case Activation::kNone:
       break;

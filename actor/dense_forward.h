@@ -34,10 +34,8 @@ void DenseForward(const Eigen::MatrixBase<Weight>& weight,
                   const Eigen::Ref<const Eigen::VectorXf>& bias, Activation activation,
                   const Eigen::Ref<const Eigen::MatrixXf>& inputs, Eigen::MatrixXf& outputs);
 
-// outputs = activation(outputs + bias), `bias` added to every column: the rest of a dense layer
-// after its product.
-void AddBiasAndActivate(const Eigen::Ref<const Eigen::VectorXf>& bias, Activation activation,
-                        Eigen::MatrixXf& outputs);
+// Applies `activation` to every element of `outputs`, in place.
+void Activate(Activation activation, Eigen::MatrixXf& outputs);
 
 // Implementation details.
 
@@ -45,11 +43,13 @@ template <typename Weight>
 void DenseForward(const Eigen::MatrixBase<Weight>& weight,
                   const Eigen::Ref<const Eigen::VectorXf>& bias, Activation activation,
                   const Eigen::Ref<const Eigen::MatrixXf>& inputs, Eigen::MatrixXf& outputs) {
-  outputs.resize(weight.rows(), inputs.cols());
+  // The bias first, the product added to it: Eigen's kernels add a product to what is there,
+  // so this spares two passes over the batch and gives the same bits as bias after product.
+  outputs = bias.replicate(1, inputs.cols());
   for (Eigen::Index sample = 0; sample < inputs.cols(); ++sample) {
-    outputs.col(sample).noalias() = weight * inputs.col(sample);
+    outputs.col(sample).noalias() += weight * inputs.col(sample);
   }
-  AddBiasAndActivate(bias, activation, outputs);
+  Activate(activation, outputs);
 }
 
 }  // namespace dcs::actor
