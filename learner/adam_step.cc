@@ -52,8 +52,9 @@ void AdamStep(torch::optim::Adam& optimizer, torch::Tensor& parameter, float gra
     const float g = grad[i] * gradient_scale;  // grad.mul_(scale)
     // exp_avg.mul_(beta1).add_(grad, 1 - beta1): add's kernel is fmadd(grad, alpha, self).
     m[i] = std::fma(g, one_minus_beta1, m[i] * beta1_f);
-    // exp_avg_sq.mul_(beta2).addcmul_(grad, grad, 1 - beta2): self + value * t1 * t2.
-    v[i] = v[i] * beta2_f + one_minus_beta2 * g * g;
+    // exp_avg_sq.mul_(beta2).addcmul_(grad, grad, 1 - beta2): self + value * t1 * t2, whose
+    // last product and sum libtorch's build fuses.
+    v[i] = std::fma(one_minus_beta2 * g, g, v[i] * beta2_f);
     // (exp_avg_sq.sqrt() / sqrt(bias_correction2)).add_(eps), then
     // p.addcdiv_(exp_avg, denom, -step_size): self + value * t1 / t2.
     const float denom = std::sqrt(v[i]) / bias_correction2_sqrt + eps;
