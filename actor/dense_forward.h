@@ -45,7 +45,8 @@ void DenseForward(const Eigen::MatrixBase<Weight>& weight,
                   const Eigen::Ref<const Eigen::MatrixXf>& inputs, Eigen::MatrixXf& outputs) {
   // The bias first, the product added to it: Eigen's kernels add a product to what is there,
   // so this spares two passes over the batch and gives the same bits as bias after product.
-  outputs = bias.replicate(1, inputs.cols());
+  outputs.resize(weight.rows(), inputs.cols());
+  outputs.colwise() = bias;
   for (Eigen::Index sample = 0; sample < inputs.cols(); ++sample) {
     outputs.col(sample).noalias() += weight * inputs.col(sample);
   }

@@ -87,7 +87,8 @@ void LinearGradients(torch::nn::LinearImpl& linear, ConstView input,
 // (the learner's batches have fixed shapes, so it needs no per-sample bits as actors do).
 void LinearForward(const torch::nn::LinearImpl& linear, actor::Activation activation,
                    ConstView input, Eigen::MatrixXf& outputs) {
-  outputs = BiasOf(linear).replicate(1, input.cols());  // the product is added to the bias
+  outputs.resize(linear.weight.size(0), input.cols());
+  outputs.colwise() = BiasOf(linear);  // the product is added to the bias
   outputs.noalias() += WeightOf(linear) * input;
   actor::Activate(activation, outputs);
 }
