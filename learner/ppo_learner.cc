@@ -59,7 +59,8 @@ std::span<float> MutableFloats(Eigen::MatrixXf& matrix) {
   return {matrix.data(), static_cast<size_t>(matrix.size())};
 }
 
-// The Euclidean norm of `values` as torch.nn.utils.clip_grad_norm_ uses it, summed in double.
+// The Euclidean norm of `values`, for torch.nn.utils.clip_grad_norm_; summed in double (torch
+// sums in float, in an order of its own, so the two may differ in the last bit).
 float Norm(std::span<const float> values) {
   double squares = 0;
   for (float v : values) squares += static_cast<double>(v) * v;

@@ -2,17 +2,20 @@
 #ifndef DCS_LEARNER_PPO_LEARNER_H_
 #define DCS_LEARNER_PPO_LEARNER_H_
 
-// PPO as Stable-Baselines3 implements it (spec/ppo.md), in libtorch behind a torch-free
-// interface: Update() takes one rollout, computes values and log-probabilities of the
-// collected actions, bootstraps time-limit cuts, runs GAE, then n_epochs of minibatch updates
-// (advantages normalised per minibatch, clipped surrogate, unclipped MSE value loss, entropy
-// bonus, global gradient-norm clipping, Adam with eps 1e-5).
+// PPO as Stable-Baselines3 implements it (spec/ppo.md), behind a torch-free interface:
+// Update() takes one rollout, computes values and log-probabilities of the collected actions,
+// bootstraps time-limit cuts, runs GAE, then n_epochs of minibatch updates (advantages
+// normalised per minibatch, clipped surrogate, unclipped MSE value loss, entropy bonus, global
+// gradient-norm clipping, Adam with eps 1e-5). The parameters and Adam's state are libtorch's;
+// the MLPs' passes are Eigen products on them (learner/actor_critic.h), NatureCNN's libtorch's.
 //
 // Deterministic: initial weights come from StreamSeed(seed, "init") and minibatch orders from
-// StreamSeed(seed, "minibatch", {update, epoch}); with libtorch pinned to one thread
-// (learner/torch_runtime.h) the same seed and rollouts give the same weights bit for bit,
-// whatever other learners do at the same time on other threads (on a BLAS that shares buffers
-// between callers, their matrix products take turns: BlasMutex, learner/torch_runtime.h). Each learner is confined to one thread at a time.
+// StreamSeed(seed, "minibatch", {update, epoch}); with libtorch pinned to one thread and the
+// numeric kernels pinned (learner/torch_runtime.h, actor/eigen_blocking.h) the same seed and
+// rollouts give the same weights bit for bit on every x86-64-v3 machine, whatever other
+// learners do at the same time on other threads (on a BLAS that shares buffers between callers,
+// NatureCNN's products take turns: BlasMutex, learner/torch_runtime.h). Each learner is
+// confined to one thread at a time.
 
 #include <cstdint>
 #include <memory>

@@ -5,14 +5,16 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
-#include <vector>
+
+#include "absl/container/inlined_vector.h"
 
 namespace dcs::learner {
 namespace {
 
 const float kHalfLog2Pi = static_cast<float>(0.5 * std::log(2 * std::numbers::pi));
 
-// One sample's distribution over actions, given the action head's output.
+// One sample's distribution over actions, given the action head's output. Made for every
+// sample of every minibatch: its log-probabilities stay off the heap for up to 16 actions.
 class Categorical {
  public:
   // torch's log_softmax: (x - max) - log(sum(exp(x - max))).
@@ -43,7 +45,7 @@ class Categorical {
   }
 
  private:
-  std::vector<float> log_p_;
+  absl::InlinedVector<float, 16> log_p_;
 };
 
 // A diagonal Gaussian N(mean, exp(log_std)^2): z = (action - mean) / std,
