@@ -34,6 +34,7 @@
 #include "env/vector_env.h"
 #include "learner/training_session.h"
 #include "run/evaluation_log.h"
+#include "run/phase_seconds.h"
 #include "run/run_checkpoint.h"
 #include "run/run_spec.h"
 
@@ -66,6 +67,7 @@ struct TrainingResult {
   bool complete = false;  // false if on_update stopped the run
   v1::EvaluationLog log;
   std::vector<float> parameters;  // PpoLearner::Parameters at the end
+  run::PhaseSeconds seconds;      // this process's part (a resumed run's since it resumed)
 };
 
 // Trains `spec` on `Env`. INVALID_ARGUMENT for a spec the environment cannot carry out
@@ -100,31 +102,50 @@ absl::StatusOr<TrainingResult> Train(const run::RunSpec& spec, const TrainingOpt
   DCS_ASSIGN_OR_RETURN(actor::PolicyNetwork policy,
                        actor::PolicyNetwork::Create(session->ActorWeights()));
 
+  run::PhaseSeconds seconds;
+  // Runs `phase` and returns what it returns, adding its wall time to `total`.
+  const auto timed = [](double& total, auto&& phase) {
+    struct Stopwatch {
+      double& total;
+      const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+      ~Stopwatch() {
+        total += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+    } stopwatch{total};
+    return phase();
+  };
+
   auto evaluate = [&](const EvaluationDue& due) -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const actor::EvaluationResult evaluation,
-                         actor::Evaluate<Env>(policy, plan.slot, plan.feature,
-                                              plan.evaluation_contexts, spec.eval_episodes,
-                                              spec.seed));
+                         timed(seconds.evaluations, [&] {
+                           return actor::Evaluate<Env>(policy, plan.slot, plan.feature,
+                                                       plan.evaluation_contexts,
+                                                       spec.eval_episodes, spec.seed);
+                         }));
     session->RecordEvaluation(due, evaluation);
     return absl::OkStatus();
   };
   auto save = [&]() -> absl::Status {
     if (options.out_dir.empty()) return absl::OkStatus();
-    DCS_ASSIGN_OR_RETURN(const run::Checkpoint latest, session->Checkpoint());
-    DCS_RETURN_IF_ERROR(run::WriteCheckpoint(options.out_dir, latest.state, latest.learner,
-                                             options.keep_checkpoints));
-    return run::WriteEvaluationLog(options.out_dir, session->EvaluationLog());
+    return timed(seconds.checkpoints, [&]() -> absl::Status {
+      DCS_ASSIGN_OR_RETURN(const run::Checkpoint latest, session->Checkpoint());
+      DCS_RETURN_IF_ERROR(run::WriteCheckpoint(options.out_dir, latest.state, latest.learner,
+                                               options.keep_checkpoints));
+      return run::WriteEvaluationLog(options.out_dir, session->EvaluationLog());
+    });
   };
 
   while (!session->complete()) {
     actor::Rollout rollout;
     std::vector<actor::EpisodeSummary> finished;
-    collector.Collect(policy, spec.ppo.n_steps, session->state().rollouts, rollout,
-                      finished);
+    timed(seconds.rollouts, [&] {
+      collector.Collect(policy, spec.ppo.n_steps, session->state().rollouts, rollout, finished);
+    });
     DCS_ASSIGN_OR_RETURN(const std::optional<EvaluationDue> due,
                          session->AddRollout(std::move(rollout), finished, collector.journals()));
     if (due.has_value()) DCS_RETURN_IF_ERROR(evaluate(*due));
-    DCS_ASSIGN_OR_RETURN(const SessionUpdate update, session->Update());
+    DCS_ASSIGN_OR_RETURN(const SessionUpdate update,
+                         timed(seconds.updates, [&] { return session->Update(); }));
     DCS_ASSIGN_OR_RETURN(policy, actor::PolicyNetwork::Create(session->ActorWeights()));
     if (update.final_evaluation.has_value()) {
       DCS_RETURN_IF_ERROR(evaluate(*update.final_evaluation));
@@ -133,13 +154,13 @@ absl::StatusOr<TrainingResult> Train(const run::RunSpec& spec, const TrainingOpt
     bool keep_going = true;
     if (options.on_update) {
       const run::RunState& state = session->state();
-      const double seconds =
+      const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       keep_going = options.on_update(
           {.timesteps = state.timesteps,
            .total_timesteps = spec.total_timesteps,
            .updates = session->policy_version(),
-           .steps_per_second = static_cast<double>(state.timesteps - first_timesteps) / seconds,
+           .steps_per_second = static_cast<double>(state.timesteps - first_timesteps) / elapsed,
            .recent_return = session->recent_return(),
            .update = update.stats,
            .evaluation = state.evaluations.empty() ? nullptr : &state.evaluations.back()});
@@ -150,7 +171,8 @@ absl::StatusOr<TrainingResult> Train(const run::RunSpec& spec, const TrainingOpt
   return TrainingResult{.state = session->state(),
                         .complete = session->complete(),
                         .log = session->EvaluationLog(),
-                        .parameters = session->Parameters()};
+                        .parameters = session->Parameters(),
+                        .seconds = seconds};
 }
 
 }  // namespace dcs::learner

@@ -80,6 +80,7 @@ int TrainInProcess(const run::RunRequest& request, bool resume, int keep,
                    .timesteps = result->state.timesteps,
                    .updates = result->state.rollouts,
                    .kernels = learner::NumericFingerprint(),
+                   .seconds = result->seconds,
                    .log = result->log},
                   global.output);
   return kExitOk;

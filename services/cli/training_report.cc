@@ -48,6 +48,13 @@ void PrintRunSummary(const RunSummary& summary, OutputFormat format) {
   std::cout << "run           " << summary.dir << "\n"
             << "steps         " << summary.timesteps << " (" << summary.updates << " updates)\n"
             << "kernels       " << summary.kernels << "\n";
+  if (summary.seconds.has_value()) {
+    const run::PhaseSeconds& s = *summary.seconds;
+    std::cout << absl::StrFormat(
+        "time          %.2f s: rollouts %.2f, updates %.2f, evaluations %.2f, checkpoints %.2f\n",
+        s.rollouts + s.updates + s.evaluations + s.checkpoints, s.rollouts, s.updates,
+        s.evaluations, s.checkpoints);
+  }
   if (log.evaluations_size() == 0) return;
   const v1::Evaluation& last = log.evaluations(log.evaluations_size() - 1);
   std::cout << absl::StrFormat(

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "dcs/v1/evaluation.pb.h"
+#include "run/phase_seconds.h"
 #include "services/cli/cli_command.h"
 
 namespace dcs::services::cli {
@@ -38,12 +39,14 @@ class ProgressPrinter {
 };
 
 // The summary of a finished run: where it is, its steps and updates, the kernels it was
-// trained with, its scores (table), or the evaluation log (JSON), on stdout.
+// trained with, where its time went when it ran in this process, its scores (table), or the
+// evaluation log (JSON), on stdout.
 struct RunSummary {
   std::string dir;
   int64_t timesteps = 0;
   int64_t updates = 0;
   std::string kernels;
+  std::optional<run::PhaseSeconds> seconds;
   v1::EvaluationLog log;
 };
 void PrintRunSummary(const RunSummary& summary, OutputFormat format);
