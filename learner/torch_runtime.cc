@@ -21,6 +21,7 @@
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
+#include "common/exec_array.h"
 #include "common/status_macros.h"
 
 namespace dcs::learner {
@@ -49,18 +50,15 @@ std::string FormatVariables(const std::vector<KernelVariable>& variables) {
   });
 }
 
-// Runs this program again with `unpinned` set, silently (what it runs with is in `dcs version`
-// and every run's summary). Returns only if that failed, with the reason.
-std::string RestartWith(const std::vector<KernelVariable>& unpinned) {
+// Runs this program again with the pinned kernels set, silently (what it runs with is in every
+// run's summary and a learner's registration). Returns only if that failed, with the reason.
+std::string RestartPinned() {
   absl::StatusOr<std::vector<std::string>> arguments = OwnArguments();
   if (!arguments.ok()) return std::string(arguments.status().message());
-  std::vector<char*> argv;
-  for (std::string& argument : *arguments) argv.push_back(argument.data());
-  argv.push_back(nullptr);
-  for (const KernelVariable& variable : unpinned) {
-    if (setenv(variable.name, variable.value, /*overwrite=*/1) != 0) return std::strerror(errno);
-  }
-  execv("/proc/self/exe", argv.data());
+  std::vector<std::string> environment = PinnedKernelEnvironment(environ);
+  const std::vector<char*> argv = ExecArray(*arguments);
+  const std::vector<char*> envp = ExecArray(environment);
+  execve("/proc/self/exe", argv.data(), envp.data());
   return std::strerror(errno);
 }
 
@@ -120,7 +118,7 @@ std::vector<KernelVariable> UnpinnedKernelVariables() {
 
 void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note) {
   // A runtime switch, read at each convolution: the same on every machine.
-  at::globalContext().setUserEnabledMkldnn(false);
+  at::globalContext().setUserEnabledMkldnn(kOneDnnConvolutions);
   if (!CanPinNumericKernels()) {
     note(absl::StrCat("this CPU lacks AVX2 or FMA, so DCS cannot pin its numeric kernels: ",
                       kNoMatch, " (", NumericFingerprint(), ")"));
@@ -128,7 +126,7 @@ void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note) {
   }
   const std::vector<KernelVariable> unpinned = UnpinnedKernelVariables();
   if (unpinned.empty()) return;
-  const std::string failure = RestartWith(unpinned);
+  const std::string failure = RestartPinned();
   note(absl::StrCat("cannot restart with ", FormatVariables(unpinned), " (", failure,
                     "); going on with the kernels the libraries chose: ", kNoMatch));
 }

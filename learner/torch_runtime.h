@@ -18,6 +18,7 @@
 #include "absl/strings/string_view.h"
 #include "absl/synchronization/mutex.h"
 #include "common/library_version.h"
+#include "common/pinned_kernels.h"
 
 namespace dcs::learner {
 
@@ -26,44 +27,21 @@ namespace dcs::learner {
 // started its inter-op pool (it can be sized only once per process).
 absl::Status PinTorchThreads(int threads);
 
-// An environment variable a numeric library reads when the process starts, and the value DCS
-// pins it to.
-struct KernelVariable {
-  const char* name;
-  const char* value;
-};
-
-// The pinned kernels. OpenBLAS and ATen (libtorch's operators) each pick their kernels from
-// the CPU they run on (OpenBLAS by CPU model, ATen by instruction set), and kernels for other
-// CPUs add in other orders, so two machines would give two runs from one seed. DCS fixes both
-// to their AVX2 and FMA kernels, the best that every such x86-64 CPU runs:
-// OpenBLAS's "Haswell" core (whose blocking sizes are constants, not read from the cache
-// sizes) and ATen's "avx2" dispatch. Both are read once, when the library loads or first
-// dispatches, so only a process started with them set has them.
-// OpenBLAS's pthread build also splits a product between threads, which changes its sums, so it
-// is pinned to the caller's thread (DESIGN.md §4: one thread per run).
-inline constexpr KernelVariable kPinnedKernels[] = {
-    {"OPENBLAS_CORETYPE", "Haswell"},
-    {"OPENBLAS_NUM_THREADS", "1"},
-    {"ATEN_CPU_CAPABILITY", "avx2"},
-};
-
 // Whether this CPU runs the pinned kernels: it has AVX2 and FMA (and the OS saves their
 // registers).
 bool CanPinNumericKernels();
 
-// The entries of kPinnedKernels whose environment variable is unset or holds another value.
-// Empty when this process was started with the pinned kernels.
+// The entries of kPinnedKernels (common/pinned_kernels.h) whose environment variable is unset
+// or holds another value. Empty when this process was started with the pinned kernels.
 std::vector<KernelVariable> UnpinnedKernelVariables();
 
-// Pins the numeric kernels of this process:
-// - Convolutions are computed by ATen and OpenBLAS, not by oneDNN (libtorch's MKL-DNN), which
-//   picks its own kernels and blocking from the CPU's instruction set and cache sizes and
-//   promises equal results only on identical hardware. NatureCNN updates take about 1.8 times
-//   as long (bench/RESULTS.md).
+// Pins the numeric kernels of this process (common/pinned_kernels.h):
+// - Sets whether convolutions go through oneDNN to kOneDnnConvolutions (they do not).
 // - If UnpinnedKernelVariables is not empty, runs this program again, from /proc/self/exe with
-//   the same arguments, with those variables set, silently (`dcs version` and every run's
-//   summary name the kernels). The call does not return then.
+//   the same arguments, with those variables set, silently (every run's summary and a
+//   learner's registration name the kernels). The call does not return then. DCS's own ways of
+//   starting a trainer (`dcs train`, `dcs up`, the deployments) set the variables, so this
+//   restart, which pays libtorch's start-up twice, is for a trainer started by hand.
 // Returns when the kernels are pinned, or when they cannot be: on a CPU without AVX2 and FMA
 // (CanPinNumericKernels), or if the restart failed. Then `note` gets a line saying why and that
 // results will not match other machines' bit for bit, and the process goes on with the kernels
@@ -98,7 +76,7 @@ std::string NumericFingerprint();
 
 // libtorch, as compiled against, and the kernels its operators run on: the OpenBLAS core, the
 // ATen instruction set, and whether convolutions go through oneDNN (the parts of
-// NumericFingerprint, for `dcs version` and worker registration).
+// NumericFingerprint, for worker registration).
 std::vector<LibraryVersion> LibraryVersions();
 
 }  // namespace dcs::learner

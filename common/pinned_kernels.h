@@ -1,0 +1,57 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_COMMON_PINNED_KERNELS_H_
+#define DCS_COMMON_PINNED_KERNELS_H_
+
+// The numeric kernels every DCS process that trains or updates pins (DESIGN.md §4), and the
+// environment that starts such a program with them. Free of libtorch, so that what starts a
+// trainer (the `dcs` client, `dcs up`, the tests) can set them and `dcs version` can show them;
+// learner/torch_runtime.h applies them inside the trainer. Thread-safe (constants and a pure
+// function).
+
+#include <string>
+#include <vector>
+
+namespace dcs {
+
+// An environment variable a numeric library reads when the process starts, and the value DCS
+// pins it to.
+struct KernelVariable {
+  const char* name;
+  const char* value;
+};
+
+// The pinned kernels. OpenBLAS and ATen (libtorch's operators) each pick their kernels from
+// the CPU they run on (OpenBLAS by CPU model, ATen by instruction set), and kernels for other
+// CPUs add in other orders, so two machines would give two runs from one seed. DCS fixes both
+// to their AVX2 and FMA kernels, the best that every such x86-64 CPU runs:
+// OpenBLAS's "Haswell" core (whose blocking sizes are constants, not read from the cache
+// sizes) and ATen's "avx2" dispatch. Both are read once, when the library loads or first
+// dispatches, so only a process started with them set has them: whatever starts a trainer
+// sets them (PinnedKernelEnvironment), and a trainer started without them runs itself again
+// with them (learner::PinNumericKernels), paying libtorch's start-up twice.
+// OpenBLAS's pthread build also splits a product between threads, which changes its sums, so it
+// is pinned to the caller's thread (DESIGN.md §4: one thread per run).
+inline constexpr KernelVariable kPinnedKernels[] = {
+    {"OPENBLAS_CORETYPE", "Haswell"},
+    {"OPENBLAS_NUM_THREADS", "1"},
+    {"ATEN_CPU_CAPABILITY", "avx2"},
+};
+
+// Whether convolutions go through oneDNN (libtorch's MKL-DNN): never. oneDNN picks its own
+// kernels and blocking from the CPU's instruction set and cache sizes and promises equal
+// results only on identical hardware, so ATen and OpenBLAS compute them instead (NatureCNN
+// updates take about 1.8 times as long: bench/RESULTS.md). A switch of the running process,
+// not a variable: learner::PinNumericKernels sets it.
+inline constexpr bool kOneDnnConvolutions = false;
+
+// `environment` ("NAME=value" entries up to a null pointer, as `environ` holds them) with every
+// variable of kPinnedKernels set to its pinned value: an entry of that name is replaced where
+// it stands (a second entry of that name is dropped), a missing one appended in the table's
+// order; every other entry is kept, in order.
+// For execve: the program it starts computes with the pinned kernels from its first
+// instruction.
+std::vector<std::string> PinnedKernelEnvironment(const char* const* environment);
+
+}  // namespace dcs
+
+#endif  // DCS_COMMON_PINNED_KERNELS_H_
