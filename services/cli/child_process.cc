@@ -15,6 +15,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
+#include "common/exec_array.h"
 
 namespace dcs::services::cli {
 namespace {
@@ -23,14 +24,14 @@ constexpr absl::Duration kPollInterval = absl::Milliseconds(20);
 
 // What failed in the child before or at exec, with its errno, as the child reports it.
 struct ExecError {
-  int in_chdir = 0;  // 1: entering the working directory, 0: execv
+  int in_chdir = 0;  // 1: entering the working directory, 0: execve
   int error = 0;
 };
 
-// Runs in the forked child: only async-signal-safe calls until execv. On failure, writes an
+// Runs in the forked child: only async-signal-safe calls until execve. On failure, writes an
 // ExecError to `error_fd` (close-on-exec, so a successful exec closes it with nothing written).
-[[noreturn]] void ExecChild(const ChildProcessOptions& options, char* const* argv, int output_fd,
-                            int error_fd, pid_t parent) {
+[[noreturn]] void ExecChild(const ChildProcessOptions& options, char* const* argv,
+                            char* const* envp, int output_fd, int error_fd, pid_t parent) {
   sigset_t none;
   sigemptyset(&none);
   pthread_sigmask(SIG_SETMASK, &none, nullptr);
@@ -51,7 +52,7 @@ struct ExecError {
   if (!options.working_directory.empty() && chdir(options.working_directory.c_str()) != 0) {
     failure = {.in_chdir = 1, .error = errno};
   } else {
-    execv(options.path.c_str(), argv);
+    execve(options.path.c_str(), argv, envp);
     failure = {.in_chdir = 0, .error = errno};
   }
   [[maybe_unused]] ssize_t written = write(error_fd, &failure, sizeof(failure));
@@ -63,9 +64,11 @@ struct ExecError {
 absl::StatusOr<ChildProcess> ChildProcess::Start(const ChildProcessOptions& options) {
   std::vector<std::string> arguments = {options.path};
   arguments.insert(arguments.end(), options.args.begin(), options.args.end());
-  std::vector<char*> argv;
-  for (std::string& argument : arguments) argv.push_back(argument.data());
-  argv.push_back(nullptr);
+  const std::vector<char*> argv = ExecArray(arguments);
+  // Built before fork, as argv: the child may make async-signal-safe calls only.
+  std::vector<std::string> environment = options.environment.value_or(std::vector<std::string>());
+  const std::vector<char*> own_envp = ExecArray(environment);
+  char* const* const envp = options.environment.has_value() ? own_envp.data() : environ;
 
   int output_fd = -1;
   if (!options.output_path.empty()) {
@@ -83,7 +86,7 @@ absl::StatusOr<ChildProcess> ChildProcess::Start(const ChildProcessOptions& opti
   }
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
-  if (pid == 0) ExecChild(options, argv.data(), output_fd, error_pipe[1], parent);
+  if (pid == 0) ExecChild(options, argv.data(), envp, output_fd, error_pipe[1], parent);
   const int fork_errno = errno;
   ::close(error_pipe[1]);
   if (output_fd >= 0) ::close(output_fd);

@@ -25,6 +25,8 @@ struct ChildProcessOptions {
   std::vector<std::string> args;  // without argv[0]
   std::string output_path;        // stdout and stderr are appended here; empty: inherited
   std::string working_directory;  // the child's (a relative `path` starts there); empty: ours
+  // The child's whole environment, "NAME=value" each; nullopt: ours.
+  std::optional<std::vector<std::string>> environment;
   bool new_session = false;       // setsid(): detached from the terminal, outlives the parent
   bool stop_with_parent = true;   // SIGTERM when the parent dies (ignored with new_session)
 };

@@ -16,6 +16,7 @@
 #include "absl/strings/strip.h"
 #include "absl/time/clock.h"
 #include "common/atomic_file.h"
+#include "common/pinned_kernels.h"
 #include "common/status_macros.h"
 #include "common/status_util.h"
 #include "services/cli/cluster_client.h"
@@ -162,8 +163,11 @@ absl::StatusOr<std::unique_ptr<LocalCluster>> LocalCluster::Start(
        absl::StrCat("--data-dir=", (fs::path(options.data_dir) / "coordinator").string())}));
   const std::string coordinator = cluster->state_.processes.front().grpc_address;
   cluster->state_.coordinator_address = coordinator;
+  // The learner, which links libtorch, starts with the pinned numeric kernels: without them it
+  // would start libtorch, then run itself again to set them (learner/torch_runtime.h).
   DCS_RETURN_IF_ERROR(cluster->StartProcess("learner", "dcs-learner",
-                                            {absl::StrCat("--coordinator=", coordinator)}));
+                                            {absl::StrCat("--coordinator=", coordinator)},
+                                            PinnedKernelEnvironment(environ)));
   for (int i = 1; i <= options.actors; ++i) {
     DCS_RETURN_IF_ERROR(cluster->StartProcess(absl::StrCat("actor-", i), "dcs-actor",
                                               {absl::StrCat("--coordinator=", coordinator)}));
@@ -204,7 +208,8 @@ absl::Status LocalCluster::WaitUntilAllServing() {
 }
 
 absl::Status LocalCluster::StartProcess(const std::string& name, const std::string& executable,
-                                        std::vector<std::string> args) {
+                                        std::vector<std::string> args,
+                                        std::optional<std::vector<std::string>> environment) {
   const std::string port_file = PortFilePath(options_.data_dir, name);
   std::error_code ignored;
   fs::remove(port_file, ignored);
@@ -225,6 +230,7 @@ absl::Status LocalCluster::StartProcess(const std::string& name, const std::stri
       ChildProcess::Start({.path = fs::path(options_.bin_dir) / executable,
                            .args = std::move(args),
                            .output_path = LogPath(name),
+                           .environment = std::move(environment),
                            .new_session = options_.detach,
                            .stop_with_parent = !options_.detach});
   if (!child.ok()) return child.status();

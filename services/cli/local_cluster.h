@@ -22,6 +22,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -100,8 +101,10 @@ class LocalCluster {
  private:
   explicit LocalCluster(LocalClusterOptions options) : options_(std::move(options)) {}
 
+  // `environment`: the child's whole environment; nullopt: ours.
   absl::Status StartProcess(const std::string& name, const std::string& executable,
-                            std::vector<std::string> args);
+                            std::vector<std::string> args,
+                            std::optional<std::vector<std::string>> environment = std::nullopt);
   absl::Status WaitUntilAllServing();
   // CANCELLED if interrupted, the child's exit if `child` has exited, DEADLINE_EXCEEDED
   // (with `waiting_for`) after `deadline`; else OK: keep waiting.

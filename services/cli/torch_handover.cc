@@ -13,23 +13,27 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "common/exec_array.h"
+#include "common/pinned_kernels.h"
 #include "services/cli/torch_commands.h"
 
 namespace dcs::services::cli {
 namespace {
 
-// Replaces this process by `dcs-train` with the same arguments; returns only if that fails.
+// Replaces this process by `dcs-train` with the same arguments, started with the pinned
+// numeric kernels: were they missing, it would start libtorch, see them missing and run
+// itself again to set them (learner::PinNumericKernels), paying libtorch's start-up twice.
+// Returns only if that fails.
 int HandOver(const GlobalFlags& global) {
   std::error_code error;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
   const std::string program = (self.parent_path() / "dcs-train").string();
-  std::vector<char*> argv;
-  argv.push_back(const_cast<char*>(program.c_str()));
-  for (size_t i = 1; i < global.invocation.size(); ++i) {
-    argv.push_back(const_cast<char*>(global.invocation[i].c_str()));
-  }
-  argv.push_back(nullptr);
-  execv(program.c_str(), argv.data());
+  std::vector<std::string> arguments = global.invocation;
+  arguments[0] = program;
+  std::vector<std::string> environment = PinnedKernelEnvironment(environ);
+  const std::vector<char*> argv = ExecArray(arguments);
+  const std::vector<char*> envp = ExecArray(environment);
+  execve(program.c_str(), argv.data(), envp.data());
   return FailCommand(absl::FailedPreconditionError(
       absl::StrCat("cannot run ", program, " (it trains in process): ", std::strerror(errno))));
 }

@@ -2,6 +2,7 @@
 #include "tests/integration/cluster_processes.h"
 
 #include <signal.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <optional>
@@ -10,6 +11,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "common/atomic_file.h"
+#include "common/pinned_kernels.h"
 #include "gtest/gtest.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
@@ -26,18 +28,24 @@ std::string ClusterProcesses::coordinator_address() const {
 }
 
 void ClusterProcesses::StartCoordinator(std::optional<absl::Duration> lease) {
-  Start("coordinator", "dcs-coordinator",
-        {absl::StrCat("--listen=", coordinator_address()), "--data-dir=" + dir_ + "/data",
-         absl::StrCat("--lease-duration=", absl::FormatDuration(lease.value_or(lease_)))});
+  Start("coordinator",
+        {.path = BinaryPath("dcs-coordinator"),
+         .args = {absl::StrCat("--listen=", coordinator_address()), "--data-dir=" + dir_ + "/data",
+                  absl::StrCat("--lease-duration=",
+                               absl::FormatDuration(lease.value_or(lease_)))}});
 }
 
 void ClusterProcesses::StartLearner(const std::string& name) {
-  Start(name, "dcs-learner", {"--coordinator=" + coordinator_address()});
+  // With the pinned numeric kernels, as `dcs up` starts it: it starts libtorch once.
+  Start(name, {.path = BinaryPath("dcs-learner"),
+               .args = {"--coordinator=" + coordinator_address()},
+               .environment = PinnedKernelEnvironment(environ)});
 }
 
 void ClusterProcesses::StartActor(const std::string& name, int max_slots) {
-  Start(name, "dcs-actor",
-        {"--coordinator=" + coordinator_address(), absl::StrCat("--max-slots=", max_slots)});
+  Start(name, {.path = BinaryPath("dcs-actor"),
+               .args = {"--coordinator=" + coordinator_address(),
+                        absl::StrCat("--max-slots=", max_slots)}});
 }
 
 std::string ClusterProcesses::address(const std::string& name) const {
@@ -62,8 +70,7 @@ std::string ClusterProcesses::Log(const std::string& name) const {
 void ClusterProcesses::Restart(const std::string& name) {
   ASSERT_TRUE(commands_.count(name)) << name << " was never started";
   ASSERT_FALSE(processes_.count(name)) << name << " runs";
-  const auto [program, args] = commands_.at(name);
-  Start(name, program, args);
+  Start(name, commands_.at(name));
 }
 
 std::vector<std::string> ClusterProcesses::Running() const {
@@ -72,17 +79,14 @@ std::vector<std::string> ClusterProcesses::Running() const {
   return names;
 }
 
-void ClusterProcesses::Start(const std::string& name, const std::string& program,
-                             std::vector<std::string> args) {
-  commands_[name] = {program, args};
+void ClusterProcesses::Start(const std::string& name, services::cli::ChildProcessOptions command) {
+  commands_[name] = command;
   const std::string port_file = absl::StrCat(dir_, "/", name, ".ports");
   std::filesystem::remove(port_file);
-  args.push_back("--port-file=" + port_file);
-  args.push_back("--metrics-listen=127.0.0.1:0");
-  absl::StatusOr<services::cli::ChildProcess> child = services::cli::ChildProcess::Start(
-      {.path = BinaryPath(program),
-       .args = std::move(args),
-       .output_path = absl::StrCat(dir_, "/", name, ".log")});
+  command.args.push_back("--port-file=" + port_file);
+  command.args.push_back("--metrics-listen=127.0.0.1:0");
+  command.output_path = absl::StrCat(dir_, "/", name, ".log");
+  absl::StatusOr<services::cli::ChildProcess> child = services::cli::ChildProcess::Start(command);
   ASSERT_TRUE(child.ok()) << child.status();
   const absl::Time deadline = absl::Now() + testing::Patient(absl::Seconds(30));
   std::optional<services::BoundPorts> ports;

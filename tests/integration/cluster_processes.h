@@ -10,7 +10,6 @@
 #include <map>
 #include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "absl/time/time.h"
@@ -50,14 +49,15 @@ class ClusterProcesses {
   std::string Log(const std::string& name) const;
 
  private:
-  void Start(const std::string& name, const std::string& program, std::vector<std::string> args);
+  // Starts `command` (its program, arguments and environment) as process `name`.
+  void Start(const std::string& name, services::cli::ChildProcessOptions command);
 
   const std::string dir_;
   const absl::Duration lease_;
   const int coordinator_port_;
   std::map<std::string, services::cli::ChildProcess> processes_;
-  // Every process's program and arguments as first started, for Restart.
-  std::map<std::string, std::pair<std::string, std::vector<std::string>>> commands_;
+  // Every process's program, arguments and environment as first started, for Restart.
+  std::map<std::string, services::cli::ChildProcessOptions> commands_;
   std::map<std::string, services::BoundPorts> ports_;
 };
 

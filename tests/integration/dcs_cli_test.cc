@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include <google/protobuf/util/json_util.h>
@@ -25,6 +26,7 @@
 #include "services/exit_codes.h"
 #include "tests/integration/test_util.h"
 #include "tests/testing/net.h"
+#include "tests/testing/scoped_variable.h"
 #include "tests/testing/temp_dir.h"
 #include "tests/testing/slowdown.h"
 
@@ -33,6 +35,7 @@ namespace {
 
 using dcs::testing::MakeTempDir;
 using dcs::testing::PickFreePort;
+using dcs::testing::ScopedVariable;
 using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -119,6 +122,40 @@ TEST(DcsCliTest, UpDetachedThenStatusThenDown) {
   EXPECT_FALSE(std::filesystem::exists(absl::StrCat(data_dir, "/cluster.yaml")));
   EXPECT_FALSE(std::filesystem::exists(absl::StrCat(data_dir, "/prometheus-targets.yml")));
   EXPECT_FALSE(std::filesystem::exists(token));
+}
+
+// `dcs up` starts the learner with the pinned numeric kernels (common/pinned_kernels.h), over
+// a user's own choice: libtorch starts once in the cluster, and the learner registers with the
+// pinned kernels, as `dcs status` shows.
+TEST(DcsCliTest, UpStartsTheLearnerWithThePinnedKernels) {
+  const std::string data_dir = MakeTempDir();
+  ScopedVariable blas("OPENBLAS_CORETYPE", "Prescott");
+  ScopedVariable threads("OPENBLAS_NUM_THREADS", "2");
+  ScopedVariable aten("ATEN_CPU_CAPABILITY", "default");
+  const LoaderReport loader;
+  const RunResult up = Dcs({"up", "--detach", "--actors=1", "--data-dir", data_dir});
+  const RunResult json = Dcs({"status", "-o", "json", "--data-dir", data_dir});
+  const RunResult down = Dcs({"down", "--data-dir", data_dir});
+  ASSERT_EQ(up.exit_code, 0) << up.output;
+  EXPECT_EQ(down.exit_code, 0) << down.output;
+  EXPECT_EQ(loader.LibtorchStarts(), 1);
+
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  v1::GetClusterStatusResponse parsed;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(json.output, &parsed).ok())
+      << json.output;
+  std::map<std::string, std::string> learner;
+  for (const v1::Worker& worker : parsed.workers()) {
+    if (worker.info().role() != v1::WORKER_ROLE_LEARNER) continue;
+    for (const v1::LibraryVersion& library : worker.info().build().libraries()) {
+      learner[library.name()] = library.version();
+    }
+  }
+  EXPECT_EQ(learner["openblas core"], "Haswell");
+  // scripts/bootstrap installs the pthread build, which locks its buffers (BlasMutex).
+  EXPECT_EQ(learner["openblas build"], "pthread, 1 thread");
+  EXPECT_EQ(learner["aten cpu capability"], "avx2");
+  EXPECT_EQ(learner["onednn convolutions"], "off");
 }
 
 TEST(DcsCliTest, CtrlCStopsTheForegroundClusterLeavingNothingBehind) {

@@ -3,6 +3,9 @@
 
 #include <sys/wait.h>
 
+#include <filesystem>
+
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
@@ -34,6 +37,26 @@ RunResult DcsAt(std::vector<std::string> args, const std::string& address,
                 absl::Duration timeout) {
   args.push_back("--addr=" + address);
   return RunProgram(BinaryPath("dcs"), args, timeout);
+}
+
+LoaderReport::LoaderReport()
+    : dir_(dcs::testing::MakeTempDir()),
+      debug_("LD_DEBUG", "libs"),
+      // The loader appends ".<pid>" and keeps appending across exec: one file per process.
+      output_("LD_DEBUG_OUTPUT", absl::StrCat(dir_, "/loader")) {}
+
+int LoaderReport::LibtorchStarts() const {
+  int starts = 0;
+  for (const std::filesystem::directory_entry& file : std::filesystem::directory_iterator(dir_)) {
+    const std::string report = ReadFile(file.path()).value_or("");
+    for (absl::string_view line : absl::StrSplit(report, '\n')) {
+      if (absl::StrContains(line, "calling init: ") &&
+          absl::StrContains(line, "/libtorch_cpu.so")) {
+        ++starts;
+      }
+    }
+  }
+  return starts;
 }
 
 std::vector<std::string> Lines(const std::string& text) {

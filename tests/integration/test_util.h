@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "absl/time/time.h"
+#include "tests/testing/scoped_variable.h"
 
 namespace dcs::integration {
 
@@ -31,6 +32,23 @@ RunResult RunProgram(const std::string& path, const std::vector<std::string>& ar
 // `dcs ARGS... --addr=ADDRESS`, killed after `timeout`.
 RunResult DcsAt(std::vector<std::string> args, const std::string& address,
                 absl::Duration timeout = absl::Minutes(1));
+
+// The dynamic loader's report on every program the test starts while this lives (LD_DEBUG=libs,
+// written to files of its own: LD_DEBUG_OUTPUT), to count how often libtorch starts in them.
+// Sets those variables until destroyed: one at a time, on the test's thread.
+class LoaderReport {
+ public:
+  LoaderReport();
+
+  // How many times libtorch started so far: each program image that links it runs
+  // libtorch_cpu's initialisers once, so a program that runs itself again counts twice.
+  int LibtorchStarts() const;
+
+ private:
+  const std::string dir_;
+  const testing::ScopedVariable debug_;
+  const testing::ScopedVariable output_;
+};
 
 // The lines of `text`, without empty ones.
 std::vector<std::string> Lines(const std::string& text);

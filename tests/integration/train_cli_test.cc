@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "absl/strings/str_cat.h"
@@ -20,6 +21,7 @@
 #include "services/cli/child_process.h"
 #include "services/exit_codes.h"
 #include "tests/integration/test_util.h"
+#include "tests/testing/scoped_variable.h"
 #include "tests/testing/temp_dir.h"
 #include "tests/testing/slowdown.h"
 
@@ -27,8 +29,10 @@ namespace dcs::integration {
 namespace {
 
 using dcs::testing::MakeTempDir;
+using dcs::testing::ScopedVariable;
 using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::SizeIs;
 
 RunResult Dcs(const std::vector<std::string>& args) { return RunProgram(BinaryPath("dcs"), args); }
@@ -120,6 +124,40 @@ TEST(TrainCliTest, CtrlCStopsWithACheckpointThatResumeContinues) {
   const v1::EvaluationLog finished = ReadLog(out);
   EXPECT_TRUE(finished.complete());
   EXPECT_EQ(finished.evaluations(finished.evaluations_size() - 1).updates(), 1000);
+}
+
+// `dcs train` hands the run to dcs-train with the pinned numeric kernels in its environment
+// (common/pinned_kernels.h), over a user's own choice, so libtorch starts once: dcs-train has
+// nothing to restart for.
+TEST(TrainCliTest, HandsOverWithThePinnedKernelsSoLibtorchStartsOnce) {
+  const std::string dir = MakeTempDir();
+  const std::string config = WriteConfig(dir, 128);
+  ScopedVariable blas("OPENBLAS_CORETYPE", "Prescott");
+  ScopedVariable aten("ATEN_CPU_CAPABILITY", std::nullopt);
+  const LoaderReport loader;
+  const RunResult train = Dcs({"train", "--config", config, "--out", dir + "/run"});
+  ASSERT_EQ(train.exit_code, 0) << train.output;
+  EXPECT_EQ(loader.LibtorchStarts(), 1);
+  EXPECT_THAT(train.output, ContainsRegex("kernels +libtorch [0-9.]+, openblas Haswell, "
+                                          "aten avx2, onednn off"));
+}
+
+// dcs-train started by hand without the pinned kernels runs itself again with them, silently
+// (learner::PinNumericKernels): the fallback for a trainer DCS did not start.
+TEST(TrainCliTest, DcsTrainStartedWithOtherKernelsRunsItselfAgainWithThePinnedOnes) {
+  const std::string dir = MakeTempDir();
+  const std::string config = WriteConfig(dir, 128);
+  ScopedVariable blas("OPENBLAS_CORETYPE", "Prescott");
+  ScopedVariable threads("OPENBLAS_NUM_THREADS", "2");
+  ScopedVariable aten("ATEN_CPU_CAPABILITY", "default");
+  const LoaderReport loader;
+  const RunResult train =
+      RunProgram(BinaryPath("dcs-train"), {"train", "--config", config, "--out", dir + "/run"});
+  ASSERT_EQ(train.exit_code, 0) << train.output;
+  EXPECT_EQ(loader.LibtorchStarts(), 2);
+  EXPECT_THAT(train.output, Not(HasSubstr("will not match other machines")));  // silently
+  EXPECT_THAT(train.output, ContainsRegex("kernels +libtorch [0-9.]+, openblas Haswell, "
+                                          "aten avx2, onednn off"));
 }
 
 TEST(TrainCliTest, BadConfigIsOneErrorLineNamingTheField) {

@@ -16,10 +16,12 @@
 #include "absl/strings/str_cat.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/testing/scoped_variable.h"
 
 namespace dcs::learner {
 namespace {
 
+using ::dcs::testing::ScopedVariable;
 using ::testing::AnyOf;
 using ::testing::Contains;
 using ::testing::ElementsAre;
@@ -27,32 +29,6 @@ using ::testing::Field;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
 using ::testing::StrEq;
-
-// Sets (or, with nullopt, unsets) an environment variable for one scope.
-class ScopedVariable {
- public:
-  ScopedVariable(const char* name, std::optional<std::string> value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    if (value.has_value()) {
-      setenv(name, value->c_str(), /*overwrite=*/1);
-    } else {
-      unsetenv(name);
-    }
-  }
-  ~ScopedVariable() {
-    if (old_.has_value()) {
-      setenv(name_, old_->c_str(), /*overwrite=*/1);
-    } else {
-      unsetenv(name_);
-    }
-  }
-  ScopedVariable(const ScopedVariable&) = delete;
-  ScopedVariable& operator=(const ScopedVariable&) = delete;
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
 
 TEST(PinTorchThreadsTest, RejectsLessThanOneThread) {
   EXPECT_EQ(PinTorchThreads(0).code(), absl::StatusCode::kInvalidArgument);
@@ -107,7 +83,7 @@ TEST(UnpinnedKernelVariablesTest, NamesEachVariableThatIsUnsetOrDiffers) {
 
 // In a process started with the pinned variables there is nothing to restart for: the call
 // returns, says nothing, and routes convolutions away from oneDNN. (The restart itself is
-// checked through `dcs version`: tests/integration/dcs_cli_test.cc.)
+// checked through a `dcs-train` started without them: tests/integration/train_cli_test.cc.)
 TEST(PinNumericKernelsTest, LeavesAPinnedProcessRunningAndTurnsOneDnnOff) {
   ScopedVariable blas("OPENBLAS_CORETYPE", "Haswell");
   ScopedVariable threads("OPENBLAS_NUM_THREADS", "1");

@@ -69,6 +69,30 @@ TEST(ChildProcessTest, ArgumentsArePassedVerbatim) {
   std::filesystem::remove_all(pattern);
 }
 
+// The child's environment is exactly the one given (`dcs up` starts the learner with the
+// pinned numeric kernels so), and ours without one.
+TEST(ChildProcessTest, EnvironmentIsTheGivenOneElseOurs) {
+  std::string pattern = ::testing::TempDir() + "child_process_test.XXXXXX";
+  ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+  ASSERT_EQ(::setenv("DCS_CHILD_PROCESS_TEST", "ours", /*overwrite=*/1), 0);
+  const std::string given = pattern + "/given.txt";
+  absl::StatusOr<ChildProcess> child =
+      ChildProcess::Start({.path = "/usr/bin/env",
+                           .output_path = given,
+                           .environment = std::vector<std::string>{"A=1", "B=two words"}});
+  ASSERT_TRUE(child.ok()) << child.status();
+  ASSERT_TRUE(child->Wait(kLongTimeout).has_value());
+  EXPECT_EQ(dcs::ReadFile(given).value_or("<error>"), "A=1\nB=two words\n");
+
+  const std::string inherited = pattern + "/inherited.txt";
+  ChildProcess own = MustStart("/bin/sh", {"-c", "printf %s \"$DCS_CHILD_PROCESS_TEST\""},
+                               inherited);
+  ASSERT_TRUE(own.Wait(kLongTimeout).has_value());
+  EXPECT_EQ(dcs::ReadFile(inherited).value_or("<error>"), "ours");
+  ::unsetenv("DCS_CHILD_PROCESS_TEST");
+  std::filesystem::remove_all(pattern);
+}
+
 TEST(ChildProcessTest, MissingExecutableIsNotFoundNamingThePath) {
   const std::string path = "/nonexistent/dcs-no-such-program";
   const absl::StatusOr<ChildProcess> child = ChildProcess::Start({.path = path});
