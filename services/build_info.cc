@@ -31,4 +31,6 @@ std::vector<LibraryVersion> ServiceLibraryVersions() {
   };
 }
 
+LibraryVersion CompiledLibtorchVersion() { return {"libtorch", DCS_LIBTORCH_VERSION}; }
+
 }  // namespace dcs::services

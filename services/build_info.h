@@ -29,6 +29,11 @@ BuildInfo ProcessBuildInfo(const std::vector<LibraryVersion>& own_libraries);
 // (dcs::env::LibraryVersions() and its siblings).
 std::vector<LibraryVersion> ServiceLibraryVersions();
 
+// libtorch as dcs-train and dcs-learner are compiled against (the version of the package CMake
+// found), known without loading it: for the programs that do not link it. Those that do report
+// it, and the kernels it runs, themselves (learner::LibraryVersions()).
+LibraryVersion CompiledLibtorchVersion();
+
 }  // namespace dcs::services
 
 #endif  // DCS_SERVICES_BUILD_INFO_H_

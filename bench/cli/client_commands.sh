@@ -41,6 +41,7 @@ rounds, dcs, data, coordinator, sweep, spec = int(sys.argv[1]), *sys.argv[2:]
 at = ["--data-dir", data]
 commands = {
     "dcs --help": [dcs, "--help"],
+    "dcs version": [dcs, "version"],
     "dcs health": [dcs, "health", "--addr", coordinator],
     "dcs status": [dcs, "status", *at],
     "dcs runs": [dcs, "runs", *at],

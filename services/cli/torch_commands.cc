@@ -6,17 +6,12 @@
 #include <iostream>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "absl/strings/string_view.h"
 #include "common/status_macros.h"
-#include "common/text_table.h"
-#include "coordinator/library_versions.h"
 #include "env/env_registry.h"
-#include "env/library_versions.h"
 #include "learner/torch_runtime.h"
 #include "learner/training_run.h"
-#include "services/build_info.h"
 #include "services/cli/training_report.h"
 #include "services/exit_codes.h"
 
@@ -83,22 +78,6 @@ int TrainInProcess(const run::RunRequest& request, bool resume, int keep,
                    .seconds = result->seconds,
                    .log = result->log},
                   global.output);
-  return kExitOk;
-}
-
-int ShowVersion(const GlobalFlags& /*global*/) {
-  // The kernels rows show what `dcs train` computes with on this machine: the pinned ones.
-  learner::PinNumericKernels(
-      [](absl::string_view note) { std::cerr << "dcs: " << note << std::endl; });
-  BuildInfo build = ProcessBuildInfo(coordinator::LibraryVersions());
-  for (const auto& libraries : {env::LibraryVersions(), learner::LibraryVersions()}) {
-    build.libraries.insert(build.libraries.end(), libraries.begin(), libraries.end());
-  }
-  std::vector<std::vector<std::string>> rows = {{"LIBRARY", "VERSION"}};
-  for (const LibraryVersion& library : build.libraries) {
-    rows.push_back({library.name, library.version});
-  }
-  std::cout << "dcs " << build.version << "\n\n" << RenderTable(rows) << std::flush;
   return kExitOk;
 }
 

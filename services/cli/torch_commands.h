@@ -2,12 +2,11 @@
 #ifndef DCS_SERVICES_CLI_TORCH_COMMANDS_H_
 #define DCS_SERVICES_CLI_TORCH_COMMANDS_H_
 
-// The parts of `dcs` commands that need libtorch: training in this process, and the versions
-// of the numeric kernels it computes with. Two programs share every command file and differ
-// only here: `dcs-train` links the real thing (torch_commands.cc); `dcs`
-// links torch_handover.cc, which hands the invocation to `dcs-train` beside it (exec, same
-// arguments), so that `dcs`, without libtorch, starts at once and only these two commands pay
-// libtorch's start-up.
+// The part of `dcs` commands that needs libtorch: training in this process. Two programs share
+// every command file and differ only here: `dcs-train` links the real thing
+// (torch_commands.cc); `dcs` links torch_handover.cc, which hands the invocation to `dcs-train`
+// beside it (exec, same arguments, the pinned numeric kernels set), so that `dcs`, without
+// libtorch, starts at once and only training pays libtorch's start-up, once.
 
 #include "run/run_directory.h"
 #include "services/cli/cli_command.h"
@@ -18,9 +17,6 @@ namespace dcs::services::cli {
 // keeping `keep` checkpoints; prints progress and the summary. Returns the exit code.
 int TrainInProcess(const run::RunRequest& request, bool resume, int keep,
                    const GlobalFlags& global);
-
-// `dcs version`: this build and its libraries, the pinned numeric kernels included.
-int ShowVersion(const GlobalFlags& global);
 
 }  // namespace dcs::services::cli
 

@@ -1,7 +1,7 @@
 // Copyright 2026 The DCS Authors.
 //
-// torch_commands.h for `dcs`: the commands that need libtorch are handed to `dcs-train`, the
-// same client with libtorch linked, beside this program, with this invocation's arguments.
+// torch_commands.h for `dcs`: training in process is handed to `dcs-train`, the same client
+// with libtorch linked, beside this program, with this invocation's arguments.
 
 #include <unistd.h>
 
@@ -44,7 +44,5 @@ int TrainInProcess(const run::RunRequest& /*request*/, bool /*resume*/, int /*ke
                    const GlobalFlags& global) {
   return HandOver(global);
 }
-
-int ShowVersion(const GlobalFlags& global) { return HandOver(global); }
 
 }  // namespace dcs::services::cli

@@ -18,6 +18,7 @@
 #include "absl/strings/str_split.h"
 #include "absl/time/clock.h"
 #include "common/atomic_file.h"
+#include "common/pinned_kernels.h"
 #include "dcs/v1/coordinator_service.pb.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
@@ -275,27 +276,21 @@ TEST(DcsCliTest, VersionListsTheLinkedLibraries) {
   }
 }
 
-// `dcs version` shows the kernels `dcs train` computes with: started with others, it runs
-// itself again with the pinned ones (learner/torch_runtime.h) and says so.
-TEST(DcsCliTest, VersionRestartsWithThePinnedNumericKernels) {
-  if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) {
-    GTEST_SKIP() << "this CPU cannot run the pinned kernels";
-  }
-  // dcs inherits them.
-  setenv("OPENBLAS_CORETYPE", "Prescott", /*overwrite=*/1);
-  setenv("OPENBLAS_NUM_THREADS", "2", /*overwrite=*/1);
-  setenv("ATEN_CPU_CAPABILITY", "default", /*overwrite=*/1);
+// `dcs version` answers without libtorch (no start of it in the loader's report, dcs-train
+// not run), yet names libtorch's version, as compiled against, and the kernels every trainer
+// pins, from their one table.
+TEST(DcsCliTest, VersionShowsLibtorchAndThePinnedKernelsWithoutLoadingLibtorch) {
+  const LoaderReport loader;
   const RunResult version = Dcs({"version"});
-  unsetenv("OPENBLAS_CORETYPE");
-  unsetenv("OPENBLAS_NUM_THREADS");
-  unsetenv("ATEN_CPU_CAPABILITY");
   ASSERT_EQ(version.exit_code, 0) << version.output;
-  EXPECT_THAT(version.output, Not(HasSubstr("restarting")));  // silently
-  EXPECT_THAT(version.output, ContainsRegex("openblas core +Haswell"));
-  // scripts/bootstrap installs the pthread build, which locks its buffers (BlasMutex).
-  EXPECT_THAT(version.output, ContainsRegex("openblas build +pthread, 1 thread\\b"));
-  EXPECT_THAT(version.output, ContainsRegex("aten cpu capability +avx2"));
-  EXPECT_THAT(version.output, ContainsRegex("onednn convolutions +off"));
+  EXPECT_EQ(loader.LibtorchStarts(), 0);
+  EXPECT_THAT(version.output, ContainsRegex("\nlibtorch +[0-9]+\\.[0-9]+\\.[0-9]+\n"));
+  EXPECT_THAT(version.output, HasSubstr("\nPINNED KERNEL SETTING  VALUE\n"));
+  for (const KernelVariable& variable : kPinnedKernels) {
+    EXPECT_THAT(version.output,
+                ContainsRegex(absl::StrCat("\n", variable.name, " +", variable.value, "\n")));
+  }
+  EXPECT_THAT(version.output, ContainsRegex("\nonednn convolutions +off\n"));
 }
 
 }  // namespace

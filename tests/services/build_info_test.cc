@@ -1,6 +1,8 @@
 // Copyright 2026 The DCS Authors.
 #include "services/build_info.h"
 
+#include <torch/version.h>
+
 #include <string>
 #include <vector>
 
@@ -31,6 +33,13 @@ TEST(ServiceLibraryVersionsTest, ListsThePlumbingLibrariesWithVersions) {
     // Every version is dotted numbers (abseil's is its LTS date and patch level).
     EXPECT_THAT(library.version, MatchesRegex("[0-9]+(\\.[0-9]+)+.*")) << library.name;
   }
+}
+
+// What the programs without libtorch say of it is what those with it were compiled against.
+TEST(CompiledLibtorchVersionTest, IsTheVersionOfTheHeadersTheTrainersCompileWith) {
+  const LibraryVersion libtorch = CompiledLibtorchVersion();
+  EXPECT_EQ(libtorch.name, "libtorch");
+  EXPECT_EQ(libtorch.version, TORCH_VERSION);
 }
 
 TEST(ProcessBuildInfoTest, PlumbingLibrariesFirstThenOwn) {
