@@ -31,6 +31,9 @@ struct KernelVariable {
 // with them (learner::PinNumericKernels), paying libtorch's start-up twice.
 // OpenBLAS's pthread build also splits a product between threads, which changes its sums, so it
 // is pinned to the caller's thread (DESIGN.md §4: one thread per run).
+// The deployments (docker-compose.yml, deploy/kubernetes) set them for the learner too, and
+// tests/deploy/pinned_kernels.py reads this table to check them: keep one {"NAME", "value"} a
+// line.
 inline constexpr KernelVariable kPinnedKernels[] = {
     {"OPENBLAS_CORETYPE", "Haswell"},
     {"OPENBLAS_NUM_THREADS", "1"},

@@ -66,7 +66,8 @@ fi
 # --- docker-compose.yml against the conventions and the scrape config ----------------------
 # Read as docker-compose resolves it (anchors merged, .env applied), plus the file as written
 # for the keys docker-compose drops or adds.
-step "docker-compose.yml: services, probes, start-up order, ports, volumes, metrics targets"
+step "docker-compose.yml: services, probes, start-up order, ports, volumes, metrics targets," \
+  "pinned kernels"
 resolved=$(docker-compose -f docker-compose.yml config)
 RESOLVED="$resolved" python3 - <<'EOF' || exit 1
 import os
@@ -78,6 +79,7 @@ import yaml
 sys.path.insert(0, "tests/deploy")
 import compose_mounts  # noqa: E402
 from command_flags import flag  # noqa: E402
+from pinned_kernels import torch_programs, unpinned  # noqa: E402
 
 def fail(message):
     print(f"check_compose: FAIL: {message}", file=sys.stderr)
@@ -164,6 +166,13 @@ for name, service in dcs.items():
              "environment: it would not hold the cluster's token")
     if "stop_grace_period" not in service:
         fail(f"docker-compose.yml: service '{name}' has no stop_grace_period")
+    # A program that links libtorch starts with the pinned numeric kernels, or it starts
+    # libtorch, finds them unset and runs itself again with them.
+    if command[0] in torch_programs():
+        wrong = unpinned(service.get("environment") or {})
+        if wrong:
+            fail(f"docker-compose.yml: service '{name}' runs {command[0]}, which links libtorch, "
+                 f"without {' '.join(wrong)} (common/pinned_kernels.h) in its environment")
     if name != "coordinator":
         if service.get("restart") != "unless-stopped":
             fail(f"docker-compose.yml: worker '{name}' restart is {service.get('restart')!r}, "

@@ -108,7 +108,7 @@ fi
 step "${out//$tmp\//}"
 
 # --- what DCS needs of the manifests ----------------------------------------------------
-step "DCS: kinds, coordinator StatefulSet and volume, Deployments, probes and ports against the config files, resources, Services, PodDisruptionBudgets, scrape annotations, security, mutual TLS"
+step "DCS: kinds, coordinator StatefulSet and volume, Deployments, probes and ports against the config files, resources, Services, PodDisruptionBudgets, scrape annotations, security, mutual TLS, pinned kernels"
 python3 - "${rendered[@]}" <<'EOF' || exit 1
 import os
 import re
@@ -118,6 +118,7 @@ import yaml
 
 sys.path.insert(0, "tests/deploy")
 from command_flags import flag  # noqa: E402
+from pinned_kernels import torch_programs, unpinned  # noqa: E402
 
 files = sys.argv[1:]
 
@@ -450,6 +451,13 @@ for path in files:
                         or port not in [p["port"] for p in service["spec"]["ports"]]:
                     fail(cwhere, f"--coordinator {flags_coordinator} is not a port of a Service "
                          "in front of the coordinator")
+            # A program that links libtorch starts with the pinned numeric kernels, or it starts
+            # libtorch, finds them unset and runs itself again with them.
+            if program in torch_programs():
+                wrong = unpinned({n: e.get("value") for n, e in env.items()})
+                if wrong:
+                    fail(cwhere, f"{program} links libtorch, but its env lacks "
+                         f"{' '.join(wrong)} (common/pinned_kernels.h)")
             if program == "dcs-learner":
                 if env.get("OMP_NUM_THREADS", {}).get("value") != "1":
                     fail(cwhere, "OMP_NUM_THREADS is not 1 (libtorch)")
