@@ -102,11 +102,6 @@ absl::Status PinTorchThreads(int threads) {
   return absl::OkStatus();
 }
 
-bool CanPinNumericKernels() {
-  // GCC reports AVX2 only when the OS also saves the AVX registers.
-  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-}
-
 std::vector<KernelVariable> UnpinnedKernelVariables() {
   std::vector<KernelVariable> unpinned;
   for (const KernelVariable& pinned : kPinnedKernels) {
@@ -119,11 +114,6 @@ std::vector<KernelVariable> UnpinnedKernelVariables() {
 void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note) {
   // A runtime switch, read at each convolution: the same on every machine.
   at::globalContext().setUserEnabledMkldnn(kOneDnnConvolutions);
-  if (!CanPinNumericKernels()) {
-    note(absl::StrCat("this CPU lacks AVX2 or FMA, so DCS cannot pin its numeric kernels: ",
-                      kNoMatch, " (", NumericFingerprint(), ")"));
-    return;
-  }
   const std::vector<KernelVariable> unpinned = UnpinnedKernelVariables();
   if (unpinned.empty()) return;
   const std::string failure = RestartPinned();

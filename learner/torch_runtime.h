@@ -27,10 +27,6 @@ namespace dcs::learner {
 // started its inter-op pool (it can be sized only once per process).
 absl::Status PinTorchThreads(int threads);
 
-// Whether this CPU runs the pinned kernels: it has AVX2 and FMA (and the OS saves their
-// registers).
-bool CanPinNumericKernels();
-
 // The entries of kPinnedKernels (common/pinned_kernels.h) whose environment variable is unset
 // or holds another value. Empty when this process was started with the pinned kernels.
 std::vector<KernelVariable> UnpinnedKernelVariables();
@@ -42,10 +38,10 @@ std::vector<KernelVariable> UnpinnedKernelVariables();
 //   learner's registration name the kernels). The call does not return then. DCS's own ways of
 //   starting a trainer (`dcs train`, `dcs up`, the deployments) set the variables, so this
 //   restart, which pays libtorch's start-up twice, is for a trainer started by hand.
-// Returns when the kernels are pinned, or when they cannot be: on a CPU without AVX2 and FMA
-// (CanPinNumericKernels), or if the restart failed. Then `note` gets a line saying why and that
-// results will not match other machines' bit for bit, and the process goes on with the kernels
-// its libraries chose.
+// Returns when the kernels are pinned, or when the restart failed: then `note` gets a line
+// saying why and that results will not match other machines' bit for bit, and the process goes
+// on with the kernels its libraries chose. (Every DCS program runs on a CPU with the pinned
+// kernels' AVX2 and FMA: common/cpu_requirement.cc.)
 void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note);
 
 // The lock every call into BLAS from learner code (matrix products, convolutions, orthogonal
