@@ -28,12 +28,17 @@ namespace {
 
 constexpr char kDefaultConfigName[] = "run.yaml";
 
-// A server stream writing `pieces` in order, or finishing at once with an error. Owned by gRPC
-// from construction until OnDone.
+// A server stream writing `pieces` in order, or finishing at once with an error; from
+// construction, or from Start for a parked call's stream. Owned by gRPC from construction until
+// OnDone.
 template <typename Piece>
 class PiecesWriter final : public grpc::ServerWriteReactor<Piece> {
  public:
-  explicit PiecesWriter(absl::StatusOr<std::vector<Piece>> pieces) {
+  PiecesWriter() = default;  // writes nothing until Start
+  explicit PiecesWriter(absl::StatusOr<std::vector<Piece>> pieces) { Start(std::move(pieces)); }
+
+  // REQUIRES: called once, on a writer made without pieces.
+  void Start(absl::StatusOr<std::vector<Piece>> pieces) {
     if (!pieces.ok()) {
       this->Finish(ToGrpcStatus(pieces.status()));
       return;
@@ -197,6 +202,7 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitRun(grpc::CallbackServerCont
         {{"run_id", record.id}, {"env", record.submission.env},
          {"seed", std::to_string(record.submission.seed)}});
     *response->mutable_run() = RunToProto(record);
+    parked_.Wake(kRunsTopic);
     return absl::OkStatus();
   };
   return Finish(context, submit());
@@ -265,13 +271,14 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerCon
   if (absl::Status refused = Authenticate(*context); !refused.ok()) {
     return Finish(context, refused);
   }
-  auto acquire = [&]() -> absl::Status {
+  auto acquire = [this, request, response]() -> absl::StatusOr<bool> {
     DCS_ASSIGN_OR_RETURN(
         const std::optional<coordinator::LearnerLease> lease,
         runs_.store->AcquireRun(request->holder(), request->address(), request->numerics(),
                                 absl::Now()));
-    if (!lease.has_value()) return absl::OkStatus();
+    if (!lease.has_value()) return false;
     learner_leases_.Increment();
+    parked_.Wake(kSlotsTopic);  // the run's slots are free to take
     Log(LogLevel::kInfo, "run leased",
         {{"run_id", lease->run.id}, {"learner", request->holder()},
          {"epoch", std::to_string(lease->key.epoch)},
@@ -283,9 +290,9 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerCon
     response->set_sweep_id(lease->run.sweep_id);
     response->set_condition(lease->condition);
     response->set_observe(lease->observe);
-    return absl::OkStatus();
+    return true;
   };
-  return Finish(context, acquire());
+  return AnswerOrPark(context, request->wait(), kRunsTopic, acquire);
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::AcquireSlot(grpc::CallbackServerContext* context,
@@ -300,19 +307,22 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireSlot(grpc::CallbackServerCo
     if (!key.ok()) return Finish(context, Annotate(key.status(), "complete_learners"));
     complete_learners.push_back(*std::move(key));
   }
-  absl::StatusOr<std::optional<coordinator::SlotLease>> lease = runs_.store->AcquireSlot(
-      request->holder(), request->numerics(), complete_learners, absl::Now());
-  if (lease.ok() && lease->has_value()) {
-    const coordinator::SlotLease& slot = **lease;
+  auto acquire = [this, request, response,
+                  complete_learners = std::move(complete_learners)]() -> absl::StatusOr<bool> {
+    DCS_ASSIGN_OR_RETURN(const std::optional<coordinator::SlotLease> lease,
+                         runs_.store->AcquireSlot(request->holder(), request->numerics(),
+                                                  complete_learners, absl::Now()));
+    if (!lease.has_value()) return false;
     slot_leases_.Increment();
-    *response->mutable_lease() = LeaseToProto(slot.key);
-    response->set_learner_address(slot.learner_address);
-    response->set_learner_epoch(slot.learner_epoch);
-    response->set_config(slot.config);
-    response->set_seed(slot.seed);
+    *response->mutable_lease() = LeaseToProto(lease->key);
+    response->set_learner_address(lease->learner_address);
+    response->set_learner_epoch(lease->learner_epoch);
+    response->set_config(lease->config);
+    response->set_seed(lease->seed);
     *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
-  }
-  return Finish(context, lease.status());
+    return true;
+  };
+  return AnswerOrPark(context, request->wait(), kSlotsTopic, std::move(acquire));
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::RenewLease(grpc::CallbackServerContext* context,
@@ -424,13 +434,15 @@ grpc::ServerReadReactor<v1::SubmitEvaluationRequest>* CoordinatorService::Submit
     DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request.lease()));
     v1::PolicyWeights weights;  // checked here, so that actors are given what parses
     DCS_RETURN_IF_ERROR(joined.Parse(weights));
-    return runs_.store->SubmitEvaluation(key,
-                                         {.policy_version = request.policy_version(),
-                                          .step = request.step(),
-                                          .contexts = request.contexts(),
-                                          .episodes = request.episodes(),
-                                          .weights = std::move(joined.payload())},
-                                         absl::Now());
+    DCS_RETURN_IF_ERROR(runs_.store->SubmitEvaluation(key,
+                                                      {.policy_version = request.policy_version(),
+                                                       .step = request.step(),
+                                                       .contexts = request.contexts(),
+                                                       .episodes = request.episodes(),
+                                                       .weights = std::move(joined.payload())},
+                                                      absl::Now()));
+    parked_.Wake(kEvaluationJobsTopic);
+    return absl::OkStatus();
   };
   return new JoiningReader<v1::SubmitEvaluationRequest>(
       PieceJoiner<v1::SubmitEvaluationRequest>(&v1::SubmitEvaluationRequest::mutable_weights,
@@ -444,16 +456,21 @@ grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
   if (absl::Status refused = Authenticate(*context); !refused.ok()) {
     return Finish(context, refused);
   }
-  absl::StatusOr<coordinator::EvaluationProgress> evaluation =
-      runs_.store->GetEvaluation(request->run_id(), request->policy_version());
-  if (evaluation.ok()) {
-    response->set_contexts(evaluation->contexts);
-    response->set_done(evaluation->done);
-    for (const coordinator::ContextReturns& result : evaluation->results) {
+  // Answers with how far the evaluation is; waits (with a `wait`) until it is done.
+  auto progress = [this, request, response]() -> absl::StatusOr<bool> {
+    DCS_ASSIGN_OR_RETURN(
+        const coordinator::EvaluationProgress evaluation,
+        runs_.store->GetEvaluation(request->run_id(), request->policy_version()));
+    response->Clear();
+    response->set_contexts(evaluation.contexts);
+    response->set_done(evaluation.done);
+    for (const coordinator::ContextReturns& result : evaluation.results) {
       *response->add_results() = ContextReturnsToProto(result);
     }
-  }
-  return Finish(context, evaluation.status());
+    return evaluation.done == evaluation.contexts;
+  };
+  return AnswerOrPark(context, request->wait(),
+                      EvaluationTopic(request->run_id(), request->policy_version()), progress);
 }
 
 grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::AcquireEvaluation(
@@ -461,7 +478,8 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
   if (absl::Status refused = Authenticate(*context); !refused.ok()) {
     return Refuse<grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>>(refused);
   }
-  auto acquire = [&]() -> absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> {
+  // The grant's messages: a header without jobs when none is open.
+  auto acquire = [this, request]() -> absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> {
     DCS_ASSIGN_OR_RETURN(std::optional<coordinator::EvaluationGrant> grant,
                          runs_.store->AcquireEvaluationJobs(request->holder(),
                                                             request->numerics(),
@@ -479,9 +497,28 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
     return CutIntoMessages(std::move(header), grant->weights,
                            &v1::AcquireEvaluationResponse::mutable_weights);
   };
-  absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> messages = acquire();
-  rejected_.Count(messages.status());
-  return new PiecesWriter<v1::AcquireEvaluationResponse>(std::move(messages));
+  using Writer = PiecesWriter<v1::AcquireEvaluationResponse>;
+  const auto answer = [this](Writer* writer,
+                             absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> messages) {
+    rejected_.Count(messages.status());
+    writer->Start(std::move(messages));
+  };
+  const absl::Duration wait = DurationFromProto(request->wait());
+  auto* writer = new Writer();
+  if (wait <= absl::ZeroDuration()) {
+    answer(writer, acquire());
+    return writer;
+  }
+  parked_.Park(
+      kEvaluationJobsTopic, ParkingDeadline(*context, wait),
+      [acquire, answer, writer] {
+        absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> messages = acquire();
+        if (messages.ok() && messages->front().jobs().empty()) return false;
+        answer(writer, std::move(messages));
+        return true;
+      },
+      [acquire, answer, writer] { answer(writer, acquire()); });
+  return writer;
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ReportEvaluation(
@@ -504,6 +541,9 @@ grpc::ServerUnaryReactor* CoordinatorService::ReportEvaluation(
     DCS_ASSIGN_OR_RETURN(const std::vector<bool> duplicate,
                          runs_.store->ReportEvaluationJobs(results));
     for (const bool delivered_before : duplicate) response->add_duplicate(delivered_before);
+    for (const coordinator::JobResult& delivered : results) {
+      parked_.Wake(EvaluationTopic(delivered.job.run_id, delivered.job.policy_version));
+    }
     return absl::OkStatus();
   };
   return Finish(context, report());

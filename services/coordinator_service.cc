@@ -2,9 +2,12 @@
 #include "services/coordinator_service.h"
 
 #include <algorithm>
+#include <chrono>
+#include <functional>
 #include <utility>
 #include <vector>
 
+#include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "services/cluster_proto.h"
 #include "services/grpc_status.h"
@@ -60,6 +63,43 @@ grpc::ServerUnaryReactor* CoordinatorService::Finish(grpc::CallbackServerContext
   rejected_.Count(status);
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   reactor->Finish(ToGrpcStatus(status));
+  return reactor;
+}
+
+std::string CoordinatorService::EvaluationTopic(absl::string_view run_id,
+                                                int64_t policy_version) {
+  return absl::StrCat("evaluation ", run_id, "@", policy_version);
+}
+
+absl::Time ParkingDeadline(const grpc::CallbackServerContext& context, absl::Duration wait) {
+  constexpr absl::Duration kMaxWait = absl::Seconds(10);
+  constexpr absl::Duration kAnswerMargin = absl::Milliseconds(100);
+  absl::Time deadline = absl::Now() + std::min(wait, kMaxWait);
+  if (context.deadline() != std::chrono::system_clock::time_point::max()) {
+    deadline = std::min(deadline, absl::FromChrono(context.deadline()) - kAnswerMargin);
+  }
+  return deadline;
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::AnswerOrPark(
+    grpc::CallbackServerContext* context, const google::protobuf::Duration& wait,
+    std::string topic, std::function<absl::StatusOr<bool>()> attempt) {
+  const absl::Duration asked = DurationFromProto(wait);
+  if (asked <= absl::ZeroDuration()) return Finish(context, attempt().status());
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  const auto answer = [this, reactor](const absl::Status& status) {
+    rejected_.Count(status);
+    reactor->Finish(ToGrpcStatus(status));
+  };
+  parked_.Park(
+      std::move(topic), ParkingDeadline(*context, asked),
+      [attempt, answer] {
+        const absl::StatusOr<bool> found = attempt();
+        if (found.ok() && !*found) return false;
+        answer(found.status());
+        return true;
+      },
+      [attempt, answer] { answer(attempt().status()); });
   return reactor;
 }
 

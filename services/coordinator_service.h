@@ -5,15 +5,21 @@
 // dcs.v1.CoordinatorService over the coordinator library: each method decodes the request,
 // calls the library, encodes the reply and converts the status. Workers' membership is in
 // coordinator_service.cc, runs and leases in coordinator_runs.cc, sweeps in
-// coordinator_sweeps.cc. Thread-safe.
+// coordinator_sweeps.cc. The calls by which workers ask for work (AcquireRun, AcquireSlot,
+// AcquireEvaluation) and a learner for its evaluation (GetEvaluation) may wait for it: with a
+// `wait`, a call that finds nothing is parked (services/parked_calls.h) until the work may have
+// come (a run submitted, a run taken, an evaluation submitted, its last job reported) or its
+// wait is up. Thread-safe.
 // Borrows the registry and the store (must outlive the service); owns its metrics'
 // registration.
 
 #include <prometheus/counter.h>
 #include <prometheus/registry.h>
 
+#include <functional>
 #include <string>
 
+#include "absl/status/statusor.h"
 #include "absl/time/time.h"
 #include "coordinator/run_store.h"
 #include "coordinator/sweep_results.h"
@@ -24,6 +30,7 @@
 #include "services/auth.h"
 #include "services/build_info.h"
 #include "services/grpc_status.h"
+#include "services/parked_calls.h"
 #include "services/refusal_counter.h"
 
 namespace dcs::services {
@@ -146,6 +153,24 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   // A stream refused before it starts (an unauthenticated caller), counted under its reason.
   template <typename StreamReactor>
   StreamReactor* Refuse(const absl::Status& status);
+  // What parked calls wait for (ParkedCalls topics): a queued run (AcquireRun), a free slot
+  // (AcquireSlot), an open evaluation job (AcquireEvaluation), and one evaluation's last result
+  // (GetEvaluation).
+  static constexpr char kRunsTopic[] = "runs";
+  static constexpr char kSlotsTopic[] = "slots";
+  static constexpr char kEvaluationJobsTopic[] = "evaluation jobs";
+  static std::string EvaluationTopic(absl::string_view run_id, int64_t policy_version);
+
+  // Answers a unary call by `attempt`, which fills the response and returns whether it found
+  // what the caller waits for. With a positive `wait`, until it does, the call is parked under
+  // `topic` (tried again at each Wake of it) for that long at most (ParkingDeadline), then
+  // answered by a last attempt. `attempt` is called on the parked calls' thread, not the
+  // handler's: it must hold what it reads by value or by pointer to the call's own request and
+  // response.
+  grpc::ServerUnaryReactor* AnswerOrPark(grpc::CallbackServerContext* context,
+                                         const google::protobuf::Duration& wait,
+                                         std::string topic,
+                                         std::function<absl::StatusOr<bool>()> attempt);
   // The actors heartbeating now, who share each evaluation's jobs.
   int AliveActors() const;
   // Stores a checkpoint a learner streamed (PutCheckpoint), with the evaluation log as of it.
@@ -164,7 +189,13 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   prometheus::Counter& slot_leases_;
   prometheus::Counter& evaluation_leases_;
   RefusalCounter rejected_;
+  // Last: destroyed first, answering the calls still parked while the rest is alive.
+  ParkedCalls parked_;
 };
+
+// When a call parked with `wait` is answered at the latest: `wait` from now (at most 10 s), and
+// early enough before its own deadline for the answer to reach the caller.
+absl::Time ParkingDeadline(const grpc::CallbackServerContext& context, absl::Duration wait);
 
 // Implementation details.
 

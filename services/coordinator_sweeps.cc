@@ -63,6 +63,7 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitSweep(grpc::CallbackServerCo
         {{"sweep_id", record.id}, {"name", record.name},
          {"runs", std::to_string(runs.size())}});
     *response->mutable_sweep() = SweepToProto(record);
+    parked_.Wake(kRunsTopic);
     return absl::OkStatus();
   };
   return Finish(context, submit());

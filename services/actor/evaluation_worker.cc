@@ -56,7 +56,11 @@ void EvaluationWorker::Stop() {
 
 void EvaluationWorker::Work() {
   while (!stopping_.HasBeenNotified()) {
-    if (!RunJobs()) stopping_.WaitForNotificationWithTimeout(options_.poll_interval);
+    const absl::Time asked = absl::Now();
+    if (RunJobs()) continue;
+    // The rest of the interval, if the coordinator answered before it (it could not be reached,
+    // or is one that does not hold calls).
+    stopping_.WaitForNotificationWithTimeout(options_.poll_interval - (absl::Now() - asked));
   }
 }
 
@@ -108,6 +112,7 @@ bool EvaluationWorker::RunJobs() {
   request.set_holder(options_.holder);
   request.set_numerics(options_.numerics);
   request.set_max_jobs(jobs_wanted_);
+  *request.mutable_wait() = DurationToProto(options_.poll_interval);
   PieceJoiner<v1::AcquireEvaluationResponse> reply(
       &v1::AcquireEvaluationResponse::mutable_weights, "the evaluation's policy");
   const absl::Status acquired = CallServerStream(

@@ -40,7 +40,9 @@ struct EvaluationWorkerOptions {
   std::string coordinator_address;
   std::string holder;    // the actor's name in leases
   std::string numerics;  // the numeric libraries' fingerprint
-  absl::Duration poll_interval = absl::Milliseconds(200);  // when there is no job
+  // How long the coordinator may hold a request for jobs while it has none (a long poll), and
+  // so how often an idle actor asks.
+  absl::Duration poll_interval = absl::Milliseconds(200);
   absl::Duration rpc_timeout = absl::Seconds(10);
   int max_jobs = 8;  // taken at once, at most
 };
@@ -59,7 +61,8 @@ class EvaluationWorker {
 
  private:
   void Work();
-  // Takes jobs, runs them and delivers them; false if there were none.
+  // Takes jobs (waiting up to a poll interval at the coordinator for some), runs them and
+  // delivers them; false if there were none.
   bool RunJobs();
   // The returns of `job`, one of `grant`'s, with the policy `weights` (a serialised
   // PolicyWeights).

@@ -130,11 +130,15 @@ void SlotWorkers::Stop() {
 }
 
 void SlotWorkers::Manage() {
-  while (!stopping_.WaitForNotificationWithTimeout(options_.poll_interval)) {
+  while (!stopping_.HasBeenNotified()) {
+    const absl::Time round = absl::Now();
     JoinFinished(mu_, slots_);
     RenewDueLeases(*coordinator_, options_.rpc_timeout, mu_, slots_, lease_duration_,
                    [](Slot& slot) { slot.lost = true; });
-    AcquireSlot();
+    if (AcquireSlot()) continue;  // the next at once: a run's slots come free together
+    // The rest of the round, if the coordinator answered before it (no slot wanted, or it could
+    // not be reached, or is one that does not hold calls).
+    stopping_.WaitForNotificationWithTimeout(options_.poll_interval - (absl::Now() - round));
   }
 }
 
@@ -143,13 +147,14 @@ absl::Duration SlotWorkers::LeaseDuration() {
   return lease_duration_;
 }
 
-void SlotWorkers::AcquireSlot() {
+bool SlotWorkers::AcquireSlot() {
   v1::AcquireSlotRequest request;
   request.set_holder(options_.holder);
   request.set_numerics(options_.numerics);
+  *request.mutable_wait() = DurationToProto(options_.poll_interval);
   {
     absl::MutexLock lock(&mu_);
-    if (static_cast<int>(slots_.size()) >= options_.max_slots) return;
+    if (static_cast<int>(slots_.size()) >= options_.max_slots) return false;
     const absl::Time now = absl::Now();
     std::erase_if(complete_learners_,
                   [now](const auto& entry) { return entry.second.until <= now; });
@@ -165,10 +170,10 @@ void SlotWorkers::AcquireSlot() {
     if (!status.ok() && !IsTransient(status)) {
       Log(LogLevel::kWarning, "cannot take a slot", {{"error", status.ToString()}});
     }
-    return;
+    return false;
   }
   absl::StatusOr<coordinator::LeaseKey> lease = LeaseFromProto(response.lease());
-  if (!lease.ok()) return;
+  if (!lease.ok()) return false;
   auto slot = std::make_shared<Slot>();
   slot->lease = *lease;
   slot->learner_address = response.learner_address();
@@ -185,6 +190,7 @@ void SlotWorkers::AcquireSlot() {
     slot->done = true;
   });
   slots_[LeaseName(slot->lease)] = std::move(slot);
+  return true;
 }
 
 void SlotWorkers::Work(Slot& slot) {

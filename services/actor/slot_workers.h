@@ -43,6 +43,8 @@ struct SlotWorkersOptions {
   std::string holder;    // the actor's name in leases
   std::string numerics;  // the numeric libraries' fingerprint
   int max_slots = 64;
+  // How long the coordinator may hold a request for a slot while none is free (a long poll),
+  // and so how often an actor that has found none asks again.
   absl::Duration poll_interval = absl::Milliseconds(200);
   absl::Duration rpc_timeout = absl::Seconds(10);
   absl::Duration work_wait = absl::Seconds(2);  // how long a learner may hold GetSlotWork
@@ -63,7 +65,9 @@ class SlotWorkers {
   struct Slot;
 
   void Manage();
-  void AcquireSlot();
+  // Takes a slot (waiting up to a poll interval at the coordinator for one) and starts its
+  // thread; false if it got none.
+  bool AcquireSlot();
   // The coordinator's lease duration, as it last said.
   absl::Duration LeaseDuration();
   void Work(Slot& slot);

@@ -123,30 +123,33 @@ absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Find(const std::st
 
 void HostedRuns::Manage() {
   while (!stopping_.HasBeenNotified()) {
+    const absl::Time round = absl::Now();
     JoinFinished(mu_, runs_);
     RenewDueLeases(*coordinator_, options_.rpc_timeout, mu_, runs_, lease_duration_,
                    [](Run& run) { run.Lose(); });
-    AcquireRun();
-    // Until the next round, or until a run ends and makes room for the next one at once.
+    if (AcquireRun()) continue;  // the next at once, while there is room
+    // The rest of the round (the coordinator answered before it: no room here, or it could not
+    // be reached, or is one that does not hold calls), or until a run ends and makes room.
     absl::MutexLock lock(&mu_);
     auto woken = [this]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_) {
       return stopping_.HasBeenNotified() ||
              std::any_of(runs_.begin(), runs_.end(),
                          [](const auto& entry) { return entry.second->done.load(); });
     };
-    mu_.AwaitWithTimeout(absl::Condition(&woken), options_.poll_interval);
+    mu_.AwaitWithTimeout(absl::Condition(&woken), options_.poll_interval - (absl::Now() - round));
   }
 }
 
-void HostedRuns::AcquireRun() {
+bool HostedRuns::AcquireRun() {
   {
     absl::MutexLock lock(&mu_);
-    if (static_cast<int>(runs_.size()) >= options_.max_runs) return;
+    if (static_cast<int>(runs_.size()) >= options_.max_runs) return false;
   }
   v1::AcquireRunRequest request;
   request.set_holder(address_);
   request.set_address(address_);
   request.set_numerics(options_.numerics);
+  *request.mutable_wait() = DurationToProto(options_.poll_interval);
   v1::AcquireRunResponse response;
   const absl::Status status =
       CallUnary(*coordinator_, &v1::CoordinatorService::Stub::AcquireRun, request, response,
@@ -155,11 +158,11 @@ void HostedRuns::AcquireRun() {
     if (!IsTransient(status)) {
       Log(LogLevel::kWarning, "cannot take a run", {{"error", status.ToString()}});
     }
-    return;
+    return false;
   }
-  if (!response.has_lease()) return;
+  if (!response.has_lease()) return false;
   absl::StatusOr<coordinator::LeaseKey> lease = LeaseFromProto(response.lease());
-  if (!lease.ok()) return;
+  if (!lease.ok()) return false;
   auto run = std::make_shared<Run>();
   run->lease = *lease;
   run->config = response.config();
@@ -179,6 +182,7 @@ void HostedRuns::AcquireRun() {
     run->done = true;
   });
   runs_[{run->lease.run_id, run->lease.epoch}] = std::move(run);
+  return true;
 }
 
 template <typename Attempt>

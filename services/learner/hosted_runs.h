@@ -44,6 +44,8 @@ struct HostedRunsOptions {
   std::string coordinator_address;
   std::string numerics;  // the numeric libraries' fingerprint (learner/torch_runtime.h)
   int max_runs = 1;
+  // How long the coordinator may hold a request for a run while none is queued (a long poll),
+  // and so how often a learner with room asks; half of it for an evaluation's results.
   absl::Duration poll_interval = absl::Milliseconds(200);
   absl::Duration rpc_timeout = absl::Seconds(10);
   absl::Duration transfer_timeout = absl::Minutes(2);  // a checkpoint's stream
@@ -73,7 +75,9 @@ class HostedRuns {
   struct Run;
 
   void Manage();
-  void AcquireRun();
+  // Takes a run (waiting up to a poll interval at the coordinator for one) and starts its
+  // thread; false if it got none.
+  bool AcquireRun();
   void Train(Run& run);
   // Loads the run's host. On an error the run is finished as failed.
   absl::StatusOr<std::shared_ptr<learner::RunHost>> Load(Run& run);

@@ -11,6 +11,7 @@
 #include "services/pieces.h"
 #include "services/run_proto.h"
 #include "services/stream_call.h"
+#include "services/time_proto.h"
 #include "services/trajectory_proto.h"
 #include "services/unary_call.h"
 
@@ -77,17 +78,23 @@ learner::Evaluator EvaluateOnActors(std::shared_ptr<v1::CoordinatorService::Stub
     }
     DCS_RETURN_IF_ERROR(status);
 
+    // The coordinator holds each ask until the evaluation is done or a poll interval is up.
     v1::GetEvaluationRequest get;
     get.set_run_id(lease.run_id);
     get.set_policy_version(task.due.policy_version);
+    *get.mutable_wait() = DurationToProto(options.poll_interval);
     while (true) {
+      const absl::Time start = absl::Now();
       v1::GetEvaluationResponse answer;
       const absl::Status asked =
           CallUnary(*coordinator, &v1::CoordinatorService::Stub::GetEvaluation, get, answer,
                     options.rpc_timeout, "coordinator");
       if (!asked.ok() && !IsTransient(asked)) return asked;
       if (asked.ok() && answer.done() == answer.contexts()) return ToResult(task, answer);
-      if (stop.WaitForNotificationWithTimeout(options.poll_interval)) return cancelled();
+      // The rest of the interval, if the answer came before it.
+      if (stop.WaitForNotificationWithTimeout(options.poll_interval - (absl::Now() - start))) {
+        return cancelled();
+      }
     }
   };
 }

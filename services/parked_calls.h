@@ -1,0 +1,76 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_PARKED_CALLS_H_
+#define DCS_SERVICES_PARKED_CALLS_H_
+
+// Long polls: calls that found nothing to hand out, held by the server until what they wait for
+// may have changed, or their time is up. A worker that asks the coordinator for work and finds
+// none waits there (up to the `wait` its request names) instead of asking again a poll interval
+// later: new work reaches it at once (an evaluation's jobs the moment the learner submits them),
+// and an idle worker still costs one attempt per `wait`.
+//
+// A call parks under a topic (what it waits for: "evaluation jobs", one evaluation's results)
+// with an attempt and an expiry. The attempt runs at once, then again whenever Wake(topic) is
+// called: an attempt that finishes its call (it found something, or failed) returns true and the
+// call is dropped; one that finds nothing returns false and the call stays parked. A call whose
+// deadline passes is expired instead: the expiry finishes it with its empty answer. A wake that
+// comes while an attempt runs makes the call try again after it, so no change is missed.
+// Attempts and expiries run on the parked calls' own thread, one at a time, never under a lock;
+// each call ends in exactly one successful attempt or one expiry.
+//
+// Thread-safe. The destructor expires every call still parked, then joins its thread.
+
+#include <functional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/base/thread_annotations.h"
+#include "absl/container/flat_hash_set.h"
+#include "absl/strings/string_view.h"
+#include "absl/synchronization/mutex.h"
+#include "absl/time/time.h"
+
+namespace dcs::services {
+
+class ParkedCalls {
+ public:
+  // Tries the call again; true once it has finished the call.
+  using Attempt = std::function<bool()>;
+  // Finishes the call with nothing.
+  using Expire = std::function<void()>;
+
+  ParkedCalls();
+  ~ParkedCalls();
+  ParkedCalls(const ParkedCalls&) = delete;
+  ParkedCalls& operator=(const ParkedCalls&) = delete;
+
+  // Parks a call until `deadline` under `topic`, and makes its first attempt.
+  void Park(std::string topic, absl::Time deadline, Attempt attempt, Expire expire);
+
+  // Something the calls parked under `topic` wait for may have changed: they try again.
+  void Wake(absl::string_view topic);
+
+ private:
+  struct Call {
+    std::string topic;
+    absl::Time deadline;
+    Attempt attempt;
+    Expire expire;
+    bool woken = false;  // to attempt at the next round
+  };
+
+  void Dispatch();
+
+  absl::Mutex mu_;
+  std::vector<Call> parked_ ABSL_GUARDED_BY(mu_);
+  // Topics woken while their calls were out of parked_, attempting.
+  absl::flat_hash_set<std::string> woken_while_out_ ABSL_GUARDED_BY(mu_);
+  bool work_ ABSL_GUARDED_BY(mu_) = false;        // a call in parked_ is woken
+  bool attempting_ ABSL_GUARDED_BY(mu_) = false;  // a round's calls are out of parked_
+  bool stopping_ ABSL_GUARDED_BY(mu_) = false;
+  std::thread dispatcher_;
+};
+
+}  // namespace dcs::services
+
+#endif  // DCS_SERVICES_PARKED_CALLS_H_
