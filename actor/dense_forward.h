@@ -2,8 +2,9 @@
 #ifndef DCS_ACTOR_DENSE_FORWARD_H_
 #define DCS_ACTOR_DENSE_FORWARD_H_
 
-// Dense layers on batches, in Eigen, for actors' inference (actor/policy_network.h) and the
-// learner's passes (learner/actor_critic.h). A batch holds one sample per column ([features x
+// Dense layers on batches, in Eigen: actors' inference (actor/policy_network.h) computes them
+// with DenseForward; the learner's passes (learner/actor_critic.h) with matrix-matrix products
+// of their own, and the same Activate. A batch holds one sample per column ([features x
 // samples], column-major), so a sample's values are contiguous, as in a row-major [samples x
 // features] array (a torch tensor of a batch). tanh is Eigen's vectorised rational
 // approximation (within a few units in the last place of std::tanh), the same in both.

@@ -7,9 +7,10 @@
 // order: the same binary would give other bits on a CPU with other caches. PinEigenBlocking
 // replaces the sizes read from the CPU by constants, for the whole process, so that a product
 // gives the same bits on every x86-64-v3 CPU, Intel or AMD (DESIGN.md §4). Every DCS function
-// that multiplies matrices with Eigen calls it first (actor/dense_forward.h, the learner's
-// passes). The instruction set, the other choice that shapes Eigen's kernels, is fixed when DCS
-// is compiled (x86-64-v3: CMakeLists.txt); Eigen runs on the caller's thread only.
+// that multiplies matrices by matrices with Eigen calls it first (the learner's passes,
+// learner/actor_critic.cc); matrix-vector products (actors' inference) block by constants of
+// their own. The instruction set, the other choice that shapes Eigen's kernels, is fixed when
+// DCS is compiled (x86-64-v3: CMakeLists.txt); Eigen runs on the caller's thread only.
 //
 // Thread-safe: the first call pins, on whichever thread; later calls only check that it did.
 

@@ -153,9 +153,10 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   // A stream refused before it starts (an unauthenticated caller), counted under its reason.
   template <typename StreamReactor>
   StreamReactor* Refuse(const absl::Status& status);
-  // What parked calls wait for (ParkedCalls topics): a queued run (AcquireRun), a free slot
-  // (AcquireSlot), an open evaluation job (AcquireEvaluation), and one evaluation's last result
-  // (GetEvaluation).
+  // What parked calls wait for (ParkedCalls topics): a queued run (AcquireRun), a free slot of
+  // a run its learner hosts (AcquireSlot: woken when the learner fetches the run's checkpoint,
+  // which it does as it loads the run), an open evaluation job (AcquireEvaluation), and one
+  // evaluation's last result (GetEvaluation).
   static constexpr char kRunsTopic[] = "runs";
   static constexpr char kSlotsTopic[] = "slots";
   static constexpr char kEvaluationJobsTopic[] = "evaluation jobs";
@@ -164,9 +165,10 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   // Answers a unary call by `attempt`, which fills the response and returns whether it found
   // what the caller waits for. With a positive `wait`, until it does, the call is parked under
   // `topic` (tried again at each Wake of it) for that long at most (ParkingDeadline), then
-  // answered by a last attempt. `attempt` is called on the parked calls' thread, not the
-  // handler's: it must hold what it reads by value or by pointer to the call's own request and
-  // response.
+  // answered with the response its last attempt left (GetEvaluation's says how far the
+  // evaluation is; an Acquire's is empty). `attempt` is called on the parked calls' thread, not
+  // the handler's: it must hold what it reads by value or by pointer to the call's own request
+  // and response.
   grpc::ServerUnaryReactor* AnswerOrPark(grpc::CallbackServerContext* context,
                                          const google::protobuf::Duration& wait,
                                          std::string topic,

@@ -135,9 +135,9 @@ void SlotWorkers::Manage() {
     JoinFinished(mu_, slots_);
     RenewDueLeases(*coordinator_, options_.rpc_timeout, mu_, slots_, lease_duration_,
                    [](Slot& slot) { slot.lost = true; });
-    if (AcquireSlot()) continue;  // the next at once: a run's slots come free together
-    // The rest of the round, if the coordinator answered before it (no slot wanted, or it could
-    // not be reached, or is one that does not hold calls).
+    AcquireSlot();
+    // The rest of the round: an actor takes at most one slot a round, so that the actors share
+    // the slots of runs that start together (each steps its slots on one core).
     stopping_.WaitForNotificationWithTimeout(options_.poll_interval - (absl::Now() - round));
   }
 }
@@ -147,14 +147,14 @@ absl::Duration SlotWorkers::LeaseDuration() {
   return lease_duration_;
 }
 
-bool SlotWorkers::AcquireSlot() {
+void SlotWorkers::AcquireSlot() {
   v1::AcquireSlotRequest request;
   request.set_holder(options_.holder);
   request.set_numerics(options_.numerics);
   *request.mutable_wait() = DurationToProto(options_.poll_interval);
   {
     absl::MutexLock lock(&mu_);
-    if (static_cast<int>(slots_.size()) >= options_.max_slots) return false;
+    if (static_cast<int>(slots_.size()) >= options_.max_slots) return;
     const absl::Time now = absl::Now();
     std::erase_if(complete_learners_,
                   [now](const auto& entry) { return entry.second.until <= now; });
@@ -170,10 +170,10 @@ bool SlotWorkers::AcquireSlot() {
     if (!status.ok() && !IsTransient(status)) {
       Log(LogLevel::kWarning, "cannot take a slot", {{"error", status.ToString()}});
     }
-    return false;
+    return;
   }
   absl::StatusOr<coordinator::LeaseKey> lease = LeaseFromProto(response.lease());
-  if (!lease.ok()) return false;
+  if (!lease.ok()) return;
   auto slot = std::make_shared<Slot>();
   slot->lease = *lease;
   slot->learner_address = response.learner_address();
@@ -190,7 +190,6 @@ bool SlotWorkers::AcquireSlot() {
     slot->done = true;
   });
   slots_[LeaseName(slot->lease)] = std::move(slot);
-  return true;
 }
 
 void SlotWorkers::Work(Slot& slot) {
@@ -248,6 +247,7 @@ void SlotWorkers::Work(Slot& slot) {
         if (learner_alive()) continue;
       }
       Log(LogLevel::kInfo, "giving up a slot", {{"slot", name}, {"error", asked.ToString()}});
+      release();  // at once, for another try, rather than when the lease lapses
       return;
     }
     learner_answered_at = absl::Now();

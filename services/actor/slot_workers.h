@@ -66,8 +66,8 @@ class SlotWorkers {
 
   void Manage();
   // Takes a slot (waiting up to a poll interval at the coordinator for one) and starts its
-  // thread; false if it got none.
-  bool AcquireSlot();
+  // thread, if it has room for one.
+  void AcquireSlot();
   // The coordinator's lease duration, as it last said.
   absl::Duration LeaseDuration();
   void Work(Slot& slot);

@@ -95,7 +95,8 @@ void HostedRuns::Stop() {
 }
 
 absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Find(const std::string& run_id,
-                                                                   int64_t learner_epoch) {
+                                                                   int64_t learner_epoch,
+                                                                   absl::Duration wait) {
   std::shared_ptr<Run> run;
   {
     absl::MutexLock lock(&mu_);
@@ -115,6 +116,10 @@ absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Find(const std::st
         absl::StrCat("this learner lost ", run_id, "'s lease (epoch ", learner_epoch, ")"));
   }
   absl::MutexLock lock(&run->mu);
+  auto loaded = [&run]() ABSL_EXCLUSIVE_LOCKS_REQUIRED(run->mu) {
+    return run->host != nullptr || run->lost;
+  };
+  run->mu.AwaitWithTimeout(absl::Condition(&loaded), wait);
   if (run->host == nullptr) {
     return absl::UnavailableError(absl::StrCat(run_id, " is still loading"));
   }

@@ -62,11 +62,12 @@ class HostedRuns {
   // Starts taking runs, for a LearnerService that actors reach at `address`.
   void Start(std::string address);
 
-  // The host of run `run_id` for the actors of its learner lease `learner_epoch`. NOT_FOUND if
-  // this learner does not host the run; FAILED_PRECONDITION for another epoch of its lease;
-  // UNAVAILABLE while it loads.
-  absl::StatusOr<std::shared_ptr<learner::RunHost>> Find(const std::string& run_id,
-                                                         int64_t learner_epoch);
+  // The host of run `run_id` for the actors of its learner lease `learner_epoch`, waiting up to
+  // `wait` while the run loads. NOT_FOUND if this learner does not host the run;
+  // FAILED_PRECONDITION for another epoch of its lease; UNAVAILABLE if it still loads.
+  absl::StatusOr<std::shared_ptr<learner::RunHost>> Find(
+      const std::string& run_id, int64_t learner_epoch,
+      absl::Duration wait = absl::ZeroDuration());
 
   // Stops taking runs and stops every run (its lease lapses, to go to another learner).
   void Stop();

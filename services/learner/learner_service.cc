@@ -41,10 +41,11 @@ grpc::Status LearnerService::GetSlotWork(grpc::ServerContext* context,
   v1::GetSlotWorkResponse header;
   std::string weights;  // serialised, if the actor lacks them
   auto get = [&]() -> absl::Status {
-    DCS_ASSIGN_OR_RETURN(const std::shared_ptr<learner::RunHost> host,
-                         runs_.Find(request->lease().run_id(), request->learner_epoch()));
     const absl::Duration wait =
         std::clamp(DurationFromProto(request->wait()), absl::ZeroDuration(), kMaxWait);
+    // A run that loads is work not ready yet: the call waits for it as for work.
+    DCS_ASSIGN_OR_RETURN(const std::shared_ptr<learner::RunHost> host,
+                         runs_.Find(request->lease().run_id(), request->learner_epoch(), wait));
     DCS_ASSIGN_OR_RETURN(const learner::SlotWork work,
                          host->GetSlotWork(request->lease().slot(), request->lease().epoch(),
                                            request->positioned_at(), wait));
