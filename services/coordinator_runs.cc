@@ -498,27 +498,22 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
     return CutIntoMessages(std::move(header), grant->weights,
                            &v1::AcquireEvaluationResponse::mutable_weights);
   };
-  using Writer = PiecesWriter<v1::AcquireEvaluationResponse>;
-  const auto answer = [this](Writer* writer,
-                             absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> messages) {
-    rejected_.Count(messages.status());
-    writer->Start(std::move(messages));
-  };
-  const absl::Duration wait = DurationFromProto(request->wait());
-  auto* writer = new Writer();
-  if (wait <= absl::ZeroDuration()) {
-    answer(writer, acquire());
-    return writer;
-  }
-  parked_.Park(
-      kEvaluationJobsTopic, ParkingDeadline(*context, wait),
-      [acquire, answer, writer] {
-        absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> messages = acquire();
-        if (messages.ok() && messages->front().jobs().empty()) return false;
-        answer(writer, std::move(messages));
-        return true;
+  // The last attempt's messages, which the answer writes.
+  auto messages = std::make_shared<std::vector<v1::AcquireEvaluationResponse>>();
+  auto* writer = new PiecesWriter<v1::AcquireEvaluationResponse>();
+  AnswerOrPark(
+      *context, request->wait(), kEvaluationJobsTopic,
+      [acquire, messages]() -> absl::StatusOr<bool> {
+        DCS_ASSIGN_OR_RETURN(*messages, acquire());
+        return !messages->front().jobs().empty();
       },
-      [answer, writer] { answer(writer, std::vector{v1::AcquireEvaluationResponse()}); });
+      [writer, messages](const absl::Status& status) {
+        if (status.ok()) {
+          writer->Start(std::move(*messages));
+        } else {
+          writer->Start(status);
+        }
+      });
   return writer;
 }
 

@@ -81,25 +81,36 @@ absl::Time ParkingDeadline(const grpc::CallbackServerContext& context, absl::Dur
   return deadline;
 }
 
+void CoordinatorService::AnswerOrPark(const grpc::CallbackServerContext& context,
+                                      const google::protobuf::Duration& wait, std::string topic,
+                                      std::function<absl::StatusOr<bool>()> attempt,
+                                      std::function<void(const absl::Status&)> answer) {
+  auto counted = [this, answer = std::move(answer)](const absl::Status& status) {
+    rejected_.Count(status);
+    answer(status);
+  };
+  const absl::Duration asked = DurationFromProto(wait);
+  if (asked <= absl::ZeroDuration()) {
+    counted(attempt().status());
+    return;
+  }
+  parked_.Park(
+      std::move(topic), ParkingDeadline(context, asked),
+      [attempt = std::move(attempt), counted] {
+        const absl::StatusOr<bool> found = attempt();
+        if (found.ok() && !*found) return false;
+        counted(found.status());
+        return true;
+      },
+      [counted] { counted(absl::OkStatus()); });  // as the last attempt left it
+}
+
 grpc::ServerUnaryReactor* CoordinatorService::AnswerOrPark(
     grpc::CallbackServerContext* context, const google::protobuf::Duration& wait,
     std::string topic, std::function<absl::StatusOr<bool>()> attempt) {
-  const absl::Duration asked = DurationFromProto(wait);
-  if (asked <= absl::ZeroDuration()) return Finish(context, attempt().status());
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-  const auto answer = [this, reactor](const absl::Status& status) {
-    rejected_.Count(status);
-    reactor->Finish(ToGrpcStatus(status));
-  };
-  parked_.Park(
-      std::move(topic), ParkingDeadline(*context, asked),
-      [attempt, answer] {
-        const absl::StatusOr<bool> found = attempt();
-        if (found.ok() && !*found) return false;
-        answer(found.status());
-        return true;
-      },
-      [answer] { answer(absl::OkStatus()); });  // with what the last attempt left
+  AnswerOrPark(*context, wait, std::move(topic), std::move(attempt),
+               [reactor](const absl::Status& status) { reactor->Finish(ToGrpcStatus(status)); });
   return reactor;
 }
 

@@ -162,13 +162,18 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   static constexpr char kEvaluationJobsTopic[] = "evaluation jobs";
   static std::string EvaluationTopic(absl::string_view run_id, int64_t policy_version);
 
-  // Answers a unary call by `attempt`, which fills the response and returns whether it found
-  // what the caller waits for. With a positive `wait`, until it does, the call is parked under
-  // `topic` (tried again at each Wake of it) for that long at most (ParkingDeadline), then
-  // answered with the response its last attempt left (GetEvaluation's says how far the
-  // evaluation is; an Acquire's is empty). `attempt` is called on the parked calls' thread, not
-  // the handler's: it must hold what it reads by value or by pointer to the call's own request
-  // and response.
+  // Makes a call's answer with `attempt`, which prepares it and returns whether it found what
+  // the caller waits for, then gives it with `answer` (its status, counted if a refusal). With
+  // a positive `wait`, until an attempt finds it, the call is parked under `topic` (tried
+  // again at each Wake of it) for that long at most (ParkingDeadline), then answered as its
+  // last attempt left it (GetEvaluation's says how far the evaluation is; an Acquire's holds
+  // nothing). `attempt` and `answer` run on the parked calls' thread, not the handler's: they
+  // must hold what they read by value or by pointer to the call's own request and response.
+  void AnswerOrPark(const grpc::CallbackServerContext& context,
+                    const google::protobuf::Duration& wait, std::string topic,
+                    std::function<absl::StatusOr<bool>()> attempt,
+                    std::function<void(const absl::Status&)> answer);
+  // AnswerOrPark for a unary call: `attempt` fills its response, which goes with its status.
   grpc::ServerUnaryReactor* AnswerOrPark(grpc::CallbackServerContext* context,
                                          const google::protobuf::Duration& wait,
                                          std::string topic,
