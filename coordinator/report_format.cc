@@ -38,6 +38,7 @@ struct CellText {
   std::string iqm;          // "468.2 [454.7, 484.3]"
   std::string interval;     // "[450.1, 480.2]"
   std::string improvement;  // "0.83 [0.61, 0.98]"
+  std::string holm;         // "0.0042 better", "0.31"
 };
 
 CellText TextOf(const v1::ReportCell& cell) {
@@ -45,7 +46,8 @@ CellText TextOf(const v1::ReportCell& cell) {
                                           : absl::StrCat(cell.runs(), "/", cell.seeds()),
                 .iqm = std::string(kNone),
                 .interval = std::string(kNone),
-                .improvement = std::string(kNone)};
+                .improvement = std::string(kNone),
+                .holm = std::string(kNone)};
   if (!cell.empty()) {
     const v1::ScoreSummary& summary = cell.summary();
     text.iqm = absl::StrCat(Fixed(summary.iqm(), 1), " [", Fixed(summary.q1(), 1), ", ",
@@ -58,6 +60,10 @@ CellText TextOf(const v1::ReportCell& cell) {
     text.improvement = absl::StrCat(Fixed(improvement.probability(), 2), " [",
                                     Fixed(improvement.ci_low(), 2), ", ",
                                     Fixed(improvement.ci_high(), 2), "]");
+    text.holm = absl::StrFormat("%.2g", improvement.holm_p_value());
+    if (improvement.significant()) {
+      absl::StrAppend(&text.holm, improvement.probability() > 0.5 ? " better" : " worse");
+    }
   }
   return text;
 }
@@ -66,7 +72,10 @@ CellText TextOf(const v1::ReportCell& cell) {
 std::vector<std::string> ModeColumns(const v1::SweepReport& report) {
   std::vector<std::string> columns = {"runs", "IQM [Q1, Q3]",
                                       Percent(report.settings().confidence()) + " CI"};
-  if (HasBaseline(report)) columns.push_back("P(>baseline)");
+  if (HasBaseline(report)) {
+    columns.push_back("P(>baseline)");
+    columns.push_back("Holm p");
+  }
   return columns;
 }
 
@@ -77,7 +86,10 @@ std::vector<std::string> ModeCells(const v1::SweepReport& report, const v1::Repo
   CellText text = TextOf(cell);
   if (cell.best()) text.iqm = absl::StrCat(best_open, text.iqm, best_close);
   std::vector<std::string> cells = {text.runs, text.iqm, text.interval};
-  if (HasBaseline(report)) cells.push_back(text.improvement);
+  if (HasBaseline(report)) {
+    cells.push_back(text.improvement);
+    cells.push_back(text.holm);
+  }
   return cells;
 }
 
@@ -108,6 +120,10 @@ std::vector<std::string> Footer(const v1::SweepReport& report, absl::string_view
     lines.push_back(absl::StrCat("P(>baseline): the probability of improvement over ",
                                  settings.baseline(), ": ", settings.improvement_rule(),
                                  "; its interval with the same bootstrap settings."));
+    lines.push_back(absl::StrCat("Holm p: ", settings.significance_rule(), " (",
+                                 1 - settings.confidence(),
+                                 "): better or worse than the baseline as P(>baseline) is above "
+                                 "or below 0.5."));
   }
   return lines;
 }
@@ -263,7 +279,8 @@ std::string CsvField(absl::string_view text) {
 std::string FormatCsv(const v1::SweepReport& report) {
   std::string out =
       "checkpoint,split,condition,family,baseline,mode,runs,seeds,iqm,q1,q3,ci_low,ci_high,"
-      "p_improvement,p_improvement_ci_low,p_improvement_ci_high,best\n";
+      "p_improvement,p_improvement_ci_low,p_improvement_ci_high,p_value,holm_p_value,"
+      "significant,best\n";
   const auto number = [](bool present, double value) {
     return present ? RoundTrip(value) : std::string();
   };
@@ -280,7 +297,10 @@ std::string FormatCsv(const v1::SweepReport& report) {
           number(full, summary.iqm()), number(full, summary.q1()), number(full, summary.q3()),
           number(full, summary.ci_low()), number(full, summary.ci_high()),
           number(improved, improvement.probability()), number(improved, improvement.ci_low()),
-          number(improved, improvement.ci_high()), cell.best() ? "true" : "false"};
+          number(improved, improvement.ci_high()), number(improved, improvement.p_value()),
+          number(improved, improvement.holm_p_value()),
+          improved ? (improvement.significant() ? "true" : "false") : "",
+          cell.best() ? "true" : "false"};
       absl::StrAppend(&out, absl::StrJoin(fields, ","), "\n");
     }
   }
@@ -342,7 +362,9 @@ std::string LatexCaption(const v1::SweepReport& report) {
   if (HasBaseline(report)) {
     absl::StrAppend(&caption, " P($>$baseline): the probability of improvement over ",
                     LatexEscape(settings.baseline()), ", ",
-                    LatexEscape(settings.improvement_rule()), ".");
+                    LatexEscape(settings.improvement_rule()), "; $^{*}$: ",
+                    LatexEscape(settings.significance_rule()), " (",
+                    1 - settings.confidence(), ").");
   }
   return caption;
 }
@@ -383,7 +405,10 @@ std::string FormatLatex(const v1::SweepReport& report) {
       if (cell.best()) iqm = absl::StrCat("\\textbf{", iqm, "}");
       if (!cell.empty() && cell.runs() < cell.seeds()) absl::StrAppend(&iqm, "$^\\dagger$");
       absl::StrAppend(&out, " & ", iqm);
-      if (improvement) absl::StrAppend(&out, " & ", LatexNumbers(text.improvement));
+      if (improvement) {
+        absl::StrAppend(&out, " & ", LatexNumbers(text.improvement),
+                        cell.improvement().significant() ? "$^{*}$" : "");
+      }
     }
     absl::StrAppend(&out, " \\\\\n");
   }

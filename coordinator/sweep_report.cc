@@ -14,6 +14,7 @@
 #include "coordinator/coverage_report.h"
 #include "coordinator/iqm.h"
 #include "coordinator/probability_of_improvement.h"
+#include "coordinator/significance.h"
 
 namespace dcs::coordinator {
 namespace {
@@ -33,6 +34,11 @@ constexpr absl::string_view kImprovementRule =
     "P(X > Y) + 0.5 P(X = Y) over all pairs of a run X of the condition and a run Y of the "
     "baseline in the same mode (rliable), with a percentile bootstrap resampling both sides' "
     "runs independently";
+constexpr absl::string_view kSignificanceRule =
+    "two-sided Mann-Whitney U test of the condition's runs against the baseline's (normal "
+    "approximation with tie and continuity corrections, scipy.stats.mannwhitneyu's asymptotic "
+    "method), its p-value adjusted by Holm's step-down over the mode's comparisons with the "
+    "baseline; significant when the adjusted p-value is below 1 - confidence";
 
 // A condition of the sweep: its trials by mode.
 struct Condition {
@@ -213,13 +219,15 @@ std::vector<double> Scores(const v1::ReportCell& cell) {
   return scores;
 }
 
-// Sets each cell's improvement over the baseline's cell of its mode (the baseline is row 0).
+// Sets each cell's improvement over the baseline's cell of its mode (the baseline is row 0),
+// its test, and per mode the Holm adjustment over the mode's cells compared.
 absl::Status AddImprovements(const ReportOptions& options, v1::SweepReport& report) {
   const v1::ReportRow& baseline = report.rows(0);
-  for (int r = 1; r < report.rows_size(); ++r) {
-    v1::ReportRow& row = *report.mutable_rows(r);
-    for (int m = 0; m < row.cells_size(); ++m) {
-      v1::ReportCell& cell = *row.mutable_cells(m);
+  for (int m = 0; m < report.modes_size(); ++m) {
+    std::vector<v1::Improvement*> compared;
+    std::vector<double> p_values;
+    for (int r = 1; r < report.rows_size(); ++r) {
+      v1::ReportCell& cell = *report.mutable_rows(r)->mutable_cells(m);
       if (cell.empty() || baseline.cells(m).empty()) continue;
       const std::vector<double> x = Scores(cell);
       const std::vector<double> y = Scores(baseline.cells(m));
@@ -228,9 +236,19 @@ absl::Status AddImprovements(const ReportOptions& options, v1::SweepReport& repo
                            BootstrapImprovementInterval(x, y, options.confidence,
                                                         options.bootstrap_resamples,
                                                         options.bootstrap_seed));
-      cell.mutable_improvement()->set_probability(probability);
-      cell.mutable_improvement()->set_ci_low(interval.lo);
-      cell.mutable_improvement()->set_ci_high(interval.hi);
+      DCS_ASSIGN_OR_RETURN(const MannWhitney test, MannWhitneyTest(x, y));
+      v1::Improvement& improvement = *cell.mutable_improvement();
+      improvement.set_probability(probability);
+      improvement.set_ci_low(interval.lo);
+      improvement.set_ci_high(interval.hi);
+      improvement.set_p_value(test.p_value);
+      compared.push_back(&improvement);
+      p_values.push_back(test.p_value);
+    }
+    DCS_ASSIGN_OR_RETURN(const std::vector<double> adjusted, HolmAdjusted(p_values));
+    for (size_t i = 0; i < compared.size(); ++i) {
+      compared[i]->set_holm_p_value(adjusted[i]);
+      compared[i]->set_significant(adjusted[i] < 1 - options.confidence);
     }
   }
   return absl::OkStatus();
@@ -280,6 +298,7 @@ v1::ReportSettings Settings(const ReportOptions& options, const std::string& bas
   settings.set_quartile_rule(std::string(kQuartileRule));
   settings.set_interval_rule(std::string(kIntervalRule));
   settings.set_improvement_rule(std::string(kImprovementRule));
+  settings.set_significance_rule(std::string(kSignificanceRule));
   settings.set_baseline(baseline);
   return settings;
 }

@@ -7,8 +7,10 @@
 // (last or best) and one split (avg_combined or a split's mean); per condition and observation
 // mode, IQM [Q1, Q3] of the scores across seeds, a bootstrap interval of the IQM over seeds
 // (coordinator/iqm.h) and rliable's probability of improvement over the static baseline
-// (coordinator/probability_of_improvement.h); and if runs counted coverage, the coverage
-// diagnostic (coordinator/coverage_report.h). Thread-safe (pure functions).
+// (coordinator/probability_of_improvement.h), tested for a difference with Mann-Whitney's test,
+// Holm-adjusted over the mode's conditions (coordinator/significance.h); and if runs counted
+// coverage, the coverage diagnostic (coordinator/coverage_report.h). Thread-safe (pure
+// functions).
 
 #include <cstdint>
 #include <string>

@@ -498,8 +498,9 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
     return CutIntoMessages(std::move(header), grant->weights,
                            &v1::AcquireEvaluationResponse::mutable_weights);
   };
-  // The last attempt's messages, which the answer writes.
-  auto messages = std::make_shared<std::vector<v1::AcquireEvaluationResponse>>();
+  // The last attempt's messages, which the answer writes: one with no jobs until an attempt
+  // (a server that stops expires a parked call without one).
+  auto messages = std::make_shared<std::vector<v1::AcquireEvaluationResponse>>(1);
   auto* writer = new PiecesWriter<v1::AcquireEvaluationResponse>();
   AnswerOrPark(
       *context, request->wait(), kEvaluationJobsTopic,

@@ -104,9 +104,9 @@ TEST(ReportFormatTest, MarkdownIsAGithubTable) {
       Lines(FormatReport(SmallReport(), ReportFormat::kMarkdown));
   EXPECT_EQ(lines[2],
             "| condition | family | none runs | none IQM [Q1, Q3] | none 95% CI | "
-            "none P(>baseline) | live runs | live IQM [Q1, Q3] | live 95% CI | "
-            "live P(>baseline) |");
-  EXPECT_EQ(lines[3], "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|");
+            "none P(>baseline) | none Holm p | live runs | live IQM [Q1, Q3] | live 95% CI | "
+            "live P(>baseline) | live Holm p |");
+  EXPECT_EQ(lines[3], "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
   EXPECT_EQ(lines[4].rfind("| static | static | 3/3 | -80.0 [-85.0, -75.0] |", 0), 0u) << lines[4];
   EXPECT_EQ(lines[5].rfind("| sin\\_large | sinusoidal | 3/3 | **420.0 [415.0, 425.0]** |", 0),
             0u)
@@ -124,24 +124,26 @@ TEST(ReportFormatTest, CsvHasOneRowPerConditionAndMode) {
   ASSERT_EQ(lines.size(), 1u + 3 * 2);
   EXPECT_EQ(lines[0],
             "checkpoint,split,condition,family,baseline,mode,runs,seeds,iqm,q1,q3,ci_low,"
-            "ci_high,p_improvement,p_improvement_ci_low,p_improvement_ci_high,best");
+            "ci_high,p_improvement,p_improvement_ci_low,p_improvement_ci_high,p_value,"
+            "holm_p_value,significant,best");
   // The baseline's none cell: IQM of {-90, -80, -70} (3 runs: nothing trimmed).
   const std::vector<std::string> baseline = absl::StrSplit(lines[1], ',');
-  ASSERT_EQ(baseline.size(), 17u);
+  ASSERT_EQ(baseline.size(), 20u);
   EXPECT_EQ(baseline[2], "static");
   EXPECT_EQ(baseline[4], "true");
   EXPECT_EQ(baseline[5], "none");
   EXPECT_EQ(baseline[6], "3");
   EXPECT_EQ(baseline[8], "-80");
   EXPECT_EQ(baseline[13], "");  // no improvement over itself
-  EXPECT_EQ(baseline[16], "false");
+  EXPECT_EQ(baseline[18], "");  // nor a test
+  EXPECT_EQ(baseline[19], "false");
   EXPECT_EQ(lines[3].rfind("last,combined,sin_large,sinusoidal,false,none,3,3,420,415,425,", 0),
             0u)
       << lines[3];
   EXPECT_THAT(lines[3], testing::EndsWith(",true"));
   // A name with a comma is quoted; an empty cell has empty numbers.
   EXPECT_EQ(lines[6], absl::StrCat("last,combined,\"", kWeird,
-                                   "\",random_walk,false,live,0,3,,,,,,,,,false"));
+                                   "\",random_walk,false,live,0,3,,,,,,,,,,,,false"));
 }
 
 TEST(ReportFormatTest, JsonParsesBackToTheSameReport) {
@@ -197,9 +199,9 @@ TEST(ReportFormatTest, HtmlEscapesText) {
   EXPECT_THAT(html, HasSubstr("<td>a&lt;b, &amp; 50%#_x</td>"));
   EXPECT_THAT(html, Not(HasSubstr("a<b")));
   EXPECT_THAT(html, HasSubstr("<th>P(&gt;baseline)</th>"));
-  EXPECT_THAT(html, HasSubstr("<th colspan=\"4\">none</th>"));
+  EXPECT_THAT(html, HasSubstr("<th colspan=\"5\">none</th>"));
   EXPECT_THAT(html, HasSubstr("<td><strong>470.0 [465.0, 475.0]</strong></td>"));
-  EXPECT_THAT(html, HasSubstr("<tfoot>\n<tr><td colspan=\"10\">Bold: the best IQM"));
+  EXPECT_THAT(html, HasSubstr("<tfoot>\n<tr><td colspan=\"12\">Bold: the best IQM"));
   EXPECT_THAT(html, HasSubstr("500 resamples, seed 3"));
 }
 

@@ -8,6 +8,7 @@
 #include <google/protobuf/util/message_differencer.h>
 
 #include "coordinator/iqm.h"
+#include "coordinator/significance.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
@@ -261,6 +262,43 @@ TEST(SweepReportTest, ProbabilityOfImprovementOverTheBaselineInTheSameMode) {
     EXPECT_LE(improvement->ci_high(), 1);
     EXPECT_LT(improvement->ci_low(), improvement->ci_high());
   }
+}
+
+// Each condition's Mann-Whitney p-value is adjusted over the comparisons of its mode: with three
+// conditions, the two far from the baseline get three times their p-value (their step-down's
+// maximum), and are significant, one better and one worse; the one that overlaps it is not.
+TEST(SweepReportTest, SignificanceIsHolmAdjustedOverTheModesComparisons) {
+  std::vector<double> baseline, above, below, overlapping;
+  for (int seed = 0; seed < 10; ++seed) {
+    baseline.push_back(seed);
+    above.push_back(100 + seed);
+    below.push_back(-100 - seed);
+    overlapping.push_back(seed + 0.5);
+  }
+  const absl::StatusOr<v1::SweepReport> report =
+      BuildSweepReport(Sweep(10, {Trial("static", "static", "live", baseline),
+                                  Trial("above", "sinusoidal", "live", above),
+                                  Trial("below", "random_walk", "live", below),
+                                  Trial("overlapping", "levy_walk", "live", overlapping)}),
+                       FastOptions());
+  ASSERT_TRUE(report.ok()) << report.status();
+  const absl::StatusOr<MannWhitney> apart = MannWhitneyTest(above, baseline);
+  const absl::StatusOr<MannWhitney> near = MannWhitneyTest(overlapping, baseline);
+  ASSERT_TRUE(apart.ok() && near.ok());
+  const v1::Improvement& better = report->rows(1).cells(0).improvement();
+  const v1::Improvement& worse = report->rows(2).cells(0).improvement();
+  const v1::Improvement& unclear = report->rows(3).cells(0).improvement();
+  for (const v1::Improvement* improvement : {&better, &worse}) {
+    EXPECT_EQ(improvement->p_value(), apart->p_value);
+    EXPECT_EQ(improvement->holm_p_value(), 3 * apart->p_value);
+    EXPECT_TRUE(improvement->significant());
+  }
+  EXPECT_EQ(better.probability(), 1);
+  EXPECT_EQ(worse.probability(), 0);
+  EXPECT_EQ(unclear.p_value(), near->p_value);
+  EXPECT_EQ(unclear.holm_p_value(), near->p_value);  // the largest: adjusted by a factor of 1
+  EXPECT_FALSE(unclear.significant());
+  EXPECT_THAT(report->settings().significance_rule(), HasSubstr("Holm"));
 }
 
 TEST(SweepReportTest, WithoutAStaticConditionThereIsNoImprovementAndNoError) {

@@ -537,6 +537,28 @@ TEST(SweepSpecYamlTest, EveryConfigWithConditionsParses) {
   EXPECT_EQ(Param(RunOf(quickstart->trials[2]), 0, "amplitude_frac"), 0.25);
 }
 
+// The 40-seed table is the paper's table with more seeds: the same trials, the same configs.
+TEST(SweepSpecYamlTest, TheFortySeedTableRunsThePapersTrials) {
+  std::optional<SweepSpec> table;
+  std::optional<SweepSpec> forty;
+  for (const ConfigFile& config : ConfigFiles()) {
+    const std::string file = config.path.filename().string();
+    if (file == "cartpole_table.yaml") table = Parse(config.text);
+    if (file == "cartpole_table_seeds40.yaml") forty = Parse(config.text);
+  }
+  ASSERT_TRUE(table.has_value() && forty.has_value());
+  EXPECT_EQ(table->seeds.size(), 10u);
+  ASSERT_EQ(forty->seeds.size(), 40u);
+  EXPECT_EQ(forty->seeds.back(), 39u);
+  EXPECT_EQ(forty->baseline, table->baseline);
+  ASSERT_EQ(forty->trials.size(), table->trials.size());
+  EXPECT_EQ(table->trials.size(), 42u);
+  for (size_t i = 0; i < table->trials.size(); ++i) {
+    EXPECT_EQ(Trials(*forty)[i], Trials(*table)[i]);
+    EXPECT_EQ(forty->trials[i].config, table->trials[i].config) << Trials(*table)[i];
+  }
+}
+
 TEST(SweepSpecYamlTest, TheHeadersExampleParses) {
   const std::string example = HeaderExample("run/sweep_spec_yaml.h");
   ASSERT_THAT(example, HasSubstr("conditions:"));
