@@ -39,7 +39,9 @@
 #include "run/evaluation_log.h"
 #include "run/run_plan.h"
 #include "run/run_checkpoint.h"
+#include "run/run_directory.h"
 #include "run/run_spec_yaml.h"
+#include "run/sweep_spec_yaml.h"
 #include "services/cli/child_process.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/run_client.h"
@@ -94,6 +96,23 @@ pool: {size: 3}
 observe: live
 evaluation: {freq: 96, episodes: 1, contexts: {id: [0.0]}}
 ppo: {n_steps: 48, batch_size: 48, n_epochs: 2}
+)";
+
+// kImageConfig as a sweep through `dcs submit`: static and a sinusoid, one seed.
+constexpr char kImageSweepSpec[] = R"(name: car_racing_small
+seeds: [3]
+observe: [live]
+env: car_racing
+total_timesteps: 192
+n_envs: 2
+feature: COM_Y
+training_range: [-0.8, 0.8]
+pool: {size: 3}
+evaluation: {freq: 96, episodes: 1, contexts: {id: [0.0]}}
+ppo: {n_steps: 48, batch_size: 48, n_epochs: 2}
+conditions:
+  - name: static
+  - schedule: {family: sinusoidal, amplitude_frac: 0.5, period: 40}
 )";
 
 constexpr absl::Duration kLease = absl::Seconds(1);
@@ -255,6 +274,37 @@ TEST_F(DataPlaneTest, AnImagePolicyOnTwoActorsGivesTheRunOfOneProcess) {
       cluster.Finish(cluster.Submit(kImageConfig), kImageConfig);
   ASSERT_TRUE(outcome.has_value());
   ExpectSameOutcome(*outcome, TrainInOneProcess(kImageConfig));
+}
+
+// A CarRacing sweep submitted with `dcs submit`: each of its runs is the run its trial's config
+// gives in one process.
+TEST_F(DataPlaneTest, AnImageSweepGivesTheRunsOfOneProcess) {
+  Cluster cluster;
+  cluster.StartCoordinator();
+  cluster.StartLearner("learner");
+  for (const char* actor : {"actor-1", "actor-2"}) cluster.StartActor(actor, 1);
+  const std::string spec = cluster.dir() + "/car_racing_small.yaml";
+  ASSERT_TRUE(WriteFileAtomically(spec, kImageSweepSpec).ok());
+  const RunResult submitted =
+      DcsAt({"submit", spec, "--watch"}, cluster.coordinator_address(), absl::Minutes(5));
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output << "; logs in " << cluster.dir();
+  EXPECT_THAT(submitted.output, HasSubstr("car_racing_small: completed, 2/2 runs done"));
+
+  absl::StatusOr<run::SweepSpec> sweep = run::ParseSweepSpecYaml(kImageSweepSpec, "sweep.yaml");
+  ASSERT_TRUE(sweep.ok()) << sweep.status();
+  absl::StatusOr<std::vector<v1::Run>> runs =
+      services::cli::ListRuns(cluster.coordinator_address(), kTimeout);
+  ASSERT_TRUE(runs.ok()) << runs.status();
+  ASSERT_EQ(runs->size(), 2u);
+  for (const v1::Run& run : *runs) {
+    ASSERT_TRUE(run.has_trial());
+    SCOPED_TRACE(sweep->trials.at(run.trial()).condition);
+    const std::string config =
+        run::ConfigWithSeed(sweep->trials.at(run.trial()).config, run.seed());
+    std::optional<RunOutcome> outcome = cluster.Finish(run.run_id(), config.c_str());
+    ASSERT_TRUE(outcome.has_value());
+    ExpectSameOutcome(*outcome, TrainInOneProcess(config.c_str()));
+  }
 }
 
 TEST_F(DataPlaneTest, AKilledActorsSlotsAreRebuiltByAnother) {
