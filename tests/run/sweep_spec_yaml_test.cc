@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "run/sweep_spec_yaml.h"
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <variant>
@@ -556,6 +557,30 @@ TEST(SweepSpecYamlTest, TheFortySeedTableRunsThePapersTrials) {
   for (size_t i = 0; i < table->trials.size(); ++i) {
     EXPECT_EQ(Trials(*forty)[i], Trials(*table)[i]);
     EXPECT_EQ(forty->trials[i].config, table->trials[i].config) << Trials(*table)[i];
+  }
+}
+
+// The Walker sweep sized for 2 cores runs some of the paper's Walker table's trials, unchanged.
+TEST(SweepSpecYamlTest, TheSmallWalkerSweepRunsTrialsOfThePapersTable) {
+  std::optional<SweepSpec> table;
+  std::optional<SweepSpec> best;
+  for (const ConfigFile& config : ConfigFiles()) {
+    const std::string file = config.path.filename().string();
+    if (file == "bipedal_walker_comx.yaml") table = Parse(config.text);
+    if (file == "bipedal_walker_comx_best.yaml") best = Parse(config.text);
+  }
+  ASSERT_TRUE(table.has_value() && best.has_value());
+  EXPECT_THAT(Trials(*best), ElementsAre("static | static | none", "static | static | live",
+                                         "sinusoidal amplitude=0.3 period=300 | sinusoidal | live",
+                                         "levy_walk std_frac=0.008 | levy_walk | none"));
+  for (const SweepTrial& trial : best->trials) {
+    const auto same = std::find_if(table->trials.begin(), table->trials.end(),
+                                   [&](const SweepTrial& other) {
+                                     return other.condition == trial.condition &&
+                                            other.observe == trial.observe;
+                                   });
+    ASSERT_NE(same, table->trials.end()) << trial.condition;
+    EXPECT_EQ(trial.config, same->config) << trial.condition;
   }
 }
 
