@@ -15,8 +15,8 @@ namespace dcs::coordinator {
 
 absl::StatusOr<MannWhitney> MannWhitneyTest(std::span<const double> x, std::span<const double> y) {
   if (x.empty() || y.empty()) {
-    return absl::InvalidArgumentError(absl::StrCat("a Mann-Whitney test needs runs on both sides, got ",
-                                                   x.size(), " and ", y.size()));
+    return absl::InvalidArgumentError(absl::StrCat(
+        "a Mann-Whitney test needs runs on both sides, got ", x.size(), " and ", y.size()));
   }
   // The pooled values with their side (true: x), sorted; ties get the mean of their ranks.
   std::vector<std::pair<double, bool>> pooled;
@@ -54,7 +54,8 @@ absl::StatusOr<MannWhitney> MannWhitneyTest(std::span<const double> x, std::span
     const boost::math::normal normal;
     result.p_value = std::min(1.0, 2 * boost::math::cdf(boost::math::complement(normal, result.z)));
   } catch (const std::exception& error) {
-    return absl::InternalError(absl::StrCat("the normal tail at z = ", result.z, ": ", error.what()));
+    return absl::InternalError(
+        absl::StrCat("the normal tail at z = ", result.z, ": ", error.what()));
   }
   return result;
 }
