@@ -7,8 +7,9 @@
 // observations, SB3's MlpPolicy: tanh hidden layers on the observation and context, then a
 // linear head giving categorical logits or a Gaussian mean with a state-independent log-std.
 // For images, its MultiInputPolicy: NatureCNN on the image (actor/image_encoder.h), the context
-// appended, then the same layers. It computes the same function as the learner's network
-// (tested to 1e-5); actors and `dcs train` both act with it, so they act alike bit for bit.
+// appended (as it is, or through its own branch of layers), then the same layers. It computes
+// the same function as the learner's network (tested to 1e-5); actors and `dcs train` both act
+// with it, so they act alike bit for bit.
 //
 // A batch of samples goes through each layer at once (actor/dense_forward.h), and each sample's
 // outputs are a function of its own input alone, bit for bit, whatever the batch holds besides.
@@ -23,6 +24,7 @@
 #include <Eigen/Core>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "actor/dense_forward.h"
 #include "actor/image_encoder.h"
 #include "actor/policy.h"
@@ -71,15 +73,26 @@ class PolicyNetwork final : public Policy {
 
   PolicyNetwork() = default;
 
+  // `layer` as a Layer, if it takes `inputs`; `what` names it in the error.
+  static absl::StatusOr<Layer> MakeLayer(const DenseLayer& layer, int inputs,
+                                         absl::string_view what);
+  // Each of `layers` on `input`, each layer's output into `outputs`.
+  static void ForwardLayers(const std::vector<Layer>& layers,
+                            Eigen::Map<const Eigen::MatrixXf> input,
+                            std::vector<Eigen::MatrixXf>& outputs);
+
   std::optional<ImageEncoder> encoder_;
+  std::vector<Layer> context_layers_;
   std::vector<Layer> layers_;
   Eigen::VectorXf std_;  // exp(log_std); continuous policies only
   int num_actions_ = 0;
   int input_size_ = 0;
   int head_size_ = 0;
-  // Scratch: an image policy's first batch (image features, then the flat input), each layer's
-  // output, and the head's outputs of Act.
+  // Scratch: an image policy's first batch (image features, then the flat input or its
+  // branch's output), each layer's output (the context branch's apart), and the head's outputs
+  // of Act.
   Eigen::MatrixXf features_;
+  std::vector<Eigen::MatrixXf> context_activations_;
   std::vector<Eigen::MatrixXf> activations_;
   std::vector<float> head_;
 };

@@ -47,10 +47,12 @@ struct ImageEncoderWeights {
 };
 
 // The actor network: for an image policy, the features are the encoder's output followed by
-// the flat inputs (SB3's CombinedExtractor), otherwise the flat inputs; then `layers`, the
-// hidden layers and the head (no activation) giving categorical logits or a Gaussian mean.
+// the flat inputs (SB3's CombinedExtractor), or by their output through `context_layers` (the
+// context's own branch, when it has one); otherwise the flat inputs. Then `layers`, the hidden
+// layers and the head (no activation) giving categorical logits or a Gaussian mean.
 struct PolicyWeights {
   std::optional<ImageEncoderWeights> image;
+  std::vector<DenseLayer> context_layers;  // image policies only; may be empty
   std::vector<DenseLayer> layers;
   std::vector<float> log_std;  // continuous actions only, one per action dimension
   int num_actions = 0;         // discrete: the number of actions; continuous: 0

@@ -95,40 +95,71 @@ void LinearForward(const torch::nn::LinearImpl& linear, actor::Activation activa
 
 }  // namespace
 
-void ActorCriticImpl::TanhMlp::Forward(ConstView input, const torch::nn::Linear& head,
-                                       std::vector<Eigen::MatrixXf>& outputs,
-                                       Eigen::MatrixXf& head_output) const {
-  actor::PinEigenBlocking();
+void ActorCriticImpl::Mlp::Forward(ConstView input, std::vector<Eigen::MatrixXf>& outputs) const {
   outputs.resize(layers.size());
   for (size_t l = 0; l < layers.size(); ++l) {
-    LinearForward(*layers[l], actor::Activation::kTanh, l == 0 ? input : View(outputs[l - 1]),
-                  outputs[l]);
+    LinearForward(*layers[l], activation, l == 0 ? input : View(outputs[l - 1]), outputs[l]);
   }
-  LinearForward(*head, actor::Activation::kNone, layers.empty() ? input : View(outputs.back()),
-                head_output);
 }
 
-void ActorCriticImpl::TanhMlp::Backward(torch::nn::Linear& head, ConstView input,
-                                        const std::vector<Eigen::MatrixXf>& outputs,
-                                        const Eigen::MatrixXf& d_head,
-                                        std::vector<Eigen::MatrixXf>& d_outputs,
-                                        Eigen::MatrixXf* d_input) {
-  actor::PinEigenBlocking();
+ActorCriticImpl::Mlp::ConstView ActorCriticImpl::Mlp::Output(
+    ConstView input, const std::vector<Eigen::MatrixXf>& outputs) const {
+  return layers.empty() ? input : View(outputs.back());
+}
+
+void ActorCriticImpl::Mlp::Backward(ConstView input, const std::vector<Eigen::MatrixXf>& outputs,
+                                    const torch::nn::LinearImpl* above,
+                                    const Eigen::MatrixXf& d_above,
+                                    std::vector<Eigen::MatrixXf>& d_outputs,
+                                    Eigen::MatrixXf* d_input) {
   d_outputs.resize(layers.size());
   const auto input_of = [&](size_t l) { return l == 0 ? input : View(outputs[l - 1]); };
-  LinearGradients(*head, input_of(layers.size()), d_head);
-  // Down the layers: `d` is the gradient at the output of the linear layer `weight` belongs to.
-  const Eigen::MatrixXf* d = &d_head;
-  const torch::nn::LinearImpl* linear = head.get();
+  // Down the layers: `d` is the gradient at the output of `linear` (the layer above the one
+  // whose gradient is made), or at the MLP's output where there is no such layer.
+  const Eigen::MatrixXf* d = &d_above;
+  const torch::nn::LinearImpl* linear = above;
   for (size_t l = layers.size(); l-- > 0;) {
     Eigen::MatrixXf& d_output = d_outputs[l];
-    d_output.noalias() = WeightOf(*linear).transpose() * *d;
-    d_output.array() *= 1 - outputs[l].array().square();  // tanh' = 1 - tanh^2
+    if (linear != nullptr) {
+      d_output.noalias() = WeightOf(*linear).transpose() * *d;
+    } else {
+      d_output = *d;
+    }
+    switch (activation) {
+      case actor::Activation::kTanh:
+        d_output.array() *= 1 - outputs[l].array().square();  // tanh' = 1 - tanh^2
+        break;
+      case actor::Activation::kRelu:
+        d_output.array() *= (outputs[l].array() > 0).cast<float>();
+        break;
+      case actor::Activation::kNone:
+        break;
+    }
     LinearGradients(*layers[l], input_of(l), d_output);
     d = &d_output;
     linear = layers[l].get();
   }
-  if (d_input != nullptr) d_input->noalias() += WeightOf(*linear).transpose() * *d;
+  if (d_input == nullptr) return;
+  if (linear != nullptr) {
+    d_input->noalias() += WeightOf(*linear).transpose() * *d;
+  } else {
+    *d_input += *d;
+  }
+}
+
+void ActorCriticImpl::Forward(const Mlp& mlp, const torch::nn::Linear& head, Mlp::ConstView input,
+                              std::vector<Eigen::MatrixXf>& outputs,
+                              Eigen::MatrixXf& head_output) {
+  mlp.Forward(input, outputs);
+  LinearForward(*head, actor::Activation::kNone, mlp.Output(input, outputs), head_output);
+}
+
+void ActorCriticImpl::Backward(Mlp& mlp, torch::nn::Linear& head, Mlp::ConstView input,
+                               const std::vector<Eigen::MatrixXf>& outputs,
+                               const Eigen::MatrixXf& d_head,
+                               std::vector<Eigen::MatrixXf>& d_outputs, Eigen::MatrixXf* d_input) {
+  LinearGradients(*head, mlp.Output(input, outputs), d_head);
+  mlp.Backward(input, outputs, head.get(), d_head, d_outputs, d_input);
 }
 
 ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConfig& config)
@@ -154,11 +185,17 @@ ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConf
     cnn_->push_back(torch::nn::ReLU());
     register_module("cnn", cnn_);
     InitWeights(*cnn_, sqrt2);
-    features = config.cnn_features + spec.context_size;
+    features = config.cnn_features +
+               (spec.context_size > 0 ? OutputsOf(config.context_layers, spec.context_size) : 0);
   }
-  for (auto [mlp, widths, name] : {std::tuple{&pi_, &config.pi_layers, "pi"},
-                                   std::tuple{&vf_, &config.vf_layers, "vf"}}) {
-    int inputs = features;
+  // The context branch exists for image policies that observe a context and ask for it.
+  const std::vector<int> no_layers;
+  const std::vector<int>& context_widths =
+      spec.has_image() && spec.context_size > 0 ? config.context_layers : no_layers;
+  for (auto [mlp, widths, name, inputs] :
+       {std::tuple{&context_, &context_widths, "context", spec.context_size},
+        std::tuple{&pi_, &config.pi_layers, "pi", features},
+        std::tuple{&vf_, &config.vf_layers, "vf", features}}) {
     for (size_t i = 0; i < widths->size(); ++i) {
       mlp->layers.push_back(register_module(absl::StrCat(name, "_", i),
                                             torch::nn::Linear(inputs, (*widths)[i])));
@@ -181,6 +218,7 @@ ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConf
 void ActorCriticImpl::Forward(const ObservationBatch& batch, bool record_image_graph,
                               Pass& pass) {
   torch::NoGradGuard no_grad;
+  actor::PinEigenBlocking();
   if (spec_.has_image()) {
     {
       absl::MutexLockMaybe blas(BlasMutex());
@@ -188,30 +226,48 @@ void ActorCriticImpl::Forward(const ObservationBatch& batch, bool record_image_g
       pass.image_features = cnn_->forward(batch.images);
     }
     const torch::Tensor image_features = pass.image_features.detach();
-    pass.features = spec_.context_size == 0 ? image_features.contiguous()
-                                            : torch::cat({image_features, batch.flat}, 1);
+    if (spec_.context_size == 0) {
+      pass.features = image_features.contiguous();
+    } else if (context_.layers.empty()) {
+      pass.features = torch::cat({image_features, batch.flat}, 1);
+    } else {
+      pass.context_input = batch.flat.contiguous();
+      context_.Forward(BatchView(pass.context_input), pass.context);
+      const Eigen::MatrixXf& branch = pass.context.back();  // [width x B]: a [B, width] tensor
+      pass.features = torch::cat(
+          {image_features,
+           torch::from_blob(const_cast<float*>(branch.data()), {branch.cols(), branch.rows()})},
+          1);
+    }
   } else {
     pass.features = batch.flat.contiguous();
   }
   const ConstView features = BatchView(pass.features);
-  pi_.Forward(features, action_net_, pass.pi, pass.head);
-  vf_.Forward(features, value_net_, pass.vf, pass.values);
+  Forward(pi_, action_net_, features, pass.pi, pass.head);
+  Forward(vf_, value_net_, features, pass.vf, pass.values);
 }
 
 void ActorCriticImpl::Backward(Pass& pass, const Eigen::MatrixXf& d_head,
                                const Eigen::MatrixXf& d_values,
                                std::span<const float> d_log_std) {
   torch::NoGradGuard no_grad;
+  actor::PinEigenBlocking();
   const ConstView features = BatchView(pass.features);
   Eigen::MatrixXf* d_features = nullptr;
   if (spec_.has_image()) {
     pass.d_features.setZero(features.rows(), features.cols());
     d_features = &pass.d_features;
   }
-  pi_.Backward(action_net_, features, pass.pi, d_head, pass.d_pi, d_features);
-  vf_.Backward(value_net_, features, pass.vf, d_values, pass.d_vf, d_features);
+  Backward(pi_, action_net_, features, pass.pi, d_head, pass.d_pi, d_features);
+  Backward(vf_, value_net_, features, pass.vf, d_values, pass.d_vf, d_features);
   if (!spec_.discrete()) {
     std::copy(d_log_std.begin(), d_log_std.end(), Gradient(log_std_).data_ptr<float>());
+  }
+  if (!context_.layers.empty()) {
+    // The branch's gradients from its part of d_features, the rows after the image's features.
+    pass.d_context_output = pass.d_features.bottomRows(pass.context.back().rows());
+    context_.Backward(BatchView(pass.context_input), pass.context, nullptr, pass.d_context_output,
+                      pass.d_context, nullptr);
   }
   if (spec_.has_image()) {
     // NatureCNN's gradients through autograd, from the image features' part of d_features.
@@ -244,6 +300,9 @@ actor::PolicyWeights ActorCriticImpl::ExportActor() const {
         image.linear = ExportDense(*linear, actor::Activation::kRelu);
       }
     }
+  }
+  for (const torch::nn::Linear& layer : context_.layers) {
+    weights.context_layers.push_back(ExportDense(*layer, actor::Activation::kRelu));
   }
   for (const torch::nn::Linear& layer : pi_.layers) {
     weights.layers.push_back(ExportDense(*layer, actor::Activation::kTanh));

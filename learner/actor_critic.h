@@ -9,7 +9,8 @@
 // and the MLPs, 0.01 for the action head, 1 for the value head) and zero biases.
 // Features: the flat observation and context as they are; or, for an image observation,
 // SB3's CombinedExtractor: NatureCNN (256 features) on the image / 255, then the context
-// appended.
+// appended, as it is or through its own MLP (`context_layers`, ReLU; the paper's CarRacing
+// policy).
 // Forward and backward passes are explicit (Forward, Backward), for PPO's update: the loss's
 // gradient with respect to the heads' outputs (learner/ppo_loss.h) goes down the MLPs as Eigen
 // matrix products on the parameters' own memory (actor/dense_forward.h: the layers actors
@@ -49,13 +50,17 @@ class ActorCriticImpl : public torch::nn::Module {
   struct Pass {
     torch::Tensor image_features;  // NatureCNN's output (image policies), maybe with its graph
     torch::Tensor features;        // [B, F] contiguous, the MLPs' input
+    torch::Tensor context_input;           // the context branch's input, [B, C] contiguous
+    std::vector<Eigen::MatrixXf> context;  // each context layer's output, after ReLU
     std::vector<Eigen::MatrixXf> pi;  // each policy layer's output, after tanh: [width x B]
     std::vector<Eigen::MatrixXf> vf;  // each value layer's output, after tanh
     Eigen::MatrixXf head;             // [A x B]: logits, or the Gaussian mean
     Eigen::MatrixXf values;           // [1 x B]
+    std::vector<Eigen::MatrixXf> d_context;
     std::vector<Eigen::MatrixXf> d_pi;
     std::vector<Eigen::MatrixXf> d_vf;
     Eigen::MatrixXf d_features;
+    Eigen::MatrixXf d_context_output;  // the context branch's part of d_features
   };
 
   // The forward pass of `batch`, not recorded for autograd (the MLPs' backward pass is
@@ -76,25 +81,38 @@ class ActorCriticImpl : public torch::nn::Module {
   const torch::Tensor& log_std() const { return log_std_; }
 
  private:
-  // Linear layers each followed by tanh, and the linear head on them.
-  struct TanhMlp {
+  // Linear layers, each followed by `activation`.
+  struct Mlp {
     using ConstView = Eigen::Map<const Eigen::MatrixXf>;
     std::vector<torch::nn::Linear> layers;
-    // Each layer's output into `outputs`, the head's into `head_output`.
-    void Forward(ConstView input, const torch::nn::Linear& head,
-                 std::vector<Eigen::MatrixXf>& outputs, Eigen::MatrixXf& head_output) const;
-    // Gradients of the layers' and `head`'s parameters from `d_head` (the gradient at the
-    // output of `head`), given the forward pass's `input` and `outputs`; if `d_input` is not
-    // null, adds the gradient with respect to `input` to it.
-    void Backward(torch::nn::Linear& head, ConstView input,
-                  const std::vector<Eigen::MatrixXf>& outputs, const Eigen::MatrixXf& d_head,
+    actor::Activation activation = actor::Activation::kTanh;
+    // Each layer's output into `outputs`.
+    void Forward(ConstView input, std::vector<Eigen::MatrixXf>& outputs) const;
+    // The last layer's output, or `input` without layers.
+    ConstView Output(ConstView input, const std::vector<Eigen::MatrixXf>& outputs) const;
+    // Gradients of the layers' parameters, given the forward pass's `input` and `outputs`, from
+    // `d_above`: the gradient at the output of `above`, the linear layer the MLP's output feeds
+    // (a head), or with `above` null the gradient at the MLP's output itself. If `d_input` is
+    // not null, adds the gradient with respect to `input` to it.
+    void Backward(ConstView input, const std::vector<Eigen::MatrixXf>& outputs,
+                  const torch::nn::LinearImpl* above, const Eigen::MatrixXf& d_above,
                   std::vector<Eigen::MatrixXf>& d_outputs, Eigen::MatrixXf* d_input);
   };
 
+  // `mlp` then the linear `head` on its output: each layer's output into `outputs`, the head's
+  // into `head_output`; and the gradients of both from `d_head`, the gradient at the head's
+  // output (adding the gradient at `input` to `d_input` if not null).
+  static void Forward(const Mlp& mlp, const torch::nn::Linear& head, Mlp::ConstView input,
+                      std::vector<Eigen::MatrixXf>& outputs, Eigen::MatrixXf& head_output);
+  static void Backward(Mlp& mlp, torch::nn::Linear& head, Mlp::ConstView input,
+                       const std::vector<Eigen::MatrixXf>& outputs, const Eigen::MatrixXf& d_head,
+                       std::vector<Eigen::MatrixXf>& d_outputs, Eigen::MatrixXf* d_input);
+
   const run::PolicySpec spec_;
   torch::nn::Sequential cnn_{nullptr};  // NatureCNN, image observations only
-  TanhMlp pi_;
-  TanhMlp vf_;
+  Mlp context_{.activation = actor::Activation::kRelu};  // image policies' context branch
+  Mlp pi_;
+  Mlp vf_;
   torch::nn::Linear action_net_{nullptr};
   torch::nn::Linear value_net_{nullptr};
   torch::Tensor log_std_;  // continuous actions only

@@ -40,7 +40,8 @@ absl::Status ValidatePpoConfig(const PpoConfig& c, int n_envs, const ConfigError
     if (!status.ok()) return status;
   }
   for (const auto& [name, layers] : {std::pair{"pi_layers", &c.pi_layers},
-                                     std::pair{"vf_layers", &c.vf_layers}}) {
+                                     std::pair{"vf_layers", &c.vf_layers},
+                                     std::pair{"context_layers", &c.context_layers}}) {
     for (int width : *layers) {
       if (width < 1) return check(false, name, "a list of positive widths", width);
     }

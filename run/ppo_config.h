@@ -33,6 +33,11 @@ struct PpoConfig {
   double log_std_init = 0.0;              // diagonal Gaussian, state-independent
   double adam_eps = 1e-5;
   int cnn_features = 256;  // NatureCNN output for image observations (CombinedExtractor)
+  // An image policy that observes its context: the context's own MLP (ReLU after each layer),
+  // whose output joins NatureCNN's features, as the paper describes its CarRacing policy.
+  // Empty: the context joins as it is (SB3's CombinedExtractor). A policy without image or
+  // without context has no such branch.
+  std::vector<int> context_layers;
 };
 
 // OK, or INVALID_ARGUMENT naming the first field out of range by its path in a run config

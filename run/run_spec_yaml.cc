@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <type_traits>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -169,6 +170,12 @@ absl::Status Validate(const RunSpec& spec, const ConfigErrors& errors, bool sche
   DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
     DCS_RETURN_IF_ERROR(CheckWithEnvironment(spec, Env::Features(), &Env::ValidateContext,
                                              errors, schedule_key));
+    if (!spec.ppo.context_layers.empty() &&
+        !std::is_same_v<typename Env::Observation, uint8_t>) {  // an image's bytes
+      return errors.At("ppo.context_layers",
+                       absl::StrCat("a context branch is for image policies; ", spec.env,
+                                    "'s observation has no image"));
+    }
     if (!spec.coverage.has_value()) return absl::OkStatus();
     if (spec.coverage->window < 1) {
       return errors.At("coverage.window",
@@ -328,7 +335,7 @@ absl::Status Parser::Ppo(const YAML::Node& node, PpoConfig& ppo) {
       node, "ppo",
       {"learning_rate", "n_steps", "batch_size", "n_epochs", "gamma", "gae_lambda", "clip_range",
        "clip_range_vf", "normalize_advantage", "ent_coef", "vf_coef", "max_grad_norm", "target_kl",
-       "pi_layers", "vf_layers", "log_std_init", "adam_eps", "cnn_features"},
+       "pi_layers", "vf_layers", "log_std_init", "adam_eps", "cnn_features", "context_layers"},
       [&](const std::string& key, const YAML::Node& value,
           const std::string& path) -> absl::Status {
         if (auto it = numbers.find(key); it != numbers.end()) {
@@ -345,7 +352,9 @@ absl::Status Parser::Ppo(const YAML::Node& node, PpoConfig& ppo) {
         } else if (key == "normalize_advantage") {
           DCS_ASSIGN_OR_RETURN(ppo.normalize_advantage, r_.Bool(value, path));
         } else {
-          std::vector<int>& target = key == "pi_layers" ? ppo.pi_layers : ppo.vf_layers;
+          std::vector<int>& target = key == "pi_layers"   ? ppo.pi_layers
+                                     : key == "vf_layers" ? ppo.vf_layers
+                                                          : ppo.context_layers;
           DCS_ASSIGN_OR_RETURN(target, r_.Ints(value, path));
         }
         return absl::OkStatus();

@@ -28,7 +28,7 @@
 //         gae_lambda: 0.95, clip_range: 0.2, clip_range_vf: null, normalize_advantage: true,
 //         ent_coef: 0.0, vf_coef: 0.5, max_grad_norm: 0.5, target_kl: null,
 //         pi_layers: [64, 64], vf_layers: [64, 64], log_std_init: 0.0, adam_eps: 1.0e-5,
-//         cnn_features: 256}
+//         cnn_features: 256, context_layers: []}   # context_layers: image policies only
 //
 // Meanings: spec/schedules.md §4 (schedule parameters, as fractions of the training range),
 // §7 (pools), §8 (stages), §9 (evaluation); spec/contexts.md §8 (ranges and grids per

@@ -200,6 +200,15 @@ absl::StatusOr<actor::DenseLayer> DenseFromProto(const v1::DenseLayer& proto,
   return layer;
 }
 
+absl::Status DenseLayersFromProto(const google::protobuf::RepeatedPtrField<v1::DenseLayer>& protos,
+                                  absl::string_view field, std::vector<actor::DenseLayer>& layers) {
+  for (const v1::DenseLayer& proto : protos) {
+    DCS_ASSIGN_OR_RETURN(actor::DenseLayer layer, DenseFromProto(proto, field));
+    layers.push_back(std::move(layer));
+  }
+  return absl::OkStatus();
+}
+
 }  // namespace
 
 v1::PolicyWeights WeightsToProto(const actor::PolicyWeights& weights) {
@@ -218,6 +227,9 @@ v1::PolicyWeights WeightsToProto(const actor::PolicyWeights& weights) {
       out.set_stride(conv.stride);
     }
     *encoder.mutable_linear() = DenseToProto(image.linear);
+  }
+  for (const actor::DenseLayer& layer : weights.context_layers) {
+    *proto.add_context_layers() = DenseToProto(layer);
   }
   for (const actor::DenseLayer& layer : weights.layers) *proto.add_layers() = DenseToProto(layer);
   *proto.mutable_log_std() = ToTensor(weights.log_std);
@@ -249,10 +261,9 @@ absl::StatusOr<actor::PolicyWeights> WeightsFromProto(const v1::PolicyWeights& p
     }
     DCS_ASSIGN_OR_RETURN(image.linear, DenseFromProto(encoder.linear(), "image.linear"));
   }
-  for (const v1::DenseLayer& in : proto.layers()) {
-    DCS_ASSIGN_OR_RETURN(actor::DenseLayer layer, DenseFromProto(in, "layers"));
-    weights.layers.push_back(std::move(layer));
-  }
+  DCS_RETURN_IF_ERROR(
+      DenseLayersFromProto(proto.context_layers(), "context_layers", weights.context_layers));
+  DCS_RETURN_IF_ERROR(DenseLayersFromProto(proto.layers(), "layers", weights.layers));
   DCS_ASSIGN_OR_RETURN(weights.log_std, FromTensor<float>(proto.log_std(), "log_std"));
   return weights;
 }

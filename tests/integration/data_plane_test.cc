@@ -84,8 +84,9 @@ evaluation: {freq: 1536, episodes: 3, contexts: {id: [0.5], ood_high: [1.0]}}
 ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
 )";
 
-// An image policy (NatureCNN on CarRacing's frames), two slots: its policy (4.5 MB) and each
-// slot's rollout (48 frames of 27 kB) are larger than one message and travel in pieces.
+// An image policy (NatureCNN on CarRacing's frames, the context through its own branch), two
+// slots: its policy (4.5 MB) and each slot's rollout (48 frames of 27 kB) are larger than one
+// message and travel in pieces.
 constexpr char kImageConfig[] = R"(env: car_racing
 seed: 3
 total_timesteps: 192
@@ -95,10 +96,11 @@ training_range: [-0.8, 0.8]
 pool: {size: 3}
 observe: live
 evaluation: {freq: 96, episodes: 1, contexts: {id: [0.0]}}
-ppo: {n_steps: 48, batch_size: 48, n_epochs: 2}
+ppo: {n_steps: 48, batch_size: 48, n_epochs: 2, context_layers: [16]}
 )";
 
-// kImageConfig as a sweep through `dcs submit`: static and a sinusoid, one seed.
+// kImageConfig without the context branch, as a sweep through `dcs submit`: static and a
+// sinusoid, one seed.
 constexpr char kImageSweepSpec[] = R"(name: car_racing_small
 seeds: [3]
 observe: [live]

@@ -17,9 +17,10 @@ namespace dcs::learner {
 namespace {
 
 // The actor's Eigen network computes the same function as the learner's torch network.
-void ExpectEigenMatchesTorch(const run::PolicySpec& spec, int samples) {
+void ExpectEigenMatchesTorch(const run::PolicySpec& spec, int samples,
+                             const run::PpoConfig& config = run::PpoConfig{}) {
   torch::manual_seed(7);
-  ActorCritic network(spec, run::PpoConfig{});
+  ActorCritic network(spec, config);
   absl::StatusOr<actor::PolicyNetwork> policy =
       actor::PolicyNetwork::Create(network->ExportActor());
   ASSERT_TRUE(policy.ok()) << policy.status();
@@ -67,6 +68,11 @@ TEST(ActorCriticTest, EigenInferenceMatchesTorchForImagePolicies) {
   ExpectEigenMatchesTorch(run::PolicySpecFor<env::CarRacing>(1), 20);
 }
 
+TEST(ActorCriticTest, EigenInferenceMatchesTorchForImagePoliciesWithAContextBranch) {
+  ExpectEigenMatchesTorch(run::PolicySpecFor<env::CarRacing>(1), 20,
+                          run::PpoConfig{.context_layers = {64, 16}});
+}
+
 TEST(ActorCriticTest, InitialisesWithSb3Gains) {
   // Orthogonal rows scaled by the gain: W W^T = gain^2 I for a wide layer (64 x 5 is tall, so
   // use W^T W = gain^2 I on the 64 x 64 hidden layer), 0.01 for the action head, zero biases.
@@ -107,6 +113,32 @@ TEST(ActorCriticTest, ImagePoliciesRunNatureCnnOnTheImageAndAppendTheContext) {
   const Eigen::MatrixXf values = pass.values;
   network->Forward({.flat = torch::ones({5, 2}), .images = batch.images}, false, pass);
   EXPECT_FALSE((values.array() == pass.values.array()).all());
+}
+
+// The paper's CarRacing policy: the context through its own MLP (ReLU), whose output follows
+// NatureCNN's features; a policy without context, or without image, has no branch.
+TEST(ActorCriticTest, AContextBranchFeedsTheContextsOwnFeaturesToTheHeads) {
+  torch::manual_seed(4);
+  const run::PpoConfig config{.context_layers = {32, 8}};
+  ActorCritic network(ImageSpec(96), config);
+  EXPECT_EQ(network->named_parameters().find("context_1.weight")->sizes(),
+            torch::IntArrayRef({8, 32}));
+  const ObservationBatch batch{.flat = torch::zeros({5, 2}), .images = torch::rand({5, 3, 96, 96})};
+  ActorCriticImpl::Pass pass;
+  network->Forward(batch, /*record_image_graph=*/false, pass);
+  EXPECT_EQ(pass.features.sizes(), torch::IntArrayRef({5, 256 + 8}));
+  const Eigen::MatrixXf values = pass.values;
+  network->Forward({.flat = torch::ones({5, 2}), .images = batch.images}, false, pass);
+  EXPECT_FALSE((values.array() == pass.values.array()).all());
+  const actor::PolicyWeights exported = network->ExportActor();
+  ASSERT_EQ(exported.context_layers.size(), 2u);
+  EXPECT_EQ(exported.context_layers[0].activation, actor::Activation::kRelu);
+
+  run::PolicySpec blind = ImageSpec(96);
+  blind.context_size = 0;
+  EXPECT_EQ(ActorCritic(blind, config)->named_parameters().find("context_0.weight"), nullptr);
+  EXPECT_EQ(ActorCritic(CartPoleSpec(), config)->named_parameters().find("context_0.weight"),
+            nullptr);
 }
 
 TEST(ActorCriticTest, PassesLeaveNoAutogradGraphOnTheirFeatures) {

@@ -46,24 +46,29 @@ torch::Tensor AutogradLoss(ActorCritic& network, const run::PolicySpec& spec,
                            const run::PpoConfig& config, const Minibatch& m) {
   std::map<std::string, torch::Tensor> p;
   for (const auto& item : network->named_parameters()) p[item.key()] = item.value();
+  // The layers `name`_0, `name`_1, ... on `x`, each followed by `activation`.
+  const auto mlp = [&](const std::string& name, torch::Tensor x,
+                       torch::Tensor (*activation)(const torch::Tensor&)) {
+    for (int l = 0; p.count(name + "_" + std::to_string(l) + ".weight") > 0; ++l) {
+      const std::string layer = name + "_" + std::to_string(l);
+      x = activation(torch::nn::functional::linear(x, p[layer + ".weight"], p[layer + ".bias"]));
+    }
+    return x;
+  };
   torch::Tensor features = m.observations.flat;
   if (spec.has_image()) {
     auto cnn = std::dynamic_pointer_cast<torch::nn::SequentialImpl>(
         network->named_children()["cnn"]);
-    features = torch::cat({cnn->forward(m.observations.images), m.observations.flat}, 1);
+    features = torch::cat(
+        {cnn->forward(m.observations.images), mlp("context", m.observations.flat, torch::relu)},
+        1);
   }
-  const auto mlp = [&](const std::string& name) {
-    torch::Tensor x = features;
-    for (int l = 0; p.count(name + "_" + std::to_string(l) + ".weight") > 0; ++l) {
-      const std::string layer = name + "_" + std::to_string(l);
-      x = torch::tanh(torch::nn::functional::linear(x, p[layer + ".weight"], p[layer + ".bias"]));
-    }
-    return x;
-  };
   const torch::Tensor head =
-      torch::nn::functional::linear(mlp("pi"), p["action_net.weight"], p["action_net.bias"]);
+      torch::nn::functional::linear(mlp("pi", features, torch::tanh), p["action_net.weight"],
+                                    p["action_net.bias"]);
   const torch::Tensor values =
-      torch::nn::functional::linear(mlp("vf"), p["value_net.weight"], p["value_net.bias"])
+      torch::nn::functional::linear(mlp("vf", features, torch::tanh), p["value_net.weight"],
+                                    p["value_net.bias"])
           .squeeze(1);
   torch::Tensor log_probs;
   torch::Tensor entropy;
@@ -182,6 +187,13 @@ TEST(PpoGradientTest, Gaussian) {
 TEST(PpoGradientTest, ImagePolicyGradientsReachNatureCnn) {
   // 36 x 36: the smallest image NatureCNN takes.
   ExpectExplicitGradientsMatchAutograd(ImageSpec(36), run::PpoConfig{.ent_coef = 0.01}, 6);
+}
+
+TEST(PpoGradientTest, ImagePolicyGradientsReachTheContextBranch) {
+  run::PolicySpec spec = ImageSpec(36);
+  ASSERT_GT(spec.context_size, 0);
+  ExpectExplicitGradientsMatchAutograd(
+      spec, run::PpoConfig{.ent_coef = 0.01, .context_layers = {16, 8}}, 6);
 }
 
 }  // namespace

@@ -115,6 +115,7 @@ TEST(RunSpecYamlTest, ThePaperConfigsSayWhatTheyShould) {
   EXPECT_EQ(car.feature, "COM_Y");
   EXPECT_EQ(car.eval_freq, 150'000);
   EXPECT_EQ(car.total_timesteps, 1'500'000);
+  EXPECT_THAT(car.ppo.context_layers, IsEmpty());  // SB3's CombinedExtractor
 }
 
 TEST(RunSpecYamlTest, ReadsEveryField) {
@@ -378,6 +379,24 @@ TEST(RunSpecYamlTest, RefusesValuesOutOfRangeNamingTheField) {
   contexts: {id: [], ood_low: []}
 )"),
               AllOf(HasSubstr("evaluation.contexts"), HasSubstr("at least one")));
+  EXPECT_THAT(ErrorOf(absl::StrCat(kBase, "ppo: {context_layers: [64]}\n")),
+              AllOf(HasSubstr("ppo.context_layers"), HasSubstr("for image policies"),
+                    HasSubstr("cartpole's observation has no image")));
+}
+
+TEST(RunSpecYamlTest, AnImagePolicysContextBranchIsReadAndChecked) {
+  const std::string car = R"(env: car_racing
+feature: COM_Y
+training_range: [-0.8, 0.8]
+observe: live
+evaluation: {freq: 1000, episodes: 1, contexts: {id: [0.0]}}
+)";
+  absl::StatusOr<RunSpec> spec =
+      ParseRunSpecYaml(absl::StrCat(car, "ppo: {context_layers: [64, 16]}\n"), "run.yaml");
+  ASSERT_TRUE(spec.ok()) << spec.status();
+  EXPECT_THAT(spec->ppo.context_layers, ElementsAre(64, 16));
+  EXPECT_THAT(ErrorOf(absl::StrCat(car, "ppo: {context_layers: [64, 0]}\n")),
+              AllOf(HasSubstr("ppo.context_layers"), HasSubstr("positive widths")));
 }
 
 TEST(RunSpecYamlTest, CoverageIsOffUnlessAskedForAndNamesTheEnvironmentsProjections) {

@@ -122,6 +122,11 @@ TEST(TrajectoryProtoTest, ImagePolicyWeightsRoundTrip) {
                                                      .weight = {1, 2, 3, 4},
                                                      .bias = {0},
                                                      .activation = actor::Activation::kRelu}},
+      .context_layers = {{.inputs = 3,
+                          .outputs = 1,
+                          .weight = {1, 2, 3},
+                          .bias = {4},
+                          .activation = actor::Activation::kRelu}},
       .layers = {{.inputs = 2,
                   .outputs = 2,
                   .weight = {1, 0, 0, 1},
@@ -138,6 +143,10 @@ TEST(TrajectoryProtoTest, ImagePolicyWeightsRoundTrip) {
   EXPECT_EQ(back->image->convs[0].kernel, 2);
   EXPECT_EQ(back->image->convs[0].weight, weights.image->convs[0].weight);
   EXPECT_EQ(back->image->linear.activation, actor::Activation::kRelu);
+  ASSERT_EQ(back->context_layers.size(), 1u);
+  EXPECT_EQ(back->context_layers[0].inputs, 3);
+  EXPECT_EQ(back->context_layers[0].weight, weights.context_layers[0].weight);
+  EXPECT_EQ(back->context_layers[0].activation, actor::Activation::kRelu);
   EXPECT_EQ(back->image->linear.weight, weights.image->linear.weight);
 
   v1::PolicyWeights unknown = WeightsToProto(weights);
