@@ -538,15 +538,18 @@ TEST(SweepSpecYamlTest, EveryConfigWithConditionsParses) {
   EXPECT_EQ(Param(RunOf(quickstart->trials[2]), 0, "amplitude_frac"), 0.25);
 }
 
+// The sweep spec of configs/ named `file` (e.g. "cartpole_table.yaml"), parsed; none if absent.
+std::optional<SweepSpec> ConfigSweep(const std::string& file) {
+  for (const ConfigFile& config : ConfigFiles()) {
+    if (config.path.filename() == file) return Parse(config.text);
+  }
+  return std::nullopt;
+}
+
 // The 40-seed table is the paper's table with more seeds: the same trials, the same configs.
 TEST(SweepSpecYamlTest, TheFortySeedTableRunsThePapersTrials) {
-  std::optional<SweepSpec> table;
-  std::optional<SweepSpec> forty;
-  for (const ConfigFile& config : ConfigFiles()) {
-    const std::string file = config.path.filename().string();
-    if (file == "cartpole_table.yaml") table = Parse(config.text);
-    if (file == "cartpole_table_seeds40.yaml") forty = Parse(config.text);
-  }
+  const std::optional<SweepSpec> table = ConfigSweep("cartpole_table.yaml");
+  const std::optional<SweepSpec> forty = ConfigSweep("cartpole_table_seeds40.yaml");
   ASSERT_TRUE(table.has_value() && forty.has_value());
   EXPECT_EQ(table->seeds.size(), 10u);
   ASSERT_EQ(forty->seeds.size(), 40u);
@@ -562,13 +565,8 @@ TEST(SweepSpecYamlTest, TheFortySeedTableRunsThePapersTrials) {
 
 // The Walker sweep sized for 2 cores runs some of the paper's Walker table's trials, unchanged.
 TEST(SweepSpecYamlTest, TheSmallWalkerSweepRunsTrialsOfThePapersTable) {
-  std::optional<SweepSpec> table;
-  std::optional<SweepSpec> best;
-  for (const ConfigFile& config : ConfigFiles()) {
-    const std::string file = config.path.filename().string();
-    if (file == "bipedal_walker_comx.yaml") table = Parse(config.text);
-    if (file == "bipedal_walker_comx_best.yaml") best = Parse(config.text);
-  }
+  const std::optional<SweepSpec> table = ConfigSweep("bipedal_walker_comx.yaml");
+  const std::optional<SweepSpec> best = ConfigSweep("bipedal_walker_comx_best.yaml");
   ASSERT_TRUE(table.has_value() && best.has_value());
   EXPECT_THAT(Trials(*best), ElementsAre("static | static | none", "static | static | live",
                                          "sinusoidal amplitude=0.3 period=300 | sinusoidal | live",
