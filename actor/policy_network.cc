@@ -50,7 +50,8 @@ absl::StatusOr<PolicyNetwork> PolicyNetwork::Create(const PolicyWeights& weights
     }
     policy.input_size_ = joined;
     if (!weights.context_layers.empty()) {
-      int branch_inputs = policy.input_size_ = weights.context_layers.front().inputs;
+      policy.input_size_ = weights.context_layers.front().inputs;  // the context's size
+      int branch_inputs = policy.input_size_;
       for (size_t i = 0; i < weights.context_layers.size(); ++i) {
         DCS_ASSIGN_OR_RETURN(
             policy.context_layers_.emplace_back(),
