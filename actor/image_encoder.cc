@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
+#include "actor/conv_layout.h"
 
 namespace dcs::actor {
 
@@ -38,18 +39,8 @@ absl::StatusOr<ImageEncoder> ImageEncoder::Create(const ImageEncoderWeights& wei
               .in_width = width,
               .out_height = (height - k) / layer.stride + 1,
               .out_width = (width - k) / layer.stride + 1,
-              .weight = Matrix(layer.out_channels, k * k * channels),
               .bias = Eigen::Map<const Eigen::VectorXf>(layer.bias.data(), layer.out_channels)};
-    for (int out = 0; out < layer.out_channels; ++out) {
-      for (int in = 0; in < channels; ++in) {
-        for (int ky = 0; ky < k; ++ky) {
-          for (int kx = 0; kx < k; ++kx) {
-            conv.weight(out, (ky * k + kx) * channels + in) =
-                layer.weight[((static_cast<size_t>(out) * channels + in) * k + ky) * k + kx];
-          }
-        }
-      }
-    }
+    ToChannelLast(layer.weight, layer.out_channels, channels, k, conv.weight);
     largest_patch = std::max(largest_patch, conv.weight.cols());
     height = conv.out_height;
     width = conv.out_width;

@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 
 #include "absl/status/statusor.h"
+#include "actor/dense_forward.h"
 #include "actor/policy_weights.h"
 
 namespace dcs::actor {
@@ -39,7 +40,7 @@ class ImageEncoder {
   void Encode(std::span<const uint8_t> image, std::span<float> features);
 
  private:
-  using Matrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  using Matrix = RowMajorMatrix;
   struct Conv {
     int kernel = 0;
     int stride = 0;

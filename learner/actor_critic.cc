@@ -167,21 +167,18 @@ ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConf
   const double sqrt2 = std::numbers::sqrt2;
   int features = spec.flat_input_size();
   if (spec.has_image()) {
-    // NatureCNN: 8x8/4, 4x4/2, 3x3/1 convolutions with ReLU, then Linear -> ReLU.
-    cnn_ = torch::nn::Sequential(
-        torch::nn::Conv2d(torch::nn::Conv2dOptions(spec.image_channels, 32, 8).stride(4)),
-        torch::nn::ReLU(),
-        torch::nn::Conv2d(torch::nn::Conv2dOptions(32, 64, 4).stride(2)), torch::nn::ReLU(),
-        torch::nn::Conv2d(torch::nn::Conv2dOptions(64, 64, 3).stride(1)), torch::nn::ReLU(),
-        torch::nn::Flatten());
-    const int64_t flattened = [&] {
-      torch::NoGradGuard no_grad;
-      absl::MutexLockMaybe blas(BlasMutex());
-      return cnn_
-          ->forward(torch::zeros({1, spec.image_channels, spec.image_height, spec.image_width}))
-          .size(1);
-    }();
-    cnn_->push_back(torch::nn::Linear(flattened, config.cnn_features));
+    // As SB3's NatureCNN module: each convolution and ReLU, Flatten, then Linear and ReLU.
+    nature_cnn_.emplace(spec.image_height, spec.image_width, spec.image_channels,
+                        config.cnn_features);
+    cnn_ = torch::nn::Sequential();
+    for (const ConvShape& conv : nature_cnn_->convs()) {
+      cnn_->push_back(torch::nn::Conv2d(
+          torch::nn::Conv2dOptions(conv.in_channels, conv.out_channels, conv.kernel)
+              .stride(conv.stride)));
+      cnn_->push_back(torch::nn::ReLU());
+    }
+    cnn_->push_back(torch::nn::Flatten());
+    cnn_->push_back(torch::nn::Linear(nature_cnn_->flattened_size(), config.cnn_features));
     cnn_->push_back(torch::nn::ReLU());
     register_module("cnn", cnn_);
     InitWeights(*cnn_, sqrt2);
@@ -215,29 +212,51 @@ ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConf
   }
 }
 
-void ActorCriticImpl::Forward(const ObservationBatch& batch, bool record_image_graph,
-                              Pass& pass) {
+NatureCnn::Parameters ActorCriticImpl::CnnParameters() const {
+  NatureCnn::Parameters parameters;
+  int layer = 0;
+  for (const torch::Tensor& p : cnn_->parameters()) {  // weight, bias, layer after layer
+    auto& slot = p.dim() == 1 ? parameters.biases[layer++] : parameters.weights[layer];
+    slot = {p.data_ptr<float>(), static_cast<size_t>(p.numel())};
+  }
+  return parameters;
+}
+
+NatureCnn::Gradients ActorCriticImpl::CnnGradients() {
+  NatureCnn::Gradients gradients;
+  int layer = 0;
+  for (torch::Tensor& p : cnn_->parameters()) {
+    torch::Tensor& g = Gradient(p);
+    auto& slot = p.dim() == 1 ? gradients.biases[layer++] : gradients.weights[layer];
+    slot = {g.data_ptr<float>(), static_cast<size_t>(g.numel())};
+  }
+  return gradients;
+}
+
+void ActorCriticImpl::Forward(const ObservationBatch& batch, bool for_backward, Pass& pass) {
   torch::NoGradGuard no_grad;
   actor::PinEigenBlocking();
   if (spec_.has_image()) {
-    {
-      absl::MutexLockMaybe blas(BlasMutex());
-      torch::AutoGradMode graph(record_image_graph);
-      pass.image_features = cnn_->forward(batch.images);
-    }
-    const torch::Tensor image_features = pass.image_features.detach();
-    if (spec_.context_size == 0) {
-      pass.features = image_features.contiguous();
-    } else if (context_.layers.empty()) {
-      pass.features = torch::cat({image_features, batch.flat}, 1);
-    } else {
+    const auto count = static_cast<int>(batch.flat.size(0));
+    nature_cnn_->Forward(CnnParameters(), batch.images, count, for_backward, pass.cnn,
+                         pass.image_features);
+    // The MLPs' input: the image's features, then the context, as it is or through its branch.
+    const Eigen::Index image_rows = pass.image_features.rows();
+    Eigen::Index rows = image_rows;
+    if (!context_.layers.empty()) {
       pass.context_input = batch.flat.contiguous();
       context_.Forward(BatchView(pass.context_input), pass.context);
-      const Eigen::MatrixXf& branch = pass.context.back();  // [width x B]: a [B, width] tensor
-      pass.features = torch::cat(
-          {image_features,
-           torch::from_blob(const_cast<float*>(branch.data()), {branch.cols(), branch.rows()})},
-          1);
+      rows += pass.context.back().rows();
+    } else {
+      rows += spec_.context_size;
+    }
+    pass.features = torch::empty({count, rows});
+    Eigen::Map<Eigen::MatrixXf> features(pass.features.data_ptr<float>(), rows, count);
+    features.topRows(image_rows) = pass.image_features;
+    if (!context_.layers.empty()) {
+      features.bottomRows(rows - image_rows) = pass.context.back();
+    } else if (spec_.context_size > 0) {
+      features.bottomRows(rows - image_rows) = BatchView(batch.flat.contiguous());
     }
   } else {
     pass.features = batch.flat.contiguous();
@@ -270,12 +289,9 @@ void ActorCriticImpl::Backward(Pass& pass, const Eigen::MatrixXf& d_head,
                       pass.d_context, nullptr);
   }
   if (spec_.has_image()) {
-    // NatureCNN's gradients through autograd, from the image features' part of d_features.
-    for (torch::Tensor& parameter : cnn_->parameters()) Gradient(parameter).zero_();
-    const torch::Tensor d_all = torch::from_blob(pass.d_features.data(),
-                                                 {features.cols(), features.rows()});
-    absl::MutexLockMaybe blas(BlasMutex());
-    pass.image_features.backward(d_all.narrow(1, 0, pass.image_features.size(1)));
+    // NatureCNN's gradients from the image features' part of d_features.
+    nature_cnn_->Backward(CnnParameters(), pass.d_features.topRows(pass.image_features.rows()),
+                          pass.cnn, CnnGradients());
   }
 }
 

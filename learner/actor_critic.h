@@ -14,30 +14,35 @@
 // Forward and backward passes are explicit (Forward, Backward), for PPO's update: the loss's
 // gradient with respect to the heads' outputs (learner/ppo_loss.h) goes down the MLPs as Eigen
 // matrix products on the parameters' own memory (actor/dense_forward.h: the layers actors
-// compute), and through autograd only in NatureCNN. In a pass, a batch holds one sample per
-// column ([values x samples], column-major): the memory of a row-major [samples x values]
-// tensor.
+// compute), and down NatureCNN as im2col products (learner/nature_cnn.h); libtorch keeps the
+// parameters (initialisation, Adam, checkpoints) and computes nothing of a pass. In a pass, a
+// batch holds one sample per column ([values x samples], column-major): the memory of a
+// row-major [samples x values] tensor.
 //
 // Internal to learner/: only learner translation units include libtorch headers.
 // Confined to one thread (libtorch is pinned to one thread per run).
 
 #include <torch/torch.h>
 
+#include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "actor/policy_weights.h"
+#include "learner/nature_cnn.h"
 #include "run/ppo_config.h"
 
 namespace dcs::learner {
 
-// A batch of observations as tensors: `flat` [B, flat_input_size] float; `images`
-// [B, channels, height, width] float in [0, 1] (undefined without an image).
+// A batch of B observations: `flat` [B, flat_input_size] float; `images` B channel-last
+// images of image_size() bytes each, image after image (empty without an image), as rollouts
+// carry them.
 struct ObservationBatch {
   torch::Tensor flat;
-  torch::Tensor images;
+  std::span<const uint8_t> images;
 };
 
 class ActorCriticImpl : public torch::nn::Module {
@@ -48,8 +53,9 @@ class ActorCriticImpl : public torch::nn::Module {
   // One forward pass's inputs and outputs, kept for its backward pass, and the backward pass's
   // scratch. Buffers are reused by the next pass of the same batch size.
   struct Pass {
-    torch::Tensor image_features;  // NatureCNN's output (image policies), maybe with its graph
-    torch::Tensor features;        // [B, F] contiguous, the MLPs' input
+    NatureCnn::Pass cnn;            // image policies
+    Eigen::MatrixXf image_features; // NatureCNN's output, [cnn_features x B]
+    torch::Tensor features;         // [B, F] contiguous, the MLPs' input
     torch::Tensor context_input;           // the context branch's input, [B, C] contiguous
     std::vector<Eigen::MatrixXf> context;  // each context layer's output, after ReLU
     std::vector<Eigen::MatrixXf> pi;  // each policy layer's output, after tanh: [width x B]
@@ -63,15 +69,15 @@ class ActorCriticImpl : public torch::nn::Module {
     Eigen::MatrixXf d_context_output;  // the context branch's part of d_features
   };
 
-  // The forward pass of `batch`, not recorded for autograd (the MLPs' backward pass is
-  // explicit, below). `record_image_graph`: NatureCNN's part is recorded, for a Backward of this
-  // pass. `pass.features` shares the memory of `batch.flat` for policies without image.
-  void Forward(const ObservationBatch& batch, bool record_image_graph, Pass& pass);
+  // The forward pass of `batch`. `for_backward`: `pass` keeps all NatureCNN's Backward needs
+  // (image policies; otherwise their images go through in chunks, NatureCnn::kChunk).
+  // `pass.features` shares the memory of `batch.flat` for policies without image.
+  void Forward(const ObservationBatch& batch, bool for_backward, Pass& pass);
 
   // Sets the gradient (each parameter's .grad, allocated if undefined) of every parameter from
   // the gradient of the loss with respect to the outputs of `pass`, a Forward with
-  // `record_image_graph` for image policies: `d_head` [A x B], `d_values` [1 x B], `d_log_std`
-  // [action_size] (Gaussian policies; empty otherwise).
+  // `for_backward` for image policies, the parameters unchanged since: `d_head` [A x B],
+  // `d_values` [1 x B], `d_log_std` [action_size] (Gaussian policies; empty otherwise).
   void Backward(Pass& pass, const Eigen::MatrixXf& d_head, const Eigen::MatrixXf& d_values,
                 std::span<const float> d_log_std);
 
@@ -108,8 +114,15 @@ class ActorCriticImpl : public torch::nn::Module {
                        const std::vector<Eigen::MatrixXf>& outputs, const Eigen::MatrixXf& d_head,
                        std::vector<Eigen::MatrixXf>& d_outputs, Eigen::MatrixXf* d_input);
 
+  // NatureCNN's parameters as its passes take them, and their gradients.
+  NatureCnn::Parameters CnnParameters() const;
+  NatureCnn::Gradients CnnGradients();
+
   const run::PolicySpec spec_;
-  torch::nn::Sequential cnn_{nullptr};  // NatureCNN, image observations only
+  // Image observations only: NatureCNN's passes, and its parameters as torch modules (their
+  // names are the checkpoints').
+  std::optional<NatureCnn> nature_cnn_;
+  torch::nn::Sequential cnn_{nullptr};
   Mlp context_{.activation = actor::Activation::kRelu};  // image policies' context branch
   Mlp pi_;
   Mlp vf_;

@@ -67,10 +67,11 @@ float Norm(std::span<const float> values) {
   return static_cast<float>(std::sqrt(squares));
 }
 
-// `values` in the order `order`.
-std::vector<float> Gather(const std::vector<float>& values, const std::vector<int64_t>& order,
-                          int64_t width) {
-  std::vector<float> gathered(values.size());
+// `values`, `width` per transition, in the order `order`.
+template <typename T>
+std::vector<T> Gather(const std::vector<T>& values, const std::vector<int64_t>& order,
+                      int64_t width) {
+  std::vector<T> gathered(values.size());
   for (size_t i = 0; i < order.size(); ++i) {
     std::copy_n(values.begin() + order[i] * width, width, gathered.begin() + i * width);
   }
@@ -96,17 +97,6 @@ Spread SpreadOf(std::span<const T> values) {
 template <typename T>
 double Variance(std::span<const T> values) {
   return SpreadOf(values).squares / static_cast<double>(values.size());
-}
-
-// `count` channel-last images as channel-first floats in [0, 1] (SB3's VecTransposeImage and
-// division by 255).
-torch::Tensor ImageTensor(const uint8_t* bytes, int64_t count, const run::PolicySpec& spec) {
-  return torch::from_blob(const_cast<uint8_t*>(bytes),
-                          {count, spec.image_height, spec.image_width, spec.image_channels},
-                          torch::kUInt8)
-      .permute({0, 3, 1, 2})
-      .to(torch::kFloat32)
-      .div(255.0);
 }
 
 // (x - mean) / (std + 1e-8) with the unbiased std, in place; a single value is left as is.
@@ -169,7 +159,7 @@ struct PpoLearner::Impl {
                          int64_t count) const {
     ObservationBatch batch;
     batch.flat = View(inputs, {count, spec.flat_input_size()}, torch::kFloat32);
-    if (spec.has_image()) batch.images = ImageTensor(images.data(), count, spec);
+    batch.images = images;
     return batch;
   }
 
@@ -219,6 +209,7 @@ struct PpoLearner::Impl {
 absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   const int64_t n = static_cast<int64_t>(r.num_steps) * r.num_envs;
   const ObservationBatch all = Batch(r.inputs, r.images, n);
+  const auto image_size = static_cast<int64_t>(spec.image_size());
   const auto gamma = static_cast<float>(config.gamma);
 
   // Values and log-probabilities at collection time (the policy has not changed since).
@@ -226,7 +217,7 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   std::vector<float> old_log_probs(n);
   std::vector<float> rewards = r.rewards;
   std::vector<float> last_values(r.num_envs);
-  network->Forward(all, /*record_image_graph=*/false, rollout_pass);
+  network->Forward(all, /*for_backward=*/false, rollout_pass);
   std::ranges::copy(Floats(rollout_pass.values), values.begin());
   ActionLogProbs(spec, Floats(rollout_pass.head), LogStd(), r.actions, old_log_probs);
   // A time-limit cut continues in expectation: r += gamma * V(final observation).
@@ -260,10 +251,7 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
                                                  static_cast<uint64_t>(epoch)}));
     for (int64_t i = n - 1; i > 0; --i) std::swap(order[i], order[random.Integers(0, i + 1)]);
     std::vector<float> epoch_inputs = Gather(r.inputs, order, spec.flat_input_size());
-    const torch::Tensor images =
-        spec.has_image()
-            ? all.images.index_select(0, torch::from_blob(order.data(), {n}, torch::kLong))
-            : torch::Tensor();
+    const std::vector<uint8_t> epoch_images = Gather(r.images, order, image_size);
     const std::vector<float> epoch_actions = Gather(r.actions, order, spec.action_size);
     const std::vector<float> epoch_returns = Gather(returns, order, 1);
     const std::vector<float> epoch_log_probs = Gather(old_log_probs, order, 1);
@@ -282,8 +270,9 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
       ObservationBatch batch{
           .flat = torch::from_blob(epoch_inputs.data() + start * spec.flat_input_size(),
                                    {size, spec.flat_input_size()})};
-      if (spec.has_image()) batch.images = images.narrow(0, start, size);
-      network->Forward(batch, /*record_image_graph=*/true, minibatch_pass);
+      batch.images = std::span<const uint8_t>(epoch_images).subspan(start * image_size,
+                                                                      size * image_size);
+      network->Forward(batch, /*for_backward=*/true, minibatch_pass);
       d_head.resize(spec.head_size(), size);
       d_values.resize(1, size);
       const auto slice = [start, size](const std::vector<float>& v, int64_t width = 1) {

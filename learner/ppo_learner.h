@@ -7,15 +7,14 @@
 // bootstraps time-limit cuts, runs GAE, then n_epochs of minibatch updates (advantages
 // normalised per minibatch, clipped surrogate, unclipped MSE value loss, entropy bonus, global
 // gradient-norm clipping, Adam with eps 1e-5). The parameters and Adam's state are libtorch's;
-// the MLPs' passes are Eigen products on them (learner/actor_critic.h), NatureCNN's libtorch's.
+// the passes are Eigen products on them (learner/actor_critic.h, learner/nature_cnn.h).
 //
 // Deterministic: initial weights come from StreamSeed(seed, "init") and minibatch orders from
 // StreamSeed(seed, "minibatch", {update, epoch}); with libtorch pinned to one thread and the
 // numeric kernels pinned (learner/torch_runtime.h, actor/eigen_blocking.h) the same seed and
 // rollouts give the same weights bit for bit on every x86-64-v3 machine, whatever other
-// learners do at the same time on other threads (on a BLAS that shares buffers between callers,
-// NatureCNN's products take turns: BlasMutex, learner/torch_runtime.h). Each learner is
-// confined to one thread at a time.
+// learners do at the same time on other threads. Each learner is confined to one thread at a
+// time.
 
 #include <cstdint>
 #include <memory>

@@ -44,9 +44,8 @@ std::vector<KernelVariable> UnpinnedKernelVariables();
 // kernels' AVX2 and FMA: common/cpu_requirement.cc.)
 void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note);
 
-// The lock every call into BLAS from learner code (matrix products, convolutions, orthogonal
-// initialisation) holds, as `absl::MutexLockMaybe blas(BlasMutex());`, or null when the BLAS
-// needs none. OpenBLAS's serial build shares its work buffers between callers without a lock:
+// The lock every call into BLAS from learner code (the orthogonal initialisation) holds, as
+// `absl::MutexLockMaybe blas(BlasMutex());`, or null when the BLAS needs none. OpenBLAS's serial build shares its work buffers between callers without a lock:
 // two threads multiplying at once get wrong products (measured: about 4% of 64 x 64 products
 // from two threads with its Haswell kernels). Its pthread build, which DCS installs, locks them
 // itself, and so do its OpenMP build and other BLAS libraries; with those this returns null and

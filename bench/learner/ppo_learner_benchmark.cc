@@ -7,9 +7,8 @@
 // backward pass 17,408; 2048 x 10 of both, and the rollout's forward pass), against the rate of
 // a large Eigen matrix product on the same core (what the update's products could reach at best);
 // and actor inference per step (Eigen, the 5 -> 64 -> 64 -> 2 MLP), target <= 1 us; and for
-// CarRacing's image policy (NatureCNN on a 96 x 96 RGB frame, then the MLP), the Eigen network
-// actors and `dcs train` act with against libtorch's forward pass of the same network on one
-// frame (what acting cost before the Eigen network).
+// CarRacing's image policy (NatureCNN on a 96 x 96 RGB frame, then the MLP), the network actors
+// and `dcs train` act with, the learner's forward pass of one frame, and an update's epoch.
 
 #include <cstdint>
 #include <vector>
@@ -122,27 +121,58 @@ void BM_ActorInferenceCarRacing(benchmark::State& state) {
 }
 BENCHMARK(BM_ActorInferenceCarRacing)->Unit(benchmark::kMicrosecond);
 
-void BM_TorchForwardCarRacing(benchmark::State& state) {
+// The learner's forward pass of the same network on one frame.
+void BM_LearnerForwardCarRacing(benchmark::State& state) {
   PinTorchThreads(1).IgnoreError();
-  const run::PolicySpec spec = CarRacingSpec();
-  ActorCritic network(spec, run::PpoConfig{});
-  std::vector<uint8_t> frame = RandomFrame();
+  ActorCritic network(CarRacingSpec(), run::PpoConfig{});
+  const std::vector<uint8_t> frame = RandomFrame();
   std::vector<float> context = {0.25f};
+  const ObservationBatch batch{.flat = torch::from_blob(context.data(), {1, 1}), .images = frame};
   ActorCriticImpl::Pass pass;
   for (auto _ : state) {
-    // As PpoLearner turns frames into tensors: channel first, floats in [0, 1].
-    const ObservationBatch batch{
-        .flat = torch::from_blob(context.data(), {1, 1}),
-        .images = torch::from_blob(frame.data(), {1, 96, 96, 3}, torch::kUInt8)
-                      .permute({0, 3, 1, 2})
-                      .to(torch::kFloat32)
-                      .div(255.0)};
-    network->Forward(batch, /*record_image_graph=*/false, pass);
+    network->Forward(batch, /*for_backward=*/false, pass);
     benchmark::DoNotOptimize(pass.head.data());
   }
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_TorchForwardCarRacing)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LearnerForwardCarRacing)->Unit(benchmark::kMicrosecond);
+
+// One epoch of a PPO update on CarRacing's shape without context (2048 random RGB 96x96 frames:
+// the rollout's forward pass, then 32 minibatches of 64, forward and backward): what an image
+// policy's learning costs (an update is 10 epochs). NatureCNN's multiply-adds per frame:
+// 9,934,848 forward (the convolutions' 3,250,176 + 3,276,800 + 2,359,296, the Linear's
+// 1,048,576), 16,619,520 backward (every weight's gradient, and every input's but the image's).
+void BM_PpoUpdateEpochCarRacing(benchmark::State& state) {
+  PinTorchThreads(1).IgnoreError();
+  constexpr int kSteps = 2048;
+  run::PolicySpec spec = CarRacingSpec();
+  spec.context_size = 0;
+  run::PpoConfig config;
+  config.n_epochs = 1;
+  std::unique_ptr<PpoLearner> learner = *PpoLearner::Create(spec, config, 1, 0);
+  Random random(1);
+  actor::Rollout rollout{.num_steps = kSteps, .num_envs = 1};
+  rollout.images.resize(spec.image_size() * kSteps);
+  for (uint8_t& pixel : rollout.images) pixel = static_cast<uint8_t>(random.Integers(0, 256));
+  for (int t = 0; t < kSteps; ++t) {
+    rollout.actions.push_back(static_cast<float>(random.Uniform(-1, 1)));
+    rollout.actions.push_back(static_cast<float>(random.Uniform(0, 1)));
+    rollout.actions.push_back(static_cast<float>(random.Uniform(0, 1)));
+    rollout.rewards.push_back(static_cast<float>(random.Uniform(-0.1, 1)));
+    rollout.episode_starts.push_back(t % 1000 == 0);
+  }
+  rollout.last_images.assign(spec.image_size(), 0);
+  rollout.last_dones = {0};
+  for (auto _ : state) {
+    absl::StatusOr<UpdateStats> stats = learner->Update(rollout);
+    if (!stats.ok()) state.SkipWithError(stats.status().ToString().c_str());
+    benchmark::DoNotOptimize(stats);
+  }
+  constexpr double kFlopsPerEpoch = 2.0 * kSteps * (2 * 9934848.0 + 16619520.0);
+  state.counters["GFLOP_per_s"] =
+      benchmark::Counter(kFlopsPerEpoch * state.iterations() / 1e9, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_PpoUpdateEpochCarRacing)->Unit(benchmark::kSecond)->Iterations(3);
 
 }  // namespace
 }  // namespace dcs::learner

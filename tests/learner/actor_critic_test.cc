@@ -37,18 +37,10 @@ void ExpectEigenMatchesTorch(const run::PolicySpec& spec, int samples,
     std::vector<float> eigen(head);
     policy->Forward(1, input, image, eigen);
     torch::NoGradGuard no_grad;
-    ObservationBatch batch{.flat = torch::from_blob(input.data(), {1, spec.flat_input_size()})};
-    if (spec.has_image()) {
-      batch.images =
-          torch::from_blob(image.data(),
-                           {1, spec.image_height, spec.image_width, spec.image_channels},
-                           torch::kUInt8)
-              .permute({0, 3, 1, 2})
-              .to(torch::kFloat32)
-              .div(255.0);
-    }
+    const ObservationBatch batch{
+        .flat = torch::from_blob(input.data(), {1, spec.flat_input_size()}), .images = image};
     ActorCriticImpl::Pass pass;
-    network->Forward(batch, /*record_image_graph=*/false, pass);
+    network->Forward(batch, /*for_backward=*/false, pass);
     for (int i = 0; i < head; ++i) {
       EXPECT_NEAR(eigen[i], pass.head(i, 0), 1e-5) << "sample " << sample;
     }
@@ -101,9 +93,10 @@ TEST(ActorCriticTest, InitialisesWithSb3Gains) {
 TEST(ActorCriticTest, ImagePoliciesRunNatureCnnOnTheImageAndAppendTheContext) {
   torch::manual_seed(4);
   ActorCritic network(ImageSpec(96), run::PpoConfig{});
-  const ObservationBatch batch{.flat = torch::zeros({5, 2}), .images = torch::rand({5, 3, 96, 96})};
+  const std::vector<uint8_t> images = RandomImages(ImageSpec(96), 5, 1);
+  const ObservationBatch batch{.flat = torch::zeros({5, 2}), .images = images};
   ActorCriticImpl::Pass pass;
-  network->Forward(batch, /*record_image_graph=*/false, pass);
+  network->Forward(batch, /*for_backward=*/false, pass);
   EXPECT_EQ(pass.features.sizes(), torch::IntArrayRef({5, 256 + 2}));
   EXPECT_EQ(pass.head.rows(), 3);
   EXPECT_EQ(pass.head.cols(), 5);
@@ -123,9 +116,10 @@ TEST(ActorCriticTest, AContextBranchFeedsTheContextsOwnFeaturesToTheHeads) {
   ActorCritic network(ImageSpec(96), config);
   EXPECT_EQ(network->named_parameters().find("context_1.weight")->sizes(),
             torch::IntArrayRef({8, 32}));
-  const ObservationBatch batch{.flat = torch::zeros({5, 2}), .images = torch::rand({5, 3, 96, 96})};
+  const std::vector<uint8_t> images = RandomImages(ImageSpec(96), 5, 1);
+  const ObservationBatch batch{.flat = torch::zeros({5, 2}), .images = images};
   ActorCriticImpl::Pass pass;
-  network->Forward(batch, /*record_image_graph=*/false, pass);
+  network->Forward(batch, /*for_backward=*/false, pass);
   EXPECT_EQ(pass.features.sizes(), torch::IntArrayRef({5, 256 + 8}));
   const Eigen::MatrixXf values = pass.values;
   network->Forward({.flat = torch::ones({5, 2}), .images = batch.images}, false, pass);
@@ -142,21 +136,36 @@ TEST(ActorCriticTest, AContextBranchFeedsTheContextsOwnFeaturesToTheHeads) {
 }
 
 TEST(ActorCriticTest, PassesLeaveNoAutogradGraphOnTheirFeatures) {
-  // Passes are made again and again: a graph recorded on what they keep, other than NatureCNN's
-  // output for its own backward pass, would chain across passes (growing without bound, then
-  // overflowing the stack when freed).
+  // Passes are made again and again: a graph recorded on what they keep would chain across
+  // passes (growing without bound, then overflowing the stack when freed).
   torch::manual_seed(5);
   ActorCritic network(ImageSpec(36), run::PpoConfig{});
   ActorCriticImpl::Pass pass;
-  const ObservationBatch batch{.flat = torch::randn({8, 2}), .images = torch::rand({8, 3, 36, 36})};
+  const std::vector<uint8_t> images = RandomImages(ImageSpec(36), 8, 2);
+  const ObservationBatch batch{.flat = torch::randn({8, 2}), .images = images};
   for (int i = 0; i < 2; ++i) {
-    network->Forward(batch, /*record_image_graph=*/true, pass);
+    network->Forward(batch, /*for_backward=*/true, pass);
     network->Backward(pass, Eigen::MatrixXf::Ones(3, 8), Eigen::MatrixXf::Ones(1, 8),
                       std::vector<float>(3, 1.0f));
   }
   EXPECT_FALSE(pass.features.requires_grad());
   EXPECT_EQ(pass.features.grad_fn(), nullptr);
-  EXPECT_NE(pass.image_features.grad_fn(), nullptr);
+}
+
+// NatureCNN's features of an image do not depend on how many images a pass takes at once:
+// a forward pass not kept for backward goes in chunks of NatureCnn::kChunk images.
+TEST(ActorCriticTest, ImageFeaturesAgreeWhateverTheChunking) {
+  torch::manual_seed(6);
+  ActorCritic network(ImageSpec(36), run::PpoConfig{});
+  const int count = NatureCnn::kChunk + 5;
+  const std::vector<uint8_t> images = RandomImages(ImageSpec(36), count, 3);
+  const ObservationBatch batch{.flat = torch::zeros({count, 2}), .images = images};
+  ActorCriticImpl::Pass chunked;
+  network->Forward(batch, /*for_backward=*/false, chunked);
+  ActorCriticImpl::Pass whole;
+  network->Forward(batch, /*for_backward=*/true, whole);
+  EXPECT_TRUE(chunked.image_features.isApprox(whole.image_features, 1e-6f));
+  EXPECT_GT(chunked.image_features.cwiseAbs().maxCoeff(), 0.0f);
 }
 
 }  // namespace

@@ -2,8 +2,12 @@
 #ifndef DCS_TESTS_LEARNER_POLICY_SPECS_H_
 #define DCS_TESTS_LEARNER_POLICY_SPECS_H_
 
-// The policy shapes learner tests use.
+// The policy shapes learner tests use, and images for them.
 
+#include <cstdint>
+#include <vector>
+
+#include "common/random.h"
 #include "run/ppo_config.h"
 
 namespace dcs::learner {
@@ -33,6 +37,14 @@ inline run::PolicySpec ImageSpec(int side) {
           .action_size = 3,
           .action_low = {-1, 0, 0},
           .action_high = {1, 1, 1}};
+}
+
+// `count` images of `spec`'s shape of uniformly random bytes, channel last, image after image.
+inline std::vector<uint8_t> RandomImages(const run::PolicySpec& spec, int count, uint64_t seed) {
+  Random random(seed);
+  std::vector<uint8_t> images(spec.image_size() * count);
+  for (uint8_t& byte : images) byte = static_cast<uint8_t>(random.Integers(0, 256));
+  return images;
 }
 
 }  // namespace dcs::learner

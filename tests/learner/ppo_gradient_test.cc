@@ -32,6 +32,7 @@ torch::Tensor Tensor(const Eigen::MatrixXf& batch) {
 
 // One minibatch of made-up inputs to the loss.
 struct Minibatch {
+  std::vector<uint8_t> images;  // channel last
   ObservationBatch observations;
   torch::Tensor actions;  // [B, action_size]; a discrete action as its index
   torch::Tensor advantages;
@@ -59,9 +60,17 @@ torch::Tensor AutogradLoss(ActorCritic& network, const run::PolicySpec& spec,
   if (spec.has_image()) {
     auto cnn = std::dynamic_pointer_cast<torch::nn::SequentialImpl>(
         network->named_children()["cnn"]);
-    features = torch::cat(
-        {cnn->forward(m.observations.images), mlp("context", m.observations.flat, torch::relu)},
-        1);
+    // As SB3 gives images to NatureCNN: channel first, floats in [0, 1].
+    const torch::Tensor images =
+        torch::from_blob(const_cast<uint8_t*>(m.images.data()),
+                         {m.observations.flat.size(0), spec.image_height, spec.image_width,
+                          spec.image_channels},
+                         torch::kUInt8)
+            .permute({0, 3, 1, 2})
+            .to(torch::kFloat32)
+            .div(255.0);
+    features = torch::cat({cnn->forward(images), mlp("context", m.observations.flat, torch::relu)},
+                          1);
   }
   const torch::Tensor head =
       torch::nn::functional::linear(mlp("pi", features, torch::tanh), p["action_net.weight"],
@@ -103,12 +112,10 @@ void ExpectExplicitGradientsMatchAutograd(const run::PolicySpec& spec,
   ActorCritic network(spec, config);
   Minibatch m;
   m.observations.flat = torch::randn({b, spec.flat_input_size()});
-  if (spec.has_image()) {
-    m.observations.images = torch::rand({b, spec.image_channels, spec.image_height,
-                                         spec.image_width});
-  }
+  m.images = RandomImages(spec, b, 12);
+  m.observations.images = m.images;
   ActorCriticImpl::Pass pass;
-  network->Forward(m.observations, /*record_image_graph=*/true, pass);
+  network->Forward(m.observations, /*for_backward=*/true, pass);
   // Actions near the policy's and old log-probabilities and values off by enough that some
   // ratios and value changes fall outside their clips.
   m.actions = spec.discrete()
@@ -187,6 +194,11 @@ TEST(PpoGradientTest, Gaussian) {
 TEST(PpoGradientTest, ImagePolicyGradientsReachNatureCnn) {
   // 36 x 36: the smallest image NatureCNN takes.
   ExpectExplicitGradientsMatchAutograd(ImageSpec(36), run::PpoConfig{.ent_coef = 0.01}, 6);
+}
+
+TEST(PpoGradientTest, ImagePolicyGradientsReachNatureCnnOnCarRacingsImages) {
+  // 96 x 96: the second convolution leaves its input's last row and column unread.
+  ExpectExplicitGradientsMatchAutograd(ImageSpec(96), run::PpoConfig{}, 3);
 }
 
 TEST(PpoGradientTest, ImagePolicyGradientsReachTheContextBranch) {

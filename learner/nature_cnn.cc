@@ -1,0 +1,191 @@
+// Copyright 2026 The DCS Authors.
+#include "learner/nature_cnn.h"
+
+#include <algorithm>
+
+#include "actor/conv_layout.h"
+
+namespace dcs::learner {
+namespace {
+
+// NatureCNN's convolutions: output channels, kernel, stride.
+constexpr std::array<std::array<int, 3>, NatureCnn::kConvs> kNatureConvs = {
+    {{32, 8, 4}, {64, 4, 2}, {64, 3, 1}}};
+
+using ConstMap = Eigen::Map<const Eigen::MatrixXf>;
+using RowMajorMap = Eigen::Map<const actor::RowMajorMatrix>;
+
+// The receptive fields of `count` channel-last inputs [in_channels x (image, y, x)], one column
+// per output position (image, oy, ox), rows in the order (ky, kx, channel).
+void Im2Col(const ConvShape& conv, const Eigen::MatrixXf& input, int count,
+            Eigen::MatrixXf& columns) {
+  columns.resize(conv.patch_size(), static_cast<Eigen::Index>(count) * conv.out_positions());
+  const int run = conv.kernel * conv.in_channels;  // one row of a receptive field
+  float* out = columns.data();
+  for (int image = 0; image < count; ++image) {
+    for (int oy = 0; oy < conv.out_height(); ++oy) {
+      for (int ox = 0; ox < conv.out_width(); ++ox) {
+        for (int ky = 0; ky < conv.kernel; ++ky) {
+          const float* row =
+              input.data() + ((static_cast<Eigen::Index>(image) * conv.in_height +
+                               oy * conv.stride + ky) * conv.in_width + ox * conv.stride) *
+                                 conv.in_channels;
+          out = std::copy_n(row, run, out);
+        }
+      }
+    }
+  }
+}
+
+// The inverse of Im2Col's gather: each receptive field's gradient added onto the positions it
+// was read from, into `d_input` [in_channels x (image, y, x)], overwritten.
+void Col2Im(const ConvShape& conv, const Eigen::MatrixXf& d_columns, int count,
+            Eigen::MatrixXf& d_input) {
+  d_input.setZero(conv.in_channels, static_cast<Eigen::Index>(count) * conv.in_positions());
+  const int run = conv.kernel * conv.in_channels;
+  const float* in = d_columns.data();
+  for (int image = 0; image < count; ++image) {
+    for (int oy = 0; oy < conv.out_height(); ++oy) {
+      for (int ox = 0; ox < conv.out_width(); ++ox) {
+        for (int ky = 0; ky < conv.kernel; ++ky) {
+          float* row = d_input.data() + ((static_cast<Eigen::Index>(image) * conv.in_height +
+                                          oy * conv.stride + ky) * conv.in_width +
+                                         ox * conv.stride) * conv.in_channels;
+          for (int i = 0; i < run; ++i) row[i] += in[i];
+          in += run;
+        }
+      }
+    }
+  }
+}
+
+Eigen::Map<const Eigen::VectorXf> Vector(std::span<const float> values) {
+  return {values.data(), static_cast<Eigen::Index>(values.size())};
+}
+
+}  // namespace
+
+NatureCnn::NatureCnn(int height, int width, int channels, int features) : features_(features) {
+  for (int i = 0; i < kConvs; ++i) {
+    const auto [out_channels, kernel, stride] = kNatureConvs[i];
+    convs_[i] = {.in_height = height,
+                 .in_width = width,
+                 .in_channels = channels,
+                 .out_channels = out_channels,
+                 .kernel = kernel,
+                 .stride = stride};
+    height = convs_[i].out_height();
+    width = convs_[i].out_width();
+    channels = out_channels;
+  }
+}
+
+int NatureCnn::flattened_size() const {
+  return convs_.back().out_positions() * convs_.back().out_channels;
+}
+
+int NatureCnn::image_size() const {
+  return convs_.front().in_positions() * convs_.front().in_channels;
+}
+
+void NatureCnn::Forward(const Parameters& parameters, std::span<const uint8_t> images, int count,
+                        bool for_backward, Pass& pass, Eigen::MatrixXf& features) const {
+  for (int i = 0; i < kConvs; ++i) {
+    actor::ToChannelLast(parameters.weights[i], convs_[i].out_channels, convs_[i].in_channels,
+                         convs_[i].kernel, pass.weights[i]);
+  }
+  features.resize(features_, count);
+  const int chunk = for_backward ? count : kChunk;
+  for (int start = 0; start < count; start += chunk) {
+    const int size = std::min(chunk, count - start);
+    ForwardChunk(parameters,
+                 images.subspan(static_cast<size_t>(start) * image_size(),
+                                static_cast<size_t>(size) * image_size()),
+                 size, pass);
+    features.middleCols(start, size) = pass.features;
+  }
+}
+
+void NatureCnn::ForwardChunk(const Parameters& parameters, std::span<const uint8_t> images,
+                             int count, Pass& pass) const {
+  pass.count = count;
+  pass.image.resize(convs_.front().in_channels,
+                    static_cast<Eigen::Index>(count) * convs_.front().in_positions());
+  std::transform(images.begin(), images.end(), pass.image.data(),
+                 [](uint8_t byte) { return static_cast<float>(byte) / 255.0f; });
+  for (int i = 0; i < kConvs; ++i) {
+    Im2Col(convs_[i], i == 0 ? pass.image : pass.outputs[i - 1], count, pass.columns[i]);
+    Eigen::MatrixXf& out = pass.outputs[i];
+    out.resize(convs_[i].out_channels, pass.columns[i].cols());
+    out.colwise() = Vector(parameters.biases[i]);  // the product is added to the bias
+    out.noalias() += pass.weights[i] * pass.columns[i];
+    out = out.cwiseMax(0.0f);
+  }
+  // torch's flatten of each image's [channels, y, x]: its channel-last block transposed.
+  const ConvShape& last = convs_.back();
+  const int positions = last.out_positions();
+  pass.flattened.resize(flattened_size(), count);
+  for (int image = 0; image < count; ++image) {
+    Eigen::Map<Eigen::MatrixXf>(pass.flattened.col(image).data(), positions, last.out_channels) =
+        ConstMap(pass.outputs.back().data() +
+                     static_cast<Eigen::Index>(image) * positions * last.out_channels,
+                 last.out_channels, positions)
+            .transpose();
+  }
+  pass.features.resize(features_, count);
+  pass.features.colwise() = Vector(parameters.biases.back());
+  pass.features.noalias() +=
+      RowMajorMap(parameters.weights.back().data(), features_, flattened_size()) *
+      pass.flattened;
+  pass.features = pass.features.cwiseMax(0.0f);
+}
+
+void NatureCnn::Backward(const Parameters& parameters,
+                         const Eigen::Ref<const Eigen::MatrixXf>& d_features, Pass& pass,
+                         const Gradients& gradients) const {
+  const int count = pass.count;
+  // ReLU passes the gradient where its output is positive (torch's threshold_backward).
+  const auto through_relu = [](const Eigen::MatrixXf& output, Eigen::MatrixXf& d) {
+    d.array() *= (output.array() > 0).cast<float>();
+  };
+  const auto bias_gradient = [](const Eigen::MatrixXf& d, std::span<float> bias) {
+    Eigen::Map<Eigen::VectorXf>(bias.data(), static_cast<Eigen::Index>(bias.size())) =
+        d.rowwise().sum();
+  };
+
+  pass.d_linear = d_features;
+  through_relu(pass.features, pass.d_linear);
+  Eigen::Map<actor::RowMajorMatrix>(gradients.weights.back().data(), features_,
+                                    flattened_size())
+      .noalias() = pass.d_linear * pass.flattened.transpose();
+  bias_gradient(pass.d_linear, gradients.biases.back());
+  pass.d_flattened.noalias() =
+      RowMajorMap(parameters.weights.back().data(), features_, flattened_size()).transpose() *
+      pass.d_linear;
+  // The flattened gradient back to channel last, image by image.
+  const ConvShape& last = convs_.back();
+  const int positions = last.out_positions();
+  Eigen::MatrixXf& d_last = pass.d_outputs.back();
+  d_last.resize(last.out_channels, static_cast<Eigen::Index>(count) * positions);
+  for (int image = 0; image < count; ++image) {
+    Eigen::Map<Eigen::MatrixXf>(d_last.data() +
+                                    static_cast<Eigen::Index>(image) * positions *
+                                        last.out_channels,
+                                last.out_channels, positions) =
+        ConstMap(pass.d_flattened.col(image).data(), positions, last.out_channels).transpose();
+  }
+
+  for (int i = kConvs - 1; i >= 0; --i) {
+    const ConvShape& conv = convs_[i];
+    Eigen::MatrixXf& d_output = pass.d_outputs[i];  // becomes the gradient before ReLU
+    through_relu(pass.outputs[i], d_output);
+    pass.d_weight.noalias() = d_output * pass.columns[i].transpose();
+    actor::ToTorchLayout(pass.d_weight, conv.in_channels, conv.kernel, gradients.weights[i]);
+    bias_gradient(d_output, gradients.biases[i]);
+    if (i == 0) break;  // the image has no gradient
+    pass.d_columns.noalias() = pass.weights[i].transpose() * d_output;
+    Col2Im(conv, pass.d_columns, count, pass.d_outputs[i - 1]);
+  }
+}
+
+}  // namespace dcs::learner
