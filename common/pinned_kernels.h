@@ -40,13 +40,6 @@ inline constexpr KernelVariable kPinnedKernels[] = {
     {"ATEN_CPU_CAPABILITY", "avx2"},
 };
 
-// Whether convolutions go through oneDNN (libtorch's MKL-DNN): never. oneDNN picks its own
-// kernels and blocking from the CPU's instruction set and cache sizes and promises equal
-// results only on identical hardware, so ATen and OpenBLAS compute them instead (NatureCNN
-// updates take about 1.8 times as long: bench/RESULTS.md). A switch of the running process,
-// not a variable: learner::PinNumericKernels sets it.
-inline constexpr bool kOneDnnConvolutions = false;
-
 // `environment` ("NAME=value" entries up to a null pointer, as `environ` holds them) with every
 // variable of kPinnedKernels set to its pinned value: an entry of that name is replaced where
 // it stands (a second entry of that name is dropped), a missing one appended in the table's

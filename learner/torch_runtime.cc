@@ -29,11 +29,6 @@ namespace {
 
 constexpr absl::string_view kNoMatch = "results will not match other machines' bit for bit";
 
-// Whether convolutions go through oneDNN ("on") or ATen and OpenBLAS ("off").
-std::string OneDnnState() {
-  return at::hasMKLDNN() && at::globalContext().userEnabledMkldnn() ? "on" : "off";
-}
-
 std::string OrUnknown(std::string name) { return name.empty() ? "unknown" : name; }
 
 // The arguments this process was started with, empty ones included.
@@ -112,8 +107,6 @@ std::vector<KernelVariable> UnpinnedKernelVariables() {
 }
 
 void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note) {
-  // A runtime switch, read at each convolution: the same on every machine.
-  at::globalContext().setUserEnabledMkldnn(kOneDnnConvolutions);
   const std::vector<KernelVariable> unpinned = UnpinnedKernelVariables();
   if (unpinned.empty()) return;
   const std::string failure = RestartPinned();
@@ -153,7 +146,7 @@ std::string AtenCpuCapability() {
 
 std::string NumericFingerprint() {
   return absl::StrCat("libtorch ", TORCH_VERSION, ", openblas ", OrUnknown(BlasCoreName()),
-                      ", aten ", OrUnknown(AtenCpuCapability()), ", onednn ", OneDnnState());
+                      ", aten ", OrUnknown(AtenCpuCapability()));
 }
 
 std::vector<LibraryVersion> LibraryVersions() {
@@ -167,7 +160,6 @@ std::vector<LibraryVersion> LibraryVersions() {
   if (const std::string capability = AtenCpuCapability(); !capability.empty()) {
     versions.push_back({"aten cpu capability", capability});
   }
-  versions.push_back({"onednn convolutions", OneDnnState()});
   return versions;
 }
 

@@ -31,9 +31,8 @@ absl::Status PinTorchThreads(int threads);
 // or holds another value. Empty when this process was started with the pinned kernels.
 std::vector<KernelVariable> UnpinnedKernelVariables();
 
-// Pins the numeric kernels of this process (common/pinned_kernels.h):
-// - Sets whether convolutions go through oneDNN to kOneDnnConvolutions (they do not).
-// - If UnpinnedKernelVariables is not empty, runs this program again, from /proc/self/exe with
+// Pins the numeric kernels of this process (common/pinned_kernels.h): if
+// UnpinnedKernelVariables is not empty, runs this program again, from /proc/self/exe with
 //   the same arguments, with those variables set, silently (every run's summary and a
 //   learner's registration name the kernels). The call does not return then. DCS's own ways of
 //   starting a trainer (`dcs train`, `dcs up`, the deployments) set the variables, so this
@@ -64,14 +63,12 @@ std::string AtenCpuCapability();
 
 // The numeric libraries and the kernels this process computes with, in one line (results are
 // bit-for-bit reproducible only under the same fingerprint):
-// "libtorch 1.13.0, openblas Haswell, aten avx2, onednn off". libtorch's version is the one
-// compiled against; "openblas unknown" if the BLAS is not OpenBLAS; "onednn off" once
-// PinNumericKernels has run.
+// "libtorch 1.13.0, openblas Haswell, aten avx2". libtorch's version is the one compiled
+// against; "openblas unknown" if the BLAS is not OpenBLAS.
 std::string NumericFingerprint();
 
 // libtorch, as compiled against, and the kernels its operators run on: the OpenBLAS core, the
-// ATen instruction set, and whether convolutions go through oneDNN (the parts of
-// NumericFingerprint, for worker registration).
+// ATen instruction set (the parts of NumericFingerprint, for worker registration).
 std::vector<LibraryVersion> LibraryVersions();
 
 }  // namespace dcs::learner

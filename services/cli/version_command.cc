@@ -29,7 +29,6 @@ int ShowVersion() {
   for (const KernelVariable& variable : kPinnedKernels) {
     kernels.push_back({variable.name, variable.value});
   }
-  kernels.push_back({"onednn convolutions", kOneDnnConvolutions ? "on" : "off"});
   std::cout << "dcs " << build.version << "\n\n"
             << RenderTable(libraries) << "\n"
             << RenderTable(kernels) << std::flush;

@@ -156,7 +156,6 @@ TEST(DcsCliTest, UpStartsTheLearnerWithThePinnedKernels) {
   // scripts/bootstrap installs the pthread build, which locks its buffers (BlasMutex).
   EXPECT_EQ(learner["openblas build"], "pthread, 1 thread");
   EXPECT_EQ(learner["aten cpu capability"], "avx2");
-  EXPECT_EQ(learner["onednn convolutions"], "off");
 }
 
 TEST(DcsCliTest, CtrlCStopsTheForegroundClusterLeavingNothingBehind) {
@@ -290,7 +289,6 @@ TEST(DcsCliTest, VersionShowsLibtorchAndThePinnedKernelsWithoutLoadingLibtorch) 
     EXPECT_THAT(version.output,
                 ContainsRegex(absl::StrCat("\n", variable.name, " +", variable.value, "\n")));
   }
-  EXPECT_THAT(version.output, ContainsRegex("\nonednn convolutions +off\n"));
 }
 
 }  // namespace

@@ -25,6 +25,7 @@ using ::dcs::testing::ScopedVariable;
 using ::testing::AnyOf;
 using ::testing::Contains;
 using ::testing::ElementsAre;
+using ::testing::EndsWith;
 using ::testing::Field;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
@@ -82,18 +83,15 @@ TEST(UnpinnedKernelVariablesTest, NamesEachVariableThatIsUnsetOrDiffers) {
 }
 
 // In a process started with the pinned variables there is nothing to restart for: the call
-// returns, says nothing, and routes convolutions away from oneDNN. (The restart itself is
-// checked through a `dcs-train` started without them: tests/integration/train_cli_test.cc.)
-TEST(PinNumericKernelsTest, LeavesAPinnedProcessRunningAndTurnsOneDnnOff) {
+// returns and says nothing. (The restart itself is checked through a `dcs-train` started
+// without them: tests/integration/train_cli_test.cc.)
+TEST(PinNumericKernelsTest, LeavesAPinnedProcessRunning) {
   ScopedVariable blas("OPENBLAS_CORETYPE", "Haswell");
   ScopedVariable threads("OPENBLAS_NUM_THREADS", "1");
   ScopedVariable aten("ATEN_CPU_CAPABILITY", "avx2");
   std::vector<std::string> notes;
   PinNumericKernels([&notes](absl::string_view note) { notes.emplace_back(note); });
   EXPECT_THAT(notes, IsEmpty());
-  EXPECT_FALSE(at::globalContext().userEnabledMkldnn());
-  EXPECT_THAT(NumericFingerprint(), HasSubstr("onednn off"));
-  at::globalContext().setUserEnabledMkldnn(true);
 }
 
 TEST(NumericFingerprintTest, NamesTheLibraryAndTheKernelsInUse) {
@@ -101,7 +99,7 @@ TEST(NumericFingerprintTest, NamesTheLibraryAndTheKernelsInUse) {
   const std::string fingerprint = NumericFingerprint();
   EXPECT_THAT(fingerprint, HasSubstr(absl::StrCat("libtorch ", TORCH_VERSION, ", ")));
   EXPECT_THAT(fingerprint, HasSubstr(absl::StrCat("openblas ", BlasCoreName(), ", ")));
-  EXPECT_THAT(fingerprint, HasSubstr(absl::StrCat("aten ", AtenCpuCapability(), ", ")));
+  EXPECT_THAT(fingerprint, EndsWith(absl::StrCat("aten ", AtenCpuCapability())));
 }
 
 // OpenBLAS and ATen read their variables when the process starts, so these checks run in a
@@ -121,13 +119,13 @@ void ExpectFingerprintOfAProcessStartedWith(const char* blas_core, const char* a
 }
 
 TEST(NumericFingerprintTest, NamesThePinnedKernelsInAProcessStartedWithThem) {
-  ExpectFingerprintOfAProcessStartedWith("Haswell", "avx2", "openblas Haswell, aten avx2, ");
+  ExpectFingerprintOfAProcessStartedWith("Haswell", "avx2", "openblas Haswell, aten avx2\n");
 }
 
 // The same with other kernels: the fingerprint reads what is in effect, not what DCS pins.
 TEST(NumericFingerprintTest, NamesOtherKernelsInAProcessStartedWithThem) {
   ExpectFingerprintOfAProcessStartedWith("Prescott", "default",
-                                         "openblas Prescott, aten default, ");
+                                         "openblas Prescott, aten default\n");
 }
 
 TEST(LibraryVersionsTest, ReportsLibtorchAndItsKernels) {
@@ -138,7 +136,6 @@ TEST(LibraryVersionsTest, ReportsLibtorchAndItsKernels) {
   EXPECT_FALSE(libtorch->version.empty());
   EXPECT_NE(libtorch->version.find('.'), std::string::npos) << libtorch->version;
   EXPECT_THAT(libraries, Contains(LibraryVersion{"aten cpu capability", AtenCpuCapability()}));
-  EXPECT_THAT(libraries, Contains(Field(&LibraryVersion::name, "onednn convolutions")));
 }
 
 // bootstrap installs the serial OpenBLAS as libtorch's BLAS.
