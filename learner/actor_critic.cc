@@ -53,6 +53,19 @@ torch::Tensor& Gradient(torch::Tensor& parameter) {
   return parameter.mutable_grad();
 }
 
+// NatureCNN's parameters, or their gradients, as its passes take them from `tensors`: each
+// layer's weight, then its bias, layer after layer (the order of cnn_->parameters()).
+template <typename T>
+NatureCnn::Tensors<T> CnnLayers(const std::vector<torch::Tensor>& tensors) {
+  NatureCnn::Tensors<T> layers;
+  int layer = 0;
+  for (const torch::Tensor& t : tensors) {
+    auto& slot = t.dim() == 1 ? layers.biases[layer++] : layers.weights[layer];
+    slot = {t.data_ptr<float>(), static_cast<size_t>(t.numel())};
+  }
+  return layers;
+}
+
 using ConstView = Eigen::Map<const Eigen::MatrixXf>;
 
 // A Linear's weight, [outputs x inputs] row-major as torch stores it, and its bias.
@@ -212,34 +225,13 @@ ActorCriticImpl::ActorCriticImpl(const run::PolicySpec& spec, const run::PpoConf
   }
 }
 
-NatureCnn::Parameters ActorCriticImpl::CnnParameters() const {
-  NatureCnn::Parameters parameters;
-  int layer = 0;
-  for (const torch::Tensor& p : cnn_->parameters()) {  // weight, bias, layer after layer
-    auto& slot = p.dim() == 1 ? parameters.biases[layer++] : parameters.weights[layer];
-    slot = {p.data_ptr<float>(), static_cast<size_t>(p.numel())};
-  }
-  return parameters;
-}
-
-NatureCnn::Gradients ActorCriticImpl::CnnGradients() {
-  NatureCnn::Gradients gradients;
-  int layer = 0;
-  for (torch::Tensor& p : cnn_->parameters()) {
-    torch::Tensor& g = Gradient(p);
-    auto& slot = p.dim() == 1 ? gradients.biases[layer++] : gradients.weights[layer];
-    slot = {g.data_ptr<float>(), static_cast<size_t>(g.numel())};
-  }
-  return gradients;
-}
-
 void ActorCriticImpl::Forward(const ObservationBatch& batch, bool for_backward, Pass& pass) {
   torch::NoGradGuard no_grad;
   actor::PinEigenBlocking();
   if (spec_.has_image()) {
     const auto count = static_cast<int>(batch.flat.size(0));
-    nature_cnn_->Forward(CnnParameters(), batch.images, count, for_backward, pass.cnn,
-                         pass.image_features);
+    nature_cnn_->Forward(CnnLayers<const float>(cnn_->parameters()), batch.images, count,
+                         for_backward, pass.cnn, pass.image_features);
     // The MLPs' input: the image's features, then the context, as it is or through its branch.
     const Eigen::Index image_rows = pass.image_features.rows();
     Eigen::Index rows = image_rows;
@@ -290,8 +282,12 @@ void ActorCriticImpl::Backward(Pass& pass, const Eigen::MatrixXf& d_head,
   }
   if (spec_.has_image()) {
     // NatureCNN's gradients from the image features' part of d_features.
-    nature_cnn_->Backward(CnnParameters(), pass.d_features.topRows(pass.image_features.rows()),
-                          pass.cnn, CnnGradients());
+    std::vector<torch::Tensor> parameters = cnn_->parameters();
+    std::vector<torch::Tensor> gradients;
+    for (torch::Tensor& parameter : parameters) gradients.push_back(Gradient(parameter));
+    nature_cnn_->Backward(CnnLayers<const float>(parameters),
+                          pass.d_features.topRows(pass.image_features.rows()), pass.cnn,
+                          CnnLayers<float>(gradients));
   }
 }
 

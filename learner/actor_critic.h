@@ -114,10 +114,6 @@ class ActorCriticImpl : public torch::nn::Module {
                        const std::vector<Eigen::MatrixXf>& outputs, const Eigen::MatrixXf& d_head,
                        std::vector<Eigen::MatrixXf>& d_outputs, Eigen::MatrixXf* d_input);
 
-  // NatureCNN's parameters as its passes take them, and their gradients.
-  NatureCnn::Parameters CnnParameters() const;
-  NatureCnn::Gradients CnnGradients();
-
   const run::PolicySpec spec_;
   // Image observations only: NatureCNN's passes, and its parameters as torch modules (their
   // names are the checkpoints').
