@@ -15,26 +15,33 @@ constexpr std::array<std::array<int, 3>, NatureCnn::kConvs> kNatureConvs = {
 using ConstMap = Eigen::Map<const Eigen::MatrixXf>;
 using RowMajorMap = Eigen::Map<const actor::RowMajorMatrix>;
 
-// The receptive fields of `count` channel-last inputs [in_channels x (image, y, x)], one column
-// per output position (image, oy, ox), rows in the order (ky, kx, channel).
-void Im2Col(const ConvShape& conv, const Eigen::MatrixXf& input, int count,
-            Eigen::MatrixXf& columns) {
-  columns.resize(conv.patch_size(), static_cast<Eigen::Index>(count) * conv.out_positions());
-  const int run = conv.kernel * conv.in_channels;  // one row of a receptive field
-  float* out = columns.data();
+// Calls visit(offset) for each row of each receptive field of `count` channel-last inputs
+// [in_channels x (image, y, x)]: output position (image, oy, ox) after output position, row ky
+// after row ky, `offset` where the row's kernel * in_channels contiguous floats start.
+template <typename Visit>
+void ForEachFieldRow(const ConvShape& conv, int count, Visit visit) {
   for (int image = 0; image < count; ++image) {
     for (int oy = 0; oy < conv.out_height(); ++oy) {
       for (int ox = 0; ox < conv.out_width(); ++ox) {
         for (int ky = 0; ky < conv.kernel; ++ky) {
-          const float* row =
-              input.data() + ((static_cast<Eigen::Index>(image) * conv.in_height +
-                               oy * conv.stride + ky) * conv.in_width + ox * conv.stride) *
-                                 conv.in_channels;
-          out = std::copy_n(row, run, out);
+          visit((static_cast<Eigen::Index>(image) * conv.in_height + oy * conv.stride + ky) *
+                    conv.in_width * conv.in_channels +
+                static_cast<Eigen::Index>(ox) * conv.stride * conv.in_channels);
         }
       }
     }
   }
+}
+
+// The receptive fields of `count` inputs, one column per output position, rows in the order
+// (ky, kx, channel).
+void Im2Col(const ConvShape& conv, const Eigen::MatrixXf& input, int count,
+            Eigen::MatrixXf& columns) {
+  columns.resize(conv.patch_size(), static_cast<Eigen::Index>(count) * conv.out_positions());
+  const int run = conv.kernel * conv.in_channels;
+  float* out = columns.data();
+  ForEachFieldRow(conv, count,
+                  [&](Eigen::Index offset) { out = std::copy_n(input.data() + offset, run, out); });
 }
 
 // The inverse of Im2Col's gather: each receptive field's gradient added onto the positions it
@@ -44,19 +51,11 @@ void Col2Im(const ConvShape& conv, const Eigen::MatrixXf& d_columns, int count,
   d_input.setZero(conv.in_channels, static_cast<Eigen::Index>(count) * conv.in_positions());
   const int run = conv.kernel * conv.in_channels;
   const float* in = d_columns.data();
-  for (int image = 0; image < count; ++image) {
-    for (int oy = 0; oy < conv.out_height(); ++oy) {
-      for (int ox = 0; ox < conv.out_width(); ++ox) {
-        for (int ky = 0; ky < conv.kernel; ++ky) {
-          float* row = d_input.data() + ((static_cast<Eigen::Index>(image) * conv.in_height +
-                                          oy * conv.stride + ky) * conv.in_width +
-                                         ox * conv.stride) * conv.in_channels;
-          for (int i = 0; i < run; ++i) row[i] += in[i];
-          in += run;
-        }
-      }
-    }
-  }
+  ForEachFieldRow(conv, count, [&](Eigen::Index offset) {
+    float* row = d_input.data() + offset;
+    for (int i = 0; i < run; ++i) row[i] += in[i];
+    in += run;
+  });
 }
 
 Eigen::Map<const Eigen::VectorXf> Vector(std::span<const float> values) {
