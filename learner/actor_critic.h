@@ -53,9 +53,9 @@ class ActorCriticImpl : public torch::nn::Module {
   // One forward pass's inputs and outputs, kept for its backward pass, and the backward pass's
   // scratch. Buffers are reused by the next pass of the same batch size.
   struct Pass {
-    NatureCnn::Pass cnn;            // image policies
-    Eigen::MatrixXf image_features; // NatureCNN's output, [cnn_features x B]
-    torch::Tensor features;         // [B, F] contiguous, the MLPs' input
+    NatureCnn::Pass cnn;             // image policies
+    Eigen::MatrixXf image_features;  // NatureCNN's output, [cnn_features x B]
+    torch::Tensor features;          // [B, F] contiguous, the MLPs' input
     torch::Tensor context_input;           // the context branch's input, [B, C] contiguous
     std::vector<Eigen::MatrixXf> context;  // each context layer's output, after ReLU
     std::vector<Eigen::MatrixXf> pi;  // each policy layer's output, after tanh: [width x B]
