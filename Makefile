@@ -1,13 +1,18 @@
 # The two commands of README.md, and their parts. Each target does all set-up it needs.
-#   make demo   bootstrap, build, run the main job on the local default (scripts/demo): a small
-#               sweep of the paper's CartPole experiment on a local cluster, its table and figures
+#   make demo   bootstrap, build the programs (not the tests), run the main job on the local
+#               default (scripts/demo): a small sweep of the paper's CartPole experiment on a
+#               local cluster, its table and figures
 #   make test   bootstrap, build, run every test with ctest; then build the fuzz targets
 #               (tests/fuzz/, in build-fuzz/ with clang) and give each a short pass
 BUILD_DIR ?= build
 FUZZ_BUILD_DIR ?= build-fuzz
 JOBS ?= $(shell nproc)
 
-.PHONY: all bootstrap configure build test fuzz-configure fuzz-build fuzz demo sanitize clean
+# What `dcs up` and the client run: the demo builds these alone, not the tests and benchmarks.
+PROGRAMS := dcs dcs-coordinator dcs-learner dcs-actor
+
+.PHONY: all bootstrap configure build programs test fuzz-configure fuzz-build fuzz demo sanitize \
+	clean
 
 all: build
 
@@ -19,6 +24,9 @@ configure: bootstrap
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+programs: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target $(PROGRAMS)
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
@@ -34,7 +42,7 @@ fuzz-build: fuzz-configure
 fuzz: fuzz-build
 	ctest --test-dir $(FUZZ_BUILD_DIR) --output-on-failure -j $(JOBS) -L fuzz
 
-demo: build
+demo: programs
 	scripts/demo $(BUILD_DIR)
 
 # The release check (README "Working on DCS"): every test under ASan+UBSan, then under TSan.
