@@ -16,4 +16,18 @@ void Activate(Activation activation, Eigen::MatrixXf& outputs) {
   }
 }
 
+void ActivationGradient(Activation activation, const Eigen::MatrixXf& outputs,
+                        Eigen::MatrixXf& d) {
+  switch (activation) {
+    case Activation::kNone:
+      break;
+    case Activation::kTanh:
+      d.array() *= 1 - outputs.array().square();
+      break;
+    case Activation::kRelu:
+      d.array() *= (outputs.array() > 0).cast<float>();
+      break;
+  }
+}
+
 }  // namespace dcs::actor

@@ -38,6 +38,13 @@ void DenseForward(const Eigen::MatrixBase<Weight>& weight,
 // Applies `activation` to every element of `outputs`, in place.
 void Activate(Activation activation, Eigen::MatrixXf& outputs);
 
+// The backward pass of Activate: multiplies `d`, the gradient at its outputs, by the
+// activation's derivative, written from `outputs` (tanh' = 1 - tanh^2; ReLU passes the gradient
+// where its output is positive, as torch's threshold_backward), in place.
+// REQUIRES: d has the shape of outputs.
+void ActivationGradient(Activation activation, const Eigen::MatrixXf& outputs,
+                        Eigen::MatrixXf& d);
+
 // Implementation details.
 
 template <typename Weight>

@@ -138,16 +138,7 @@ void ActorCriticImpl::Mlp::Backward(ConstView input, const std::vector<Eigen::Ma
     } else {
       d_output = *d;
     }
-    switch (activation) {
-      case actor::Activation::kTanh:
-        d_output.array() *= 1 - outputs[l].array().square();  // tanh' = 1 - tanh^2
-        break;
-      case actor::Activation::kRelu:
-        d_output.array() *= (outputs[l].array() > 0).cast<float>();
-        break;
-      case actor::Activation::kNone:
-        break;
-    }
+    actor::ActivationGradient(activation, outputs[l], d_output);
     LinearGradients(*layers[l], input_of(l), d_output);
     d = &d_output;
     linear = layers[l].get();

@@ -62,6 +62,17 @@ Eigen::Map<const Eigen::VectorXf> Vector(std::span<const float> values) {
   return {values.data(), static_cast<Eigen::Index>(values.size())};
 }
 
+// Each of `count` images' [rows x cols] block of `from` (column-major, image after image),
+// transposed into `to`: between a channel-last output [channels x positions] and torch's
+// flatten of it, [positions x channels], either way.
+void TransposeEachImage(const float* from, int rows, int cols, int count, float* to) {
+  const Eigen::Index size = static_cast<Eigen::Index>(rows) * cols;
+  for (int image = 0; image < count; ++image) {
+    Eigen::Map<Eigen::MatrixXf>(to + image * size, cols, rows) =
+        ConstMap(from + image * size, rows, cols).transpose();
+  }
+}
+
 }  // namespace
 
 NatureCnn::NatureCnn(int height, int width, int channels, int features) : features_(features) {
@@ -118,42 +129,32 @@ void NatureCnn::ForwardChunk(const Parameters& parameters, std::span<const uint8
     out.resize(convs_[i].out_channels, pass.columns[i].cols());
     out.colwise() = Vector(parameters.biases[i]);  // the product is added to the bias
     out.noalias() += pass.weights[i] * pass.columns[i];
-    out = out.cwiseMax(0.0f);
+    actor::Activate(actor::Activation::kRelu, out);
   }
   // torch's flatten of each image's [channels, y, x]: its channel-last block transposed.
   const ConvShape& last = convs_.back();
-  const int positions = last.out_positions();
   pass.flattened.resize(flattened_size(), count);
-  for (int image = 0; image < count; ++image) {
-    Eigen::Map<Eigen::MatrixXf>(pass.flattened.col(image).data(), positions, last.out_channels) =
-        ConstMap(pass.outputs.back().data() +
-                     static_cast<Eigen::Index>(image) * positions * last.out_channels,
-                 last.out_channels, positions)
-            .transpose();
-  }
+  TransposeEachImage(pass.outputs.back().data(), last.out_channels, last.out_positions(), count,
+                     pass.flattened.data());
   pass.features.resize(features_, count);
   pass.features.colwise() = Vector(parameters.biases.back());
   pass.features.noalias() +=
       RowMajorMap(parameters.weights.back().data(), features_, flattened_size()) *
       pass.flattened;
-  pass.features = pass.features.cwiseMax(0.0f);
+  actor::Activate(actor::Activation::kRelu, pass.features);
 }
 
 void NatureCnn::Backward(const Parameters& parameters,
                          const Eigen::Ref<const Eigen::MatrixXf>& d_features, Pass& pass,
                          const Gradients& gradients) const {
   const int count = pass.count;
-  // ReLU passes the gradient where its output is positive (torch's threshold_backward).
-  const auto through_relu = [](const Eigen::MatrixXf& output, Eigen::MatrixXf& d) {
-    d.array() *= (output.array() > 0).cast<float>();
-  };
   const auto bias_gradient = [](const Eigen::MatrixXf& d, std::span<float> bias) {
     Eigen::Map<Eigen::VectorXf>(bias.data(), static_cast<Eigen::Index>(bias.size())) =
         d.rowwise().sum();
   };
 
   pass.d_linear = d_features;
-  through_relu(pass.features, pass.d_linear);
+  actor::ActivationGradient(actor::Activation::kRelu, pass.features, pass.d_linear);
   Eigen::Map<actor::RowMajorMatrix>(gradients.weights.back().data(), features_,
                                     flattened_size())
       .noalias() = pass.d_linear * pass.flattened.transpose();
@@ -161,23 +162,17 @@ void NatureCnn::Backward(const Parameters& parameters,
   pass.d_flattened.noalias() =
       RowMajorMap(parameters.weights.back().data(), features_, flattened_size()).transpose() *
       pass.d_linear;
-  // The flattened gradient back to channel last, image by image.
+  // The flattened gradient back to channel last.
   const ConvShape& last = convs_.back();
-  const int positions = last.out_positions();
   Eigen::MatrixXf& d_last = pass.d_outputs.back();
-  d_last.resize(last.out_channels, static_cast<Eigen::Index>(count) * positions);
-  for (int image = 0; image < count; ++image) {
-    Eigen::Map<Eigen::MatrixXf>(d_last.data() +
-                                    static_cast<Eigen::Index>(image) * positions *
-                                        last.out_channels,
-                                last.out_channels, positions) =
-        ConstMap(pass.d_flattened.col(image).data(), positions, last.out_channels).transpose();
-  }
+  d_last.resize(last.out_channels, static_cast<Eigen::Index>(count) * last.out_positions());
+  TransposeEachImage(pass.d_flattened.data(), last.out_positions(), last.out_channels, count,
+                     d_last.data());
 
   for (int i = kConvs - 1; i >= 0; --i) {
     const ConvShape& conv = convs_[i];
     Eigen::MatrixXf& d_output = pass.d_outputs[i];  // becomes the gradient before ReLU
-    through_relu(pass.outputs[i], d_output);
+    actor::ActivationGradient(actor::Activation::kRelu, pass.outputs[i], d_output);
     pass.d_weight.noalias() = d_output * pass.columns[i].transpose();
     actor::ToTorchLayout(pass.d_weight, conv.in_channels, conv.kernel, gradients.weights[i]);
     bias_gradient(d_output, gradients.biases[i]);

@@ -32,11 +32,11 @@ absl::Status PinTorchThreads(int threads);
 std::vector<KernelVariable> UnpinnedKernelVariables();
 
 // Pins the numeric kernels of this process (common/pinned_kernels.h): if
-// UnpinnedKernelVariables is not empty, runs this program again, from /proc/self/exe with
-//   the same arguments, with those variables set, silently (every run's summary and a
-//   learner's registration name the kernels). The call does not return then. DCS's own ways of
-//   starting a trainer (`dcs train`, `dcs up`, the deployments) set the variables, so this
-//   restart, which pays libtorch's start-up twice, is for a trainer started by hand.
+// UnpinnedKernelVariables is not empty, runs this program again, from /proc/self/exe with the
+// same arguments, with those variables set, silently (every run's summary and a learner's
+// registration name the kernels). The call does not return then. DCS's own ways of starting a
+// trainer (`dcs train`, `dcs up`, the deployments) set the variables, so this restart, which
+// pays libtorch's start-up twice, is for a trainer started by hand.
 // Returns when the kernels are pinned, or when the restart failed: then `note` gets a line
 // saying why and that results will not match other machines' bit for bit, and the process goes
 // on with the kernels its libraries chose. (Every DCS program runs on a CPU with the pinned
@@ -44,12 +44,13 @@ std::vector<KernelVariable> UnpinnedKernelVariables();
 void PinNumericKernels(absl::FunctionRef<void(absl::string_view)> note);
 
 // The lock every call into BLAS from learner code (the orthogonal initialisation) holds, as
-// `absl::MutexLockMaybe blas(BlasMutex());`, or null when the BLAS needs none. OpenBLAS's serial build shares its work buffers between callers without a lock:
-// two threads multiplying at once get wrong products (measured: about 4% of 64 x 64 products
-// from two threads with its Haswell kernels). Its pthread build, which DCS installs, locks them
-// itself, and so do its OpenMP build and other BLAS libraries; with those this returns null and
-// runs updating at once on several threads multiply in parallel. Not OpenBLAS: locked, since
-// whether it shares buffers is unknown.
+// `absl::MutexLockMaybe blas(BlasMutex());`, or null when the BLAS needs none. OpenBLAS's
+// serial build shares its work buffers between callers without a lock: two threads multiplying
+// at once get wrong products (measured: about 4% of 64 x 64 products from two threads with its
+// Haswell kernels). Its pthread build, which DCS installs, locks them itself, and so do its
+// OpenMP build and other BLAS libraries; with those this returns null and runs updating at once
+// on several threads multiply in parallel. Not OpenBLAS: locked, since whether it shares
+// buffers is unknown.
 absl::Mutex* BlasMutex();
 
 // The OpenBLAS core in use ("Haswell", "SkylakeX", ...), or empty if libtorch's BLAS is not
