@@ -122,7 +122,7 @@ absl::StatusOr<ProjectionCounts> DecodeCoverage(const YAML::Node& node,
 
 // Reads one checkpoint directory. DATA_LOSS for a file that is missing, does not match the
 // manifest, or does not parse.
-absl::StatusOr<Checkpoint> ReadCheckpoint(const fs::path& dir) {
+absl::StatusOr<Checkpoint> ReadCheckpointDir(const fs::path& dir) {
   DCS_ASSIGN_OR_RETURN(const std::string manifest, ReadFile(dir / kManifest));
   std::map<std::string, std::string> contents;
   for (const char* file : kFiles) {
@@ -323,26 +323,39 @@ absl::Status WritePackedCheckpoint(const std::string& run_dir, const PackedCheck
   return absl::OkStatus();
 }
 
-absl::StatusOr<Checkpoint> ReadLatestCheckpoint(const std::string& run_dir) {
+absl::StatusOr<std::vector<std::string>> CheckpointNames(const std::string& run_dir) {
   const fs::path root = CheckpointsDir(run_dir);
   absl::StatusOr<std::string> latest = ReadFile(root / kLatest);
   if (!latest.ok()) {
     return absl::NotFoundError(absl::StrCat("no checkpoint in ", root.string()));
   }
   const std::string newest(absl::StripAsciiWhitespace(*latest));
-  // The one `latest` names, then older ones. A newer one is ignored: `latest` had not moved to
-  // it, so its writing was interrupted.
   std::vector<std::string> names;
   std::error_code error;
   for (const fs::directory_entry& entry : fs::directory_iterator(root, error)) {
     const std::string name = entry.path().filename().string();
     if (entry.is_directory() && name <= newest) names.push_back(name);
   }
-  std::sort(names.rbegin(), names.rend());
-  absl::Status last_error = absl::DataLossError(absl::StrCat("no readable checkpoint in ",
-                                                             root.string()));
-  for (const std::string& name : names) {
-    absl::StatusOr<Checkpoint> checkpoint = ReadCheckpoint(root / name);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+absl::StatusOr<Checkpoint> ReadCheckpoint(const std::string& run_dir, const std::string& name) {
+  const fs::path dir = CheckpointsDir(run_dir) / name;
+  std::error_code error;
+  if (!fs::is_directory(dir, error)) {
+    return absl::NotFoundError(absl::StrCat("no checkpoint ", dir.string()));
+  }
+  return ReadCheckpointDir(dir);
+}
+
+absl::StatusOr<Checkpoint> ReadLatestCheckpoint(const std::string& run_dir) {
+  DCS_ASSIGN_OR_RETURN(std::vector<std::string> names, CheckpointNames(run_dir));
+  // The one `latest` names, then older ones.
+  absl::Status last_error = absl::DataLossError(
+      absl::StrCat("no readable checkpoint in ", CheckpointsDir(run_dir).string()));
+  for (auto name = names.rbegin(); name != names.rend(); ++name) {
+    absl::StatusOr<Checkpoint> checkpoint = ReadCheckpoint(run_dir, *name);
     if (checkpoint.ok()) return checkpoint;
     last_error = checkpoint.status();
   }

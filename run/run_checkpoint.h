@@ -85,6 +85,15 @@ absl::Status WriteCheckpoint(const std::string& run_dir, const RunState& state,
 absl::Status WritePackedCheckpoint(const std::string& run_dir, const PackedCheckpoint& packed,
                                    int keep);
 
+// The checkpoints of `run_dir` that `latest` vouches for (those newer were being written when
+// their writer stopped), oldest first, by name. NOT_FOUND if there is none.
+absl::StatusOr<std::vector<std::string>> CheckpointNames(const std::string& run_dir);
+
+// Checkpoint `name` of `run_dir`, read strictly (no fallback to another): NOT_FOUND if there is
+// none of that name; DATA_LOSS naming the file that is missing, does not match the MANIFEST or
+// does not parse.
+absl::StatusOr<Checkpoint> ReadCheckpoint(const std::string& run_dir, const std::string& name);
+
 // The newest checkpoint of `run_dir` that reads back whole: if the one `latest` names is
 // corrupt or truncated (checksum, YAML), the next older one. NOT_FOUND if there is none;
 // DATA_LOSS if every checkpoint is corrupt.

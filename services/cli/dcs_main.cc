@@ -18,6 +18,7 @@
 #include "services/cli/cluster_client.h"
 #include "services/cli/cluster_commands.h"
 #include "services/cli/env_commands.h"
+#include "services/cli/policy_commands.h"
 #include "services/cli/report_commands.h"
 #include "services/cli/runs_commands.h"
 #include "services/cli/schedule_commands.h"
@@ -37,7 +38,7 @@ namespace {
 constexpr AddCommandsFunction kCommandFiles[] = {
     AddClusterCommands, AddVersionCommand, AddEnvCommands,    AddScheduleCommands,
     AddTrainCommand,    AddRunsCommands,   AddSweepCommands,  AddReportCommands,
-    AddSummarizeCommand, AddStudyCommands,
+    AddSummarizeCommand, AddStudyCommands, AddPolicyCommands,
 };
 
 int Main(int argc, char** argv) {

@@ -1,7 +1,8 @@
 // Copyright 2026 The DCS Authors.
 //
-// torch_commands.h for `dcs`: training in process is handed to `dcs-train`, the same client
-// with libtorch linked, beside this program, with this invocation's arguments.
+// torch_commands.h for `dcs`: training in process, and the commands reading trained policies,
+// are handed to `dcs-train`, the same client with libtorch linked, beside this program, with
+// this invocation's arguments.
 
 #include <unistd.h>
 
@@ -42,6 +43,18 @@ int HandOver(const GlobalFlags& global) {
 
 int TrainInProcess(const run::RunRequest& /*request*/, bool /*resume*/, int /*keep*/,
                    const GlobalFlags& global) {
+  return HandOver(global);
+}
+
+int EvaluateInProcess(const EvalFlags& /*flags*/, const GlobalFlags& global) {
+  return HandOver(global);
+}
+
+int PlayInProcess(const PlayFlags& /*flags*/, const GlobalFlags& global) {
+  return HandOver(global);
+}
+
+int ExportInProcess(const ExportFlags& /*flags*/, const GlobalFlags& global) {
   return HandOver(global);
 }
 

@@ -1,0 +1,74 @@
+// Copyright 2026 The DCS Authors.
+#ifndef DCS_SERVICES_CLI_POLICY_COMMANDS_H_
+#define DCS_SERVICES_CLI_POLICY_COMMANDS_H_
+
+// What a researcher does with a trained policy: `dcs eval` (its returns over a grid of one or
+// two context features: a generalisation map), `dcs play` (one episode as a video) and
+// `dcs export` (its weights for PyTorch). Each reads a run's checkpoint, so each runs in
+// `dcs-train` (services/cli/torch_commands.h). A RUN is a run's directory or, if no such
+// directory exists, a run on the cluster, downloaded first (LocalRun).
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "coordinator/gnuplot_figure.h"
+#include "services/cli/cli_command.h"
+
+namespace dcs::services::cli {
+
+struct EvalFlags {
+  std::vector<std::string> runs;
+  std::string checkpoint = "last";  // last, best or a step
+  std::vector<std::string> grid;    // FEATURE=LOW:HIGH:N, once or twice
+  int episodes = 30;                // per cell
+  uint64_t seed = 0;
+  std::string out;  // the figure's directory; empty: no figure
+  coordinator::FigureFormat format = coordinator::FigureFormat::kPng;
+  int threads = 0;  // 0: one per core
+  bool yes = false;  // run a grid above the size that asks first
+};
+
+struct PlayFlags {
+  std::string run;
+  std::string checkpoint = "last";
+  std::vector<std::string> context;  // FEATURE=VALUE
+  std::string schedule;              // a YAML file: the varied feature's stages
+  uint64_t seed = 0;
+  std::string out;    // .mp4 or .gif
+  std::string strip;  // a PNG of a few frames side by side
+  int strip_frames = 5;
+};
+
+struct ExportFlags {
+  std::string run;
+  std::string checkpoint = "last";
+  std::string out = "policy.pt";  // the observation layout goes beside it, as .json
+};
+
+// A run's directory on this machine: `run` itself if it is a directory; else the run of that id
+// on the cluster (`global`'s coordinator), downloaded into a temporary directory that is
+// removed with this. NOT_FOUND naming `run` if it is neither.
+class LocalRun {
+ public:
+  static absl::StatusOr<LocalRun> Find(const std::string& run, const GlobalFlags& global);
+  ~LocalRun();
+  LocalRun(LocalRun&& other) noexcept;
+  LocalRun& operator=(LocalRun&&) = delete;
+  LocalRun(const LocalRun&) = delete;
+
+  const std::string& dir() const { return dir_; }
+
+ private:
+  LocalRun(std::string dir, bool temporary) : dir_(std::move(dir)), temporary_(temporary) {}
+  std::string dir_;
+  bool temporary_ = false;
+};
+
+std::vector<CliCommand> AddPolicyCommands(CLI::App& dcs, const GlobalFlags& flags);
+
+}  // namespace dcs::services::cli
+
+#endif  // DCS_SERVICES_CLI_POLICY_COMMANDS_H_
