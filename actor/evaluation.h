@@ -55,6 +55,9 @@ struct EvaluationResult {
   double avg_combined = 0;  // the mean over every context
 };
 
+// Fills `result`'s mean and std from its returns.
+void SummarizeContext(ContextResult& result);
+
 // Fills the summary (per-context mean and std; split means and minima; avg_combined) of
 // `result` from its contexts' returns.
 void Summarize(EvaluationResult& result);
@@ -79,15 +82,19 @@ absl::StatusOr<ContextResult> EvaluateContext(Policy& policy,
 
 // Implementation details.
 
+inline void SummarizeContext(ContextResult& result) {
+  double sum = 0;
+  for (double value : result.returns) sum += value;
+  result.mean = sum / static_cast<double>(result.returns.size());
+  double squares = 0;
+  for (double value : result.returns) squares += (value - result.mean) * (value - result.mean);
+  result.std = std::sqrt(squares / static_cast<double>(result.returns.size()));
+}
+
 inline void Summarize(EvaluationResult& result) {
   double combined = 0;
   for (ContextResult& r : result.contexts) {
-    double sum = 0;
-    for (double value : r.returns) sum += value;
-    r.mean = sum / static_cast<double>(r.returns.size());
-    double squares = 0;
-    for (double value : r.returns) squares += (value - r.mean) * (value - r.mean);
-    r.std = std::sqrt(squares / static_cast<double>(r.returns.size()));
+    SummarizeContext(r);
     combined += r.mean;
   }
   for (int split = 0; split < kNumSplits; ++split) {
