@@ -315,4 +315,52 @@ actor::PolicyWeights ActorCriticImpl::ExportActor() const {
   return weights;
 }
 
+std::vector<std::pair<std::string, torch::Tensor>> ActorCriticImpl::Sb3Parameters(
+    absl::string_view image_key, absl::string_view context_key) const {
+  using Named = std::vector<std::pair<std::string, torch::Tensor>>;
+  const auto add = [](Named& named, const std::string& prefix, const torch::Tensor& weight,
+                      const torch::Tensor& bias) {
+    named.emplace_back(prefix + ".weight", weight.detach().clone());
+    named.emplace_back(prefix + ".bias", bias.detach().clone());
+  };
+  Named named;
+  // A module's own parameters come before its children's in a state_dict.
+  if (!spec_.discrete()) named.emplace_back("log_std", log_std_.detach().clone());
+  if (spec_.has_image()) {
+    // NatureCNN is two Sequentials in SB3: `cnn` (convolutions and ReLUs, then Flatten) and
+    // `linear` (Linear, ReLU); cnn_ is their concatenation, so its Linear is linear.0.
+    const std::string image = absl::StrCat("extractors.", image_key);
+    Named extractor;
+    const std::vector<std::shared_ptr<torch::nn::Module>> cnn = cnn_->children();
+    for (size_t i = 0; i < cnn.size(); ++i) {
+      if (const auto* conv = cnn[i]->as<torch::nn::Conv2d>()) {
+        add(extractor, absl::StrCat(image, ".cnn.", i), conv->weight, conv->bias);
+      } else if (const auto* linear = cnn[i]->as<torch::nn::Linear>()) {
+        add(extractor, image + ".linear.0", linear->weight, linear->bias);
+      }
+    }
+    for (size_t i = 0; i < context_.layers.size(); ++i) {
+      const torch::nn::LinearImpl& layer = *context_.layers[i];
+      add(extractor, absl::StrCat("extractors.", context_key, ".", 2 * i), layer.weight,
+          layer.bias);
+    }
+    for (const char* owner :
+         {"features_extractor", "pi_features_extractor", "vf_features_extractor"}) {
+      for (const auto& [name, tensor] : extractor) {
+        named.emplace_back(absl::StrCat(owner, ".", name), tensor);
+      }
+    }
+  }
+  // MlpExtractor's Sequentials: Linear at even indices, Tanh at odd ones.
+  for (auto [mlp, prefix] : {std::pair{&pi_, "mlp_extractor.policy_net."},
+                             std::pair{&vf_, "mlp_extractor.value_net."}}) {
+    for (size_t i = 0; i < mlp->layers.size(); ++i) {
+      add(named, absl::StrCat(prefix, 2 * i), mlp->layers[i]->weight, mlp->layers[i]->bias);
+    }
+  }
+  add(named, "action_net", action_net_->weight, action_net_->bias);
+  add(named, "value_net", value_net_->weight, value_net_->bias);
+  return named;
+}
+
 }  // namespace dcs::learner

@@ -27,10 +27,13 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "absl/strings/string_view.h"
 #include "actor/policy_weights.h"
 #include "learner/nature_cnn.h"
 #include "run/ppo_config.h"
@@ -83,6 +86,16 @@ class ActorCriticImpl : public torch::nn::Module {
 
   // The actor half, for Eigen inference (actor/policy_network.h).
   actor::PolicyWeights ExportActor() const;
+
+  // Every parameter under its name in the state_dict of Stable-Baselines3's policy of the same
+  // architecture (spec/ppo.md §3), as detached copies in SB3's order: MlpPolicy's; or, for
+  // image policies, MultiInputPolicy's, whose Dict observation has the image under `image_key`
+  // and the context under `context_key`. Its CombinedExtractor, shared by actor and critic,
+  // appears under the three prefixes SB3's state_dict lists it by (features_extractor,
+  // pi_features_extractor, vf_features_extractor), as the same tensors. The context branch,
+  // DCS's addition, is extractors.<context_key> as a Sequential of Linear and ReLU.
+  std::vector<std::pair<std::string, torch::Tensor>> Sb3Parameters(
+      absl::string_view image_key, absl::string_view context_key) const;
 
   const torch::Tensor& log_std() const { return log_std_; }
 

@@ -21,13 +21,6 @@
 namespace dcs::learner {
 namespace {
 
-// A tensor viewing `values` (not copied: it lives only as long as `values`).
-template <typename T>
-torch::Tensor View(const std::vector<T>& values, std::vector<int64_t> shape,
-                   torch::ScalarType type) {
-  return torch::from_blob(const_cast<T*>(values.data()), shape, type);
-}
-
 absl::Status CheckSize(size_t actual, size_t expected, absl::string_view what) {
   if (actual == expected) return absl::OkStatus();
   return absl::InvalidArgumentError(
@@ -154,13 +147,13 @@ struct PpoLearner::Impl {
     }
   }
 
-  // The observations of `count` transitions as tensors.
-  ObservationBatch Batch(const std::vector<float>& inputs, const std::vector<uint8_t>& images,
+  // The observations of `count` transitions as tensors viewing `inputs` and `images` (not
+  // copied: the batch lives only as long as they do).
+  ObservationBatch Batch(std::span<const float> inputs, std::span<const uint8_t> images,
                          int64_t count) const {
-    ObservationBatch batch;
-    batch.flat = View(inputs, {count, spec.flat_input_size()}, torch::kFloat32);
-    batch.images = images;
-    return batch;
+    return {.flat = torch::from_blob(const_cast<float*>(inputs.data()),
+                                     {count, spec.flat_input_size()}, torch::kFloat32),
+            .images = images};
   }
 
   absl::Status Validate(const actor::Rollout& r) const {
@@ -381,6 +374,28 @@ absl::StatusOr<UpdateStats> PpoLearner::Update(const actor::Rollout& rollout) {
 int64_t PpoLearner::updates() const { return impl_->updates; }
 
 actor::PolicyWeights PpoLearner::ActorWeights() const { return impl_->network->ExportActor(); }
+
+std::vector<float> PpoLearner::Values(std::span<const float> inputs,
+                                      std::span<const uint8_t> images, int count) const {
+  ActorCriticImpl::Pass pass;
+  impl_->network->Forward(impl_->Batch(inputs, images, count), /*for_backward=*/false, pass);
+  const std::span<const float> values = Floats(pass.values);
+  return {values.begin(), values.end()};
+}
+
+absl::StatusOr<std::string> PpoLearner::Sb3StateDict() const {
+  try {
+    c10::Dict<std::string, torch::Tensor> state_dict;
+    for (auto& [name, tensor] : impl_->network->Sb3Parameters(kSb3ImageKey, kSb3ContextKey)) {
+      state_dict.insert(std::move(name), std::move(tensor));
+    }
+    const std::vector<char> bytes = torch::pickle_save(state_dict);
+    return std::string(bytes.begin(), bytes.end());
+  } catch (const c10::Error& e) {
+    return absl::InternalError(absl::StrCat("cannot write the state dict: ",
+                                            e.what_without_backtrace()));
+  }
+}
 
 std::vector<float> PpoLearner::Parameters() const {
   std::vector<float> flat;

@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,12 @@
 #include "run/ppo_config.h"
 
 namespace dcs::learner {
+
+// The keys of the Dict observation of an image policy's Stable-Baselines3 equivalent
+// (MultiInputPolicy; Sb3StateDict). gymnasium sorts a Dict's keys and CombinedExtractor
+// concatenates its features in that order: these sort as DCS concatenates, image first.
+inline constexpr absl::string_view kSb3ImageKey = "image";
+inline constexpr absl::string_view kSb3ContextKey = "observed_context";
 
 // Means over every minibatch of the update, as SB3 logs them.
 struct UpdateStats {
@@ -63,6 +70,20 @@ class PpoLearner final {
 
   // The actor network, for Eigen inference (actor/policy_network.h).
   actor::PolicyWeights ActorWeights() const;
+
+  // The value estimates of `count` observations: `inputs` their flat inputs (count *
+  // flat_input_size floats) and `images` their images (count * image_size bytes), as rollouts
+  // carry them. REQUIRES: those sizes.
+  std::vector<float> Values(std::span<const float> inputs, std::span<const uint8_t> images,
+                            int count) const;
+
+  // The weights as the bytes of a PyTorch state dict (torch.load reads them: a dict of float32
+  // tensors) under Stable-Baselines3's names, so that its policy of the same architecture
+  // takes them with load_state_dict(strict=True): MlpPolicy's, or for image policies
+  // MultiInputPolicy's with the Dict keys kSb3ImageKey and kSb3ContextKey. The context
+  // branch (PpoConfig::context_layers) has no SB3 counterpart: it is the extractor's
+  // extractors.<kSb3ContextKey> Sequential (Linear, ReLU, ...). INTERNAL if libtorch fails.
+  absl::StatusOr<std::string> Sb3StateDict() const;
 
   // Every parameter, flattened in a fixed order (tests compare runs with it).
   std::vector<float> Parameters() const;
