@@ -42,7 +42,7 @@ ScaledBorderAndShadow: yes
 Format: Name, Fontname, Fontsize, PrimaryColour, SecondaryColour, OutlineColour, BackColour, )"
     R"(Bold, Italic, Underline, StrikeOut, ScaleX, ScaleY, Spacing, Angle, BorderStyle, Outline, )"
     R"(Shadow, Alignment, MarginL, MarginR, MarginV, Encoding
-Style: Overlay,DejaVu Sans Mono,16,&H00FFFFFF,&H00FFFFFF,&H40000000,&H40000000,0,0,0,0,100,100,)"
+Style: Overlay,DejaVu Sans Mono,20,&H00FFFFFF,&H00FFFFFF,&H40000000,&H40000000,0,0,0,0,100,100,)"
     R"(0,0,3,4,0,7,10,10,10,1
 
 [Events]
@@ -191,7 +191,8 @@ absl::Status EpisodeVideo::Finish() {
   }
   DCS_RETURN_IF_ERROR(
       WriteFileAtomically((fs::path(work_dir_) / kSubtitles).string(), subtitles_));
-  const std::string overlay = absl::StrCat("subtitles=", kSubtitles);
+  // "null" passes the frames on unchanged.
+  const std::string overlay = options_.overlay ? absl::StrCat("subtitles=", kSubtitles) : "null";
 
   std::vector<std::pair<std::string, std::string>> written;  // partial name, final name
   const auto write = [&](const std::string& output, std::vector<std::string> args) {

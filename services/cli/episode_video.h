@@ -33,6 +33,7 @@ struct EpisodeVideoOptions {
   int width = 0;          // of every frame; even
   int height = 0;
   int fps = 50;           // a divisor of 100 (subtitle times are in hundredths of a second)
+  bool overlay = true;    // false: the frames as added, their text ignored
   std::string ffmpeg = "ffmpeg";  // a path, or a name looked up on PATH
 };
 

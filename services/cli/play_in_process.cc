@@ -105,7 +105,8 @@ absl::Status PlayWith(const PlayFlags& flags, const learner::TrainedPolicy& trai
                                             .strip_frames = flags.strip_frames,
                                             .width = Env::kRenderWidth,
                                             .height = Env::kRenderHeight,
-                                            .fps = Env::kRenderFps}));
+                                            .fps = Env::kRenderFps,
+                                            .overlay = flags.overlay}));
   DCS_ASSIGN_OR_RETURN(const actor::PlayedEpisode episode,
                        actor::PlayEpisode<Env>(policy, options, [&](const actor::PlayedFrame& f) {
                          return video.AddFrame(f.scene->pixels(), OverlayText<Env>(f, shown));

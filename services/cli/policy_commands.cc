@@ -116,6 +116,8 @@ std::vector<CliCommand> AddPolicyCommands(CLI::App& dcs, const GlobalFlags& glob
   play->add_option("--strip-frames", play_flags->strip_frames, "frames in the strip")
       ->capture_default_str()
       ->check(CLI::Range(2, 12));
+  play->add_flag("!--no-overlay", play_flags->overlay,
+                 "the scene alone, without the context, step and return");
 
   auto export_flags = std::make_shared<ExportFlags>();
   CLI::App* export_command = dcs.add_subcommand(
