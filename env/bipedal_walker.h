@@ -137,6 +137,7 @@ class BipedalWalker final {
   // anchored at the bottom-left. No anti-aliasing. REQUIRES: Reset was called.
   static constexpr int kRenderWidth = 600;
   static constexpr int kRenderHeight = 400;
+  static constexpr int kRenderFps = 50;  // Gymnasium's metadata["render_fps"]
   void Render(Canvas& canvas, int lidar_ray = -1) const;
 
   // The running episode's time limit and the Step calls made since Reset.

@@ -106,6 +106,7 @@ class CarRacing final : public CarRacingFeatureIndex {
   // Gymnasium's rgb_array frame (the 1000x800 window shrunk to 600x400), for Render.
   static constexpr int kRenderWidth = 600;
   static constexpr int kRenderHeight = 400;
+  static constexpr int kRenderFps = 50;  // Gymnasium's metadata["render_fps"]
 
   // The features above, with Gymnasium's (or the paper's) values as defaults; the paper's
   // sensor bounds (-2, 2) for COM_X and COM_Y, the reference feature bounds [-5, 5] and
@@ -182,6 +183,7 @@ class CarRacingDiscrete final : public CarRacingFeatureIndex {
   static constexpr int kMaxEpisodeSteps = CarRacing::kMaxEpisodeSteps;
   static constexpr int kRenderWidth = CarRacing::kRenderWidth;
   static constexpr int kRenderHeight = CarRacing::kRenderHeight;
+  static constexpr int kRenderFps = CarRacing::kRenderFps;
 
   static const ContextSpace& Features() { return CarRacing::Features(); }
   static absl::Status ValidateContext(std::span<const double> values) {

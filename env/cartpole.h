@@ -99,6 +99,7 @@ class CartPole final {
   // per metre, the cart in black on its track, the pole in brown and the axle in lilac.
   static constexpr int kRenderWidth = 600;
   static constexpr int kRenderHeight = 400;
+  static constexpr int kRenderFps = 50;  // Gymnasium's metadata["render_fps"]
   // REQUIRES: canvas is kRenderWidth x kRenderHeight.
   void Render(Canvas& canvas) const;
 

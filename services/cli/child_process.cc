@@ -4,16 +4,19 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
 #include "absl/time/clock.h"
 #include "common/exec_array.h"
 
@@ -31,7 +34,8 @@ struct ExecError {
 // Runs in the forked child: only async-signal-safe calls until execve. On failure, writes an
 // ExecError to `error_fd` (close-on-exec, so a successful exec closes it with nothing written).
 [[noreturn]] void ExecChild(const ChildProcessOptions& options, char* const* argv,
-                            char* const* envp, int output_fd, int error_fd, pid_t parent) {
+                            char* const* envp, int input_fd, int output_fd, int error_fd,
+                            pid_t parent) {
   sigset_t none;
   sigemptyset(&none);
   pthread_sigmask(SIG_SETMASK, &none, nullptr);
@@ -44,6 +48,7 @@ struct ExecError {
       if (getppid() != parent) _exit(127);  // the parent died before prctl took effect
     }
   }
+  if (input_fd >= 0) dup2(input_fd, STDIN_FILENO);
   if (output_fd >= 0) {
     dup2(output_fd, STDOUT_FILENO);
     dup2(output_fd, STDERR_FILENO);
@@ -79,18 +84,36 @@ absl::StatusOr<ChildProcess> ChildProcess::Start(const ChildProcessOptions& opti
           absl::StrCat("cannot open ", options.output_path, ": ", std::strerror(errno)));
     }
   }
+  // A socket rather than a pipe for stdin: send() with MSG_NOSIGNAL reports a child that
+  // stopped reading as EPIPE without raising SIGPIPE in this process.
+  int input[2] = {-1, -1};
+  if (options.pipe_input &&
+      ::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, input) != 0) {
+    if (output_fd >= 0) ::close(output_fd);
+    return absl::InternalError(absl::StrCat("socketpair: ", std::strerror(errno)));
+  }
+  const auto close_input = [&input] {
+    for (int fd : input) {
+      if (fd >= 0) ::close(fd);
+    }
+  };
   int error_pipe[2];
   if (::pipe2(error_pipe, O_CLOEXEC) != 0) {
     if (output_fd >= 0) ::close(output_fd);
+    close_input();
     return absl::InternalError(absl::StrCat("pipe: ", std::strerror(errno)));
   }
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
-  if (pid == 0) ExecChild(options, argv.data(), envp, output_fd, error_pipe[1], parent);
+  if (pid == 0) {
+    ExecChild(options, argv.data(), envp, input[0], output_fd, error_pipe[1], parent);
+  }
   const int fork_errno = errno;
   ::close(error_pipe[1]);
   if (output_fd >= 0) ::close(output_fd);
+  if (input[0] >= 0) ::close(std::exchange(input[0], -1));
   if (pid < 0) {
+    close_input();
     ::close(error_pipe[0]);
     return absl::ResourceExhaustedError(absl::StrCat("fork: ", std::strerror(fork_errno)));
   }
@@ -102,6 +125,7 @@ absl::StatusOr<ChildProcess> ChildProcess::Start(const ChildProcessOptions& opti
   } while (got < 0 && errno == EINTR);
   ::close(error_pipe[0]);
   if (got == sizeof(failure)) {
+    close_input();
     ::waitpid(pid, nullptr, 0);
     const std::string message =
         failure.in_chdir != 0
@@ -111,23 +135,46 @@ absl::StatusOr<ChildProcess> ChildProcess::Start(const ChildProcessOptions& opti
     return failure.error == ENOENT ? absl::NotFoundError(message)
                                    : absl::PermissionDeniedError(message);
   }
-  return ChildProcess(pid);
+  return ChildProcess(pid, input[1]);
 }
 
 ChildProcess::ChildProcess(ChildProcess&& other) noexcept
-    : pid_(std::exchange(other.pid_, -1)), exit_status_(other.exit_status_) {}
+    : pid_(std::exchange(other.pid_, -1)),
+      input_fd_(std::exchange(other.input_fd_, -1)),
+      exit_status_(other.exit_status_) {}
 
 ChildProcess& ChildProcess::operator=(ChildProcess&& other) noexcept {
   if (this != &other) {
+    CloseInput();
     if (pid_ > 0) Stop(absl::ZeroDuration());
     pid_ = std::exchange(other.pid_, -1);
+    input_fd_ = std::exchange(other.input_fd_, -1);
     exit_status_ = other.exit_status_;
   }
   return *this;
 }
 
 ChildProcess::~ChildProcess() {
+  CloseInput();
   if (pid_ > 0) Stop(absl::ZeroDuration());
+}
+
+absl::Status ChildProcess::WriteInput(std::span<const uint8_t> bytes) {
+  if (input_fd_ < 0) return absl::FailedPreconditionError("the child's input is not open");
+  while (!bytes.empty()) {
+    const ssize_t sent = ::send(input_fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+    if (sent < 0 && errno == EINTR) continue;
+    if (sent < 0) {
+      return absl::UnavailableError(
+          absl::StrCat("writing to process ", pid_, ": ", std::strerror(errno)));
+    }
+    bytes = bytes.subspan(static_cast<size_t>(sent));
+  }
+  return absl::OkStatus();
+}
+
+void ChildProcess::CloseInput() {
+  if (input_fd_ >= 0) ::close(std::exchange(input_fd_, -1));
 }
 
 std::optional<int> ChildProcess::Poll() {
@@ -168,6 +215,27 @@ int ChildProcess::Stop(absl::Duration grace) {
 }
 
 pid_t ChildProcess::Release() { return std::exchange(pid_, -1); }
+
+std::optional<std::string> FindProgram(const std::string& program) {
+  namespace fs = std::filesystem;
+  const auto is_executable_file = [](const fs::path& path) {
+    std::error_code error;
+    return fs::is_regular_file(path, error) && ::access(path.c_str(), X_OK) == 0;
+  };
+  if (program.find('/') != std::string::npos) {
+    if (!is_executable_file(program)) return std::nullopt;
+    std::error_code error;
+    const fs::path absolute = fs::absolute(program, error);
+    return error ? program : absolute.string();
+  }
+  const char* path = std::getenv("PATH");
+  for (absl::string_view dir : absl::StrSplit(path != nullptr ? path : "/usr/bin:/bin", ':')) {
+    const fs::path candidate = fs::path(dir.empty() ? "." : std::string(dir)) / program;
+    std::error_code error;
+    if (is_executable_file(candidate)) return fs::absolute(candidate, error).string();
+  }
+  return std::nullopt;
+}
 
 std::string DescribeExit(int wait_status) {
   if (WIFEXITED(wait_status)) return absl::StrCat("exited with status ", WEXITSTATUS(wait_status));

@@ -6,12 +6,15 @@
 // owns a running child: destroying it kills (SIGKILL) and reaps the child unless Release()d.
 // The child starts with no signal blocked, in a process group of its own (so a terminal's
 // Ctrl-C reaches only the parent, which stops its children in order), and by default receives
-// SIGTERM if the parent dies, so no child outlives a crashed `dcs up`.
+// SIGTERM if the parent dies, so no child outlives a crashed `dcs up`. With `pipe_input` its
+// stdin is a stream this process writes (WriteInput), e.g. video frames for ffmpeg.
 // Thread-compatible.
 
 #include <sys/types.h>
 
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,6 +32,7 @@ struct ChildProcessOptions {
   std::optional<std::vector<std::string>> environment;
   bool new_session = false;       // setsid(): detached from the terminal, outlives the parent
   bool stop_with_parent = true;   // SIGTERM when the parent dies (ignored with new_session)
+  bool pipe_input = false;        // stdin: a stream from WriteInput; false: inherited
 };
 
 class ChildProcess {
@@ -42,6 +46,14 @@ class ChildProcess {
   ~ChildProcess();
 
   pid_t pid() const { return pid_; }
+
+  // Writes all of `bytes` to the child's stdin (started with pipe_input), blocking while the
+  // child does not read. UNAVAILABLE if the child has closed its stdin or exited;
+  // FAILED_PRECONDITION if the input is closed or was never piped.
+  absl::Status WriteInput(std::span<const uint8_t> bytes);
+
+  // Closes the child's stdin (it reads end of file). Idempotent.
+  void CloseInput();
 
   // The child's wait status if it has exited (it is then reaped), without blocking.
   std::optional<int> Poll();
@@ -57,11 +69,16 @@ class ChildProcess {
   pid_t Release();
 
  private:
-  explicit ChildProcess(pid_t pid) : pid_(pid) {}
+  ChildProcess(pid_t pid, int input_fd) : pid_(pid), input_fd_(input_fd) {}
 
   pid_t pid_ = -1;                  // -1 once reaped or released
+  int input_fd_ = -1;               // our end of the child's stdin; -1 if none or closed
   std::optional<int> exit_status_;  // set once reaped
 };
+
+// `program` (made absolute) if it names a path, else the first executable file of that name on
+// PATH (/usr/bin:/bin if PATH is unset); nullopt if there is none.
+std::optional<std::string> FindProgram(const std::string& program);
 
 // "exited with status 0", "killed by SIGKILL".
 std::string DescribeExit(int wait_status);

@@ -15,12 +15,12 @@
 #include "common/random.h"
 #include "common/round_trip.h"
 #include "common/status_macros.h"
-#include "common/status_util.h"
 #include "common/text_table.h"
 #include "env/baseline_policies.h"
 #include "env/cartpole.h"
 #include "env/env_registry.h"
 #include "env/raster.h"
+#include "services/cli/context_flags.h"
 #include "services/cli/png_file.h"
 #include "services/command_line.h"
 #include "services/exit_codes.h"
@@ -57,20 +57,12 @@ struct RenderFlags {
   int scale = 0;  // 0: 4 for image observations, else 1
 };
 
-// Env's default context with the --set name=value flags applied, validated.
-template <typename Env>
-absl::StatusOr<std::vector<double>> ContextFromFlags(const std::vector<std::string>& sets) {
-  DCS_ASSIGN_OR_RETURN(const auto values, ParseAssignments(sets, "--set"));
-  absl::StatusOr<std::vector<double>> context = Env::Features().WithValues(values);
-  if (!context.ok()) return Annotate(context.status(), "--set");
-  DCS_RETURN_IF_ERROR(Env::ValidateContext(*context));
-  return context;
-}
-
 // A new Env (on the heap: Box2D environments are large) with the flags' context.
 template <typename Env>
 absl::StatusOr<std::unique_ptr<Env>> EnvFromFlags(const std::vector<std::string>& sets) {
-  DCS_ASSIGN_OR_RETURN(const std::vector<double> context, ContextFromFlags<Env>(sets));
+  DCS_ASSIGN_OR_RETURN(
+      const std::vector<double> context,
+      ContextWithAssignments<Env>(Env::Features().Defaults(), sets, "--set"));
   auto environment = std::make_unique<Env>();
   for (size_t i = 0; i < context.size(); ++i) {
     environment->SetFeature(static_cast<int>(i), context[i]);

@@ -2,16 +2,13 @@
 #include "services/cli/figure_render.h"
 
 #include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <system_error>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_split.h"
 #include "absl/strings/strip.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
@@ -30,28 +27,6 @@ absl::Status CheckFileName(const std::string& name) {
         absl::StrCat("figure file name '", name, "' is not a plain file name"));
   }
   return absl::OkStatus();
-}
-
-bool IsExecutableFile(const fs::path& path) {
-  std::error_code error;
-  return fs::is_regular_file(path, error) && ::access(path.c_str(), X_OK) == 0;
-}
-
-// `program` if it names a path, else the first executable of that name on PATH.
-std::optional<std::string> FindProgram(const std::string& program) {
-  if (program.find('/') != std::string::npos) {
-    if (!IsExecutableFile(program)) return std::nullopt;
-    std::error_code error;
-    const fs::path absolute = fs::absolute(program, error);
-    return error ? program : absolute.string();
-  }
-  const char* path = std::getenv("PATH");
-  for (absl::string_view dir : absl::StrSplit(path != nullptr ? path : "/usr/bin:/bin", ':')) {
-    const fs::path candidate = fs::path(dir.empty() ? "." : std::string(dir)) / program;
-    std::error_code error;
-    if (IsExecutableFile(candidate)) return fs::absolute(candidate, error).string();
-  }
-  return std::nullopt;
 }
 
 std::string Quote(absl::string_view output) {

@@ -97,17 +97,27 @@ std::vector<CliCommand> AddPolicyCommands(CLI::App& dcs, const GlobalFlags& glob
   play->add_option("--checkpoint", play_flags->checkpoint, kCheckpointHelp)
       ->capture_default_str();
   play->add_option("--context", play_flags->context,
-                   "a context feature's value, FEATURE=VALUE (default: the run's context)");
+                   "a context feature's value, FEATURE=VALUE (repeatable; default: the run's "
+                   "context, its varied feature at the middle of the training range), held "
+                   "for the whole episode");
   play->add_option("--schedule", play_flags->schedule,
-                   "a YAML file moving the run's varied feature within the episode: a "
-                   "schedule, or a list of stages, as in run configs");
-  play->add_option("--seed", play_flags->seed, "the episode's seed")->capture_default_str();
-  play->add_option("--out", play_flags->out, "the video: NAME.mp4 or NAME.gif");
+                   "a YAML file of one schedule (as a run config's `schedule`) moving the "
+                   "run's varied feature within the episode, in its training range "
+                   "(default: none)");
+  play->add_option("--seed", play_flags->seed,
+                   "the episode's seed (its reset and its schedule's draws)")
+      ->capture_default_str();
+  play->add_option("--out", play_flags->out,
+                   "the video: NAME.mp4 or NAME.gif, one frame per step and one of the reset, "
+                   "at the environment's 50 fps (needs Debian's ffmpeg)");
   play->add_option("--strip", play_flags->strip,
-                   "also write a few frames side by side as one PNG, for a README or a paper");
+                   "a few frames spread over the episode side by side as one PNG, NAME.png, for "
+                   "a README or a paper");
   play->add_option("--strip-frames", play_flags->strip_frames, "frames in the strip")
       ->capture_default_str()
       ->check(CLI::Range(2, 12));
+  play->add_flag("!--no-overlay", play_flags->overlay,
+                 "the scene alone, without the context, step and return");
 
   auto export_flags = std::make_shared<ExportFlags>();
   CLI::App* export_command = dcs.add_subcommand(

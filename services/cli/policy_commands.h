@@ -40,6 +40,7 @@ struct PlayFlags {
   std::string out;    // .mp4 or .gif
   std::string strip;  // a PNG of a few frames side by side
   int strip_frames = 5;
+  bool overlay = true;  // the context, step and return drawn on each frame
 };
 
 struct ExportFlags {
