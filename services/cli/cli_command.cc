@@ -14,7 +14,8 @@
 namespace dcs::services::cli {
 
 int FailCommand(const absl::Status& status) {
-  PrintError("dcs", status.ToString());
+  // Without payloads: they are for code (common/status_util.h's field), not for the reader.
+  PrintError("dcs", status.ToString(absl::StatusToStringMode::kWithNoExtraData));
   return ExitCodeFor(status);
 }
 

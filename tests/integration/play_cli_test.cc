@@ -34,6 +34,7 @@ namespace fs = std::filesystem;
 using dcs::testing::MakeTempDir;
 using dcs::testing::ScopedVariable;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::SizeIs;
 
 constexpr int kWidth = 600;
@@ -239,6 +240,7 @@ TEST_F(PlayCliTest, BadInputIsOneLineAndWritesNothing) {
   const RunResult unknown = Dcs({"play", run, "--context", "gravty=5", "--out", video});
   EXPECT_NE(unknown.exit_code, 0);
   EXPECT_THAT(unknown.output, HasSubstr("unknown context feature 'gravty' (known: gravity,"));
+  EXPECT_THAT(unknown.output, Not(HasSubstr("type.dcs.dev")));  // no status payload
   EXPECT_THAT(Lines(unknown.output), SizeIs(1)) << unknown.output;
   // `dcs train`'s words for a value outside the feature's range.
   const RunResult outside = Dcs({"play", run, "--context", "gravity=-5", "--out", video});
