@@ -102,6 +102,24 @@ double HalfCell(const MapAxis& axis) {
   return axis.values.size() > 1 ? (axis.values[1] - axis.values[0]) / 2 : 0.5;
 }
 
+// The training range as a dashed outline: a rectangle when both features were varied, a line
+// when one was (gnuplot draws no rectangle of zero height), nothing when neither was (the
+// point is drawn).
+std::string TrainingRange(const TrainingSpan& x, const TrainingSpan& y) {
+  const bool x_varies = x.low < x.high;
+  const bool y_varies = y.low < y.high;
+  if (!x_varies && !y_varies) return "";
+  const std::string from = absl::StrCat(CsvNumber(x.low), ",", CsvNumber(y.low));
+  const std::string to = absl::StrCat(CsvNumber(x.high), ",", CsvNumber(y.high));
+  const std::string style =
+      absl::StrCat(" front lc rgb '", kTrainingColor, "' dashtype 2 linewidth 2\n");
+  if (x_varies && y_varies) {
+    return absl::StrCat("set object rectangle from ", from, " to ", to,
+                        " fillstyle empty border", style);
+  }
+  return absl::StrCat("set arrow from ", from, " to ", to, " nohead", style);
+}
+
 // Two features: a heatmap per policy, each cell a box of its mean's colour; the training
 // contexts as a dashed rectangle (a line when one feature is held at a value) and points.
 absl::StatusOr<GnuplotFigure> HeatmapsFigure(const GeneralizationMap& map) {
@@ -144,10 +162,8 @@ absl::StatusOr<GnuplotFigure> HeatmapsFigure(const GeneralizationMap& map) {
       }
     }
     panels.push_back(absl::StrCat(
-        "set title ", GnuplotString(policy.label), "\n", "unset object\n",
-        "set object rectangle from ", CsvNumber(sx.low), ",", CsvNumber(sy.low), " to ",
-        CsvNumber(sx.high), ",", CsvNumber(sy.high),
-        " front fillstyle empty border lc rgb '", kTrainingColor, "' dashtype 2 linewidth 2\n",
+        "set title ", GnuplotString(policy.label), "\n", "unset object\n", "unset arrow\n",
+        TrainingRange(sx, sy),
         "$training", p, " << EOD\n", points, "EOD\n",
         "plot data every ::", p * cells, "::", (p + 1) * cells - 1, " using 'x':'y':(",
         CsvNumber(dx), "):(", CsvNumber(dy), "):'mean' with boxxyerror fillstyle solid 1.0 noborder",

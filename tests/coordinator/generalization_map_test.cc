@@ -39,6 +39,7 @@ GeneralizationMap TwoFeatures() {
     MapPolicy policy = Policy(scale == 1 ? "static" : "sinusoidal", 6, scale);
     policy.training = {{.low = 0.35, .high = 0.75, .pool = {0.35, 0.55, 0.75}},
                        {.low = 9.8, .high = 9.8}};
+    if (scale == 2) policy.training[1] = {.low = 5, .high = 10};  // trained on both
     map.policies.push_back(std::move(policy));
   }
   return map;
@@ -59,7 +60,8 @@ TEST(GeneralizationMapTest, TwoFeaturesGiveAHeatmapPerPolicyOnOneScale) {
   EXPECT_THAT(figure->script, HasSubstr("every ::0::5 "));
   EXPECT_THAT(figure->script, HasSubstr("every ::6::11 "));
   // Where each trained: its range at gravity 9.8, and its pool's three contexts.
-  EXPECT_THAT(figure->script, HasSubstr("set object rectangle from 0.35,9.8 to 0.75,9.8"));
+  EXPECT_THAT(figure->script, HasSubstr("set arrow from 0.35,9.8 to 0.75,9.8 nohead"));
+  EXPECT_THAT(figure->script, HasSubstr("set object rectangle from 0.35,5 to 0.75,10"));
   EXPECT_THAT(figure->script, HasSubstr("x,y\n0.35,9.8\n0.55,9.8\n0.75,9.8\nEOD"));
 }
 
