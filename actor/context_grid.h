@@ -53,6 +53,22 @@ absl::StatusOr<GridAxis> ParseGridAxis(const env::ContextSpace& space, absl::str
 size_t CellCount(const std::vector<GridAxis>& axes);
 std::vector<double> CellValues(const std::vector<GridAxis>& axes, size_t cell);
 
+// The options cell `cell` of the grid over `axes` is evaluated with: `base`'s context (Env's
+// defaults if empty) with the cell's values, its observation mode and observed features.
+// INVALID_ARGUMENT if Env refuses the cell's context.
+template <typename Env>
+absl::StatusOr<env::DynamicContextOptions> GridCellOptions(const env::DynamicContextOptions& base,
+                                                           const std::vector<GridAxis>& axes,
+                                                           size_t cell);
+
+// The returns of cell `cell` of the grid over `axes` (`options`: its GridCellOptions): the
+// protocol's episodes for the cell's context as evaluation context number `cell`.
+template <typename Env>
+absl::StatusOr<ContextResult> EvaluateGridCell(Policy& policy,
+                                               const env::DynamicContextOptions& options,
+                                               const std::vector<GridAxis>& axes, size_t cell,
+                                               int episodes, uint64_t seed);
+
 // The returns of `weights`'s deterministic policy in every cell of the grid over `axes`, in cell
 // order (ContextResult::context.value: the first axis's value): `base` gives the other
 // features' values, the observation mode and the observed features (its pools and schedules
@@ -68,21 +84,44 @@ absl::StatusOr<std::vector<ContextResult>> EvaluateGrid(const PolicyWeights& wei
 // Implementation details.
 
 template <typename Env>
+absl::StatusOr<env::DynamicContextOptions> GridCellOptions(const env::DynamicContextOptions& base,
+                                                           const std::vector<GridAxis>& axes,
+                                                           size_t cell) {
+  env::DynamicContextOptions options{
+      .context = base.context.empty() ? Env::Features().Defaults() : base.context,
+      .observe = base.observe,
+      .observed_features = base.observed_features};
+  const std::vector<double> values = CellValues(axes, cell);
+  for (size_t a = 0; a < axes.size(); ++a) options.context[axes[a].feature] = values[a];
+  DCS_RETURN_IF_ERROR(Env::ValidateContext(options.context));
+  return options;
+}
+
+template <typename Env>
+absl::StatusOr<ContextResult> EvaluateGridCell(Policy& policy,
+                                               const env::DynamicContextOptions& options,
+                                               const std::vector<GridAxis>& axes, size_t cell,
+                                               int episodes, uint64_t seed) {
+  DCS_ASSIGN_OR_RETURN(ContextResult result,
+                       EvaluateContext<Env>(policy, options, axes[0].feature,
+                                            {.split = Split::kId,
+                                             .value = options.context[axes[0].feature]},
+                                            cell, episodes, seed));
+  SummarizeContext(result);
+  return result;
+}
+
+template <typename Env>
 absl::StatusOr<std::vector<ContextResult>> EvaluateGrid(const PolicyWeights& weights,
                                                         const env::DynamicContextOptions& base,
                                                         const std::vector<GridAxis>& axes,
                                                         int episodes, uint64_t seed,
                                                         int threads) {
   const size_t cells = CellCount(axes);
-  // Each cell's options: the base context with the cell's values, checked before any episode.
-  std::vector<env::DynamicContextOptions> options(cells);
+  // Every cell's options, checked before any episode.
+  std::vector<env::DynamicContextOptions> options;
   for (size_t cell = 0; cell < cells; ++cell) {
-    options[cell] = {.context = base.context.empty() ? Env::Features().Defaults() : base.context,
-                     .observe = base.observe,
-                     .observed_features = base.observed_features};
-    const std::vector<double> values = CellValues(axes, cell);
-    for (size_t a = 0; a < axes.size(); ++a) options[cell].context[axes[a].feature] = values[a];
-    DCS_RETURN_IF_ERROR(Env::ValidateContext(options[cell].context));
+    DCS_ASSIGN_OR_RETURN(options.emplace_back(), GridCellOptions<Env>(base, axes, cell));
   }
   DCS_RETURN_IF_ERROR(PolicyNetwork::Create(weights).status());
 
@@ -93,17 +132,14 @@ absl::StatusOr<std::vector<ContextResult>> EvaluateGrid(const PolicyWeights& wei
   const auto work = [&] {
     PolicyNetwork policy = *PolicyNetwork::Create(weights);
     for (size_t cell = next++; cell < cells; cell = next++) {
-      absl::StatusOr<ContextResult> result = EvaluateContext<Env>(
-          policy, options[cell], axes[0].feature,
-          {.split = Split::kId, .value = options[cell].context[axes[0].feature]}, cell,
-          episodes, seed);
+      absl::StatusOr<ContextResult> result =
+          EvaluateGridCell<Env>(policy, options[cell], axes, cell, episodes, seed);
       if (!result.ok()) {
         absl::MutexLock lock(&mu);
         if (first_error.ok()) first_error = result.status();
         next = cells;  // the others stop after their cell
         return;
       }
-      SummarizeContext(*result);
       results[cell] = *std::move(result);
     }
   };
