@@ -2,7 +2,9 @@
 //
 // `dcs eval` in `dcs-train`: each RUN's policy evaluated over the grid in this process, on
 // every core (actor/context_grid.h); a table or JSON on stdout; with --out, the cells as CSV and
-// the generalisation map (coordinator/generalization_map.h) rendered by gnuplot.
+// the generalisation map (coordinator/generalization_map.h) rendered by gnuplot. A RUN that
+// names a sweep's condition stands for its completed runs (its seeds): each is evaluated, and
+// the condition's cell is their mean, its spread the standard deviation across them.
 
 #include <filesystem>
 #include <iostream>
@@ -13,6 +15,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
+#include "absl/strings/str_split.h"
 #include "actor/context_grid.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
@@ -22,7 +25,9 @@
 #include "dcs/v1/evaluation.pb.h"
 #include "env/env_registry.h"
 #include "learner/trained_policy.h"
+#include "services/cli/cluster_client.h"
 #include "services/cli/figure_render.h"
+#include "services/cli/run_client.h"
 #include "services/cli/torch_commands.h"
 
 namespace dcs::services::cli {
@@ -32,12 +37,18 @@ namespace {
 // should not start hours of work.
 constexpr int64_t kEpisodesWithoutYes = 50'000;
 
-// One RUN's policy, loaded.
+// One run's policy, loaded, and its returns per cell once evaluated.
 struct EvaluatedRun {
-  std::string name;  // as given
+  std::string name;  // its directory or run id
   learner::TrainedPolicy trained;
   actor::PolicyWeights weights;
   std::vector<actor::ContextResult> cells;
+};
+
+// What one RUN argument stands for: one run, or a sweep condition's runs.
+struct EvaluatedPolicy {
+  std::string name;  // as given
+  std::vector<EvaluatedRun> runs;
 };
 
 absl::StatusOr<EvaluatedRun> LoadRun(const std::string& name, const EvalFlags& flags,
@@ -47,6 +58,63 @@ absl::StatusOr<EvaluatedRun> LoadRun(const std::string& name, const EvalFlags& f
                        learner::LoadTrainedPolicy(local.dir(), flags.checkpoint));
   actor::PolicyWeights weights = trained.learner->ActorWeights();
   return EvaluatedRun{.name = name, .trained = std::move(trained), .weights = std::move(weights)};
+}
+
+// The completed runs of condition `condition` of sweep `sweep_id` on the cluster, in the mode
+// `observe` (may be empty when the condition has one). INVALID_ARGUMENT naming the choices for
+// an unknown condition or mode, or a condition in several modes without one;
+// FAILED_PRECONDITION if none of its runs has completed.
+absl::StatusOr<std::vector<std::string>> ConditionRuns(const std::string& sweep_id,
+                                                       const std::string& condition,
+                                                       const std::string& observe,
+                                                       const GlobalFlags& global) {
+  DCS_ASSIGN_OR_RETURN(const v1::GetSweepResponse sweep,
+                       GetSweep(CoordinatorAddress(global), sweep_id, global.timeout));
+  std::vector<int> trials;
+  std::vector<std::string> choices;
+  for (int t = 0; t < sweep.sweep().trials_size(); ++t) {
+    const v1::Trial& trial = sweep.sweep().trials(t);
+    choices.push_back(absl::StrCat(sweep_id, ":", trial.condition(), ":", trial.observe()));
+    if (trial.condition() == condition && (observe.empty() || trial.observe() == observe)) {
+      trials.push_back(t);
+    }
+  }
+  if (trials.size() != 1) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        sweep_id, ":", condition, observe.empty() ? "" : ":", observe,
+        trials.empty() ? " is no condition of the sweep" : " is in several modes",
+        " (choose one of: ", absl::StrJoin(choices, ", "), ")"));
+  }
+  std::vector<std::string> runs;
+  for (const v1::Run& run : sweep.runs()) {
+    if (run.has_trial() && run.trial() == trials.front() &&
+        run.state() == v1::RUN_STATE_COMPLETED) {
+      runs.push_back(run.run_id());
+    }
+  }
+  if (runs.empty()) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        choices[trials.front()], " has no completed run yet (dcs watch ", sweep_id, ")"));
+  }
+  return runs;
+}
+
+// The runs RUN argument `name` stands for: SWEEP_ID:CONDITION[:OBSERVE], a sweep condition's
+// completed runs; otherwise one run, a directory or a run id.
+absl::StatusOr<EvaluatedPolicy> LoadPolicy(const std::string& name, const EvalFlags& flags,
+                                           const GlobalFlags& global) {
+  EvaluatedPolicy policy{.name = name};
+  std::vector<std::string> runs = {name};
+  const std::vector<std::string> parts = absl::StrSplit(name, ':');
+  std::error_code error;
+  if ((parts.size() == 2 || parts.size() == 3) && !std::filesystem::is_directory(name, error)) {
+    DCS_ASSIGN_OR_RETURN(runs, ConditionRuns(parts[0], parts[1],
+                                             parts.size() == 3 ? parts[2] : "", global));
+  }
+  for (const std::string& run : runs) {
+    DCS_ASSIGN_OR_RETURN(policy.runs.emplace_back(), LoadRun(run, flags, global));
+  }
+  return policy;
 }
 
 // The grid's axes, parsed against `Env`'s features: one or two, of different features.
@@ -68,10 +136,34 @@ absl::StatusOr<std::vector<actor::GridAxis>> ParseAxes(const std::vector<std::st
   return axes;
 }
 
-v1::GeneralizationGrid ToProto(const std::vector<EvaluatedRun>& runs,
+// Cell `cell` of `policy`: one run's returns as they are; a condition's, its runs' means, their
+// mean and the standard deviation across them, and every episode's return, run after run.
+v1::GridCell CellOf(const EvaluatedPolicy& policy, const std::vector<actor::GridAxis>& axes,
+                    size_t cell) {
+  v1::GridCell out;
+  for (const double value : actor::CellValues(axes, cell)) out.add_context(value);
+  actor::ContextResult pooled;
+  for (const EvaluatedRun& run : policy.runs) {
+    const actor::ContextResult& result = run.cells[cell];
+    pooled.returns.push_back(result.mean);
+    out.add_run_means(result.mean);
+    for (const double episode_return : result.returns) out.add_returns(episode_return);
+  }
+  if (policy.runs.size() == 1) {
+    out.set_mean(policy.runs.front().cells[cell].mean);
+    out.set_std(policy.runs.front().cells[cell].std);
+  } else {
+    actor::SummarizeContext(pooled);
+    out.set_mean(pooled.mean);
+    out.set_std(pooled.std);
+  }
+  return out;
+}
+
+v1::GeneralizationGrid ToProto(const std::vector<EvaluatedPolicy>& policies,
                                const std::vector<actor::GridAxis>& axes, const EvalFlags& flags) {
   v1::GeneralizationGrid grid;
-  grid.set_env(runs.front().trained.run.spec.env);
+  grid.set_env(policies.front().runs.front().trained.run.spec.env);
   for (const actor::GridAxis& axis : axes) {
     v1::GridAxis& out = *grid.add_axes();
     out.set_feature(axis.name);
@@ -81,24 +173,29 @@ v1::GeneralizationGrid ToProto(const std::vector<EvaluatedRun>& runs,
   }
   grid.set_episodes(flags.episodes);
   grid.set_seed(flags.seed);
-  for (const EvaluatedRun& run : runs) {
-    v1::PolicyGrid& policy = *grid.add_policies();
-    policy.set_run(run.name);
-    policy.set_checkpoint(
-        std::filesystem::path(run.trained.checkpoint_path).filename().string());
-    policy.set_step(run.trained.step);
-    for (size_t c = 0; c < run.cells.size(); ++c) {
-      v1::GridCell& cell = *policy.add_cells();
-      for (const double value : actor::CellValues(axes, c)) cell.add_context(value);
-      cell.set_mean(run.cells[c].mean);
-      cell.set_std(run.cells[c].std);
-      for (const double episode_return : run.cells[c].returns) cell.add_returns(episode_return);
+  for (const EvaluatedPolicy& policy : policies) {
+    v1::PolicyGrid& out = *grid.add_policies();
+    out.set_name(policy.name);
+    for (const EvaluatedRun& run : policy.runs) {
+      v1::EvaluatedCheckpoint& checkpoint = *out.add_runs();
+      checkpoint.set_run(run.name);
+      checkpoint.set_checkpoint(
+          std::filesystem::path(run.trained.checkpoint_path).filename().string());
+      checkpoint.set_step(run.trained.step);
     }
+    for (size_t c = 0; c < actor::CellCount(axes); ++c) *out.add_cells() = CellOf(policy, axes, c);
   }
   return grid;
 }
 
-// A row per run and cell: the run, the axes' values, mean and std. `csv`: as CSV, every digit.
+// The steps of `policy`'s checkpoints, as a column shows them: "150000", or "3 runs".
+std::string StepsOf(const v1::PolicyGrid& policy) {
+  if (policy.runs_size() == 1) return absl::StrCat(policy.runs(0).step());
+  return absl::StrCat(policy.runs_size(), " runs");
+}
+
+// A row per policy and cell: the RUN as given, its step, the axes' values, mean and std.
+// `csv`: as CSV, every digit.
 std::string CellRows(const v1::GeneralizationGrid& grid, bool csv) {
   std::vector<std::string> header = {csv ? "run" : "RUN", csv ? "step" : "STEP"};
   for (const v1::GridAxis& axis : grid.axes()) header.push_back(axis.feature());
@@ -106,8 +203,9 @@ std::string CellRows(const v1::GeneralizationGrid& grid, bool csv) {
   std::vector<std::vector<std::string>> rows = {header};
   for (const v1::PolicyGrid& policy : grid.policies()) {
     for (const v1::GridCell& cell : policy.cells()) {
-      std::vector<std::string> row = {csv ? coordinator::CsvField(policy.run()) : policy.run(),
-                                      absl::StrCat(policy.step())};
+      std::vector<std::string> row = {csv ? coordinator::CsvField(policy.name()) : policy.name(),
+                                      csv ? coordinator::CsvField(StepsOf(policy))
+                                          : StepsOf(policy)};
       for (const double value : cell.context()) {
         row.push_back(csv ? coordinator::CsvNumber(value) : absl::StrFormat("%g", value));
       }
@@ -119,8 +217,9 @@ std::string CellRows(const v1::GeneralizationGrid& grid, bool csv) {
   }
   if (!csv) return RenderTable(rows, std::vector<bool>(header.size(), true));
   std::string text;
-  for (const std::vector<std::string>& row : rows) absl::StrAppend(&text, absl::StrJoin(row, ","),
-                                                                   "\n");
+  for (const std::vector<std::string>& row : rows) {
+    absl::StrAppend(&text, absl::StrJoin(row, ","), "\n");
+  }
   return text;
 }
 
@@ -139,68 +238,79 @@ coordinator::TrainingSpan TrainingSpanOf(const learner::TrainedPolicy& run,
   return span;
 }
 
-coordinator::GeneralizationMap MapOf(const std::vector<EvaluatedRun>& runs,
+coordinator::GeneralizationMap MapOf(const std::vector<EvaluatedPolicy>& policies,
+                                     const v1::GeneralizationGrid& grid,
                                      const std::vector<actor::GridAxis>& axes) {
   coordinator::GeneralizationMap map{.name = "generalization"};
   for (const actor::GridAxis& axis : axes) {
     coordinator::MapAxis& out = map.axes.emplace_back(coordinator::MapAxis{.feature = axis.name});
     for (int i = 0; i < axis.count; ++i) out.values.push_back(axis.value(i));
   }
-  for (const EvaluatedRun& run : runs) {
+  for (size_t p = 0; p < policies.size(); ++p) {
+    const v1::PolicyGrid& cells = grid.policies(p);
     coordinator::MapPolicy policy{
-        .label = absl::StrCat(std::filesystem::path(run.name).filename().string(), " @ ",
-                              run.trained.step)};
-    for (const actor::ContextResult& cell : run.cells) {
-      policy.means.push_back(cell.mean);
-      policy.stds.push_back(cell.std);
+        .label = absl::StrCat(std::filesystem::path(cells.name()).filename().string(), " @ ",
+                              StepsOf(cells))};
+    for (const v1::GridCell& cell : cells.cells()) {
+      policy.means.push_back(cell.mean());
+      policy.stds.push_back(cell.std());
     }
+    // A condition's runs share their config but for the seed: the first's span is theirs.
     for (const actor::GridAxis& axis : axes) {
-      policy.training.push_back(TrainingSpanOf(run.trained, axis));
+      policy.training.push_back(TrainingSpanOf(policies[p].runs.front().trained, axis));
     }
     map.policies.push_back(std::move(policy));
   }
-  map.title = absl::StrCat(runs.front().trained.run.spec.env, ": mean return per context");
+  map.title = absl::StrCat(grid.env(), ": mean return per context");
   return map;
 }
 
 absl::Status Evaluate(const EvalFlags& flags, const GlobalFlags& global) {
-  std::vector<EvaluatedRun> runs;
+  std::vector<EvaluatedPolicy> policies;
+  size_t runs = 0;
   for (const std::string& name : flags.runs) {
-    DCS_ASSIGN_OR_RETURN(EvaluatedRun run, LoadRun(name, flags, global));
-    if (!runs.empty() && run.trained.run.spec.env != runs.front().trained.run.spec.env) {
-      return absl::InvalidArgumentError(absl::StrCat(
-          name, " is a ", run.trained.run.spec.env, " run, ", runs.front().name, " a ",
-          runs.front().trained.run.spec.env, " run: one grid needs one environment"));
+    DCS_ASSIGN_OR_RETURN(EvaluatedPolicy policy, LoadPolicy(name, flags, global));
+    for (const EvaluatedRun& run : policy.runs) {
+      const std::string& env = run.trained.run.spec.env;
+      const EvaluatedRun& first = policies.empty() ? policy.runs.front()
+                                                   : policies.front().runs.front();
+      if (env != first.trained.run.spec.env) {
+        return absl::InvalidArgumentError(absl::StrCat(
+            run.name, " is a ", env, " run, ", first.name, " a ", first.trained.run.spec.env,
+            " run: one grid needs one environment"));
+      }
     }
-    runs.push_back(std::move(run));
+    runs += policy.runs.size();
+    policies.push_back(std::move(policy));
   }
   const int threads = flags.threads > 0
                           ? flags.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   std::vector<actor::GridAxis> axes;
   DCS_RETURN_IF_ERROR(env::VisitEnvironment(
-      runs.front().trained.run.spec.env, [&]<typename Env>() -> absl::Status {
+      policies.front().runs.front().trained.run.spec.env, [&]<typename Env>() -> absl::Status {
         DCS_ASSIGN_OR_RETURN(axes, ParseAxes<Env>(flags.grid));
         const int64_t episodes = static_cast<int64_t>(actor::CellCount(axes)) * flags.episodes *
-                                 static_cast<int64_t>(runs.size());
+                                 static_cast<int64_t>(runs);
         if (episodes > kEpisodesWithoutYes && !flags.yes) {
           return absl::FailedPreconditionError(absl::StrCat(
               "the grid is ", episodes, " episodes (", actor::CellCount(axes), " cells x ",
-              flags.episodes, " episodes x ", runs.size(), " runs), more than ",
-              kEpisodesWithoutYes, ": pass --yes to run it"));
+              flags.episodes, " episodes x ", runs, " runs), more than ", kEpisodesWithoutYes,
+              ": pass --yes to run it"));
         }
-        for (EvaluatedRun& run : runs) {
-          DCS_ASSIGN_OR_RETURN(run.cells, actor::EvaluateGrid<Env>(run.weights,
-                                                                   run.trained.plan.slot, axes,
-                                                                   flags.episodes, flags.seed,
-                                                                   threads));
+        for (EvaluatedPolicy& policy : policies) {
+          for (EvaluatedRun& run : policy.runs) {
+            DCS_ASSIGN_OR_RETURN(run.cells, actor::EvaluateGrid<Env>(
+                                                run.weights, run.trained.plan.slot, axes,
+                                                flags.episodes, flags.seed, threads));
+          }
         }
         return absl::OkStatus();
       }));
-  const v1::GeneralizationGrid grid = ToProto(runs, axes, flags);
+  const v1::GeneralizationGrid grid = ToProto(policies, axes, flags);
   if (!flags.out.empty()) {
     DCS_ASSIGN_OR_RETURN(const coordinator::GnuplotFigure figure,
-                         coordinator::GeneralizationMapFigure(MapOf(runs, axes)));
+                         coordinator::GeneralizationMapFigure(MapOf(policies, grid, axes)));
     DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
                          RenderFigure(figure, flags.format, flags.out));
     DCS_RETURN_IF_ERROR(

@@ -54,7 +54,7 @@ LocalRun::~LocalRun() {
 namespace {
 
 constexpr char kRunHelp[] =
-    "a run: its directory (as `dcs train --out` writes it, or `dcs runs download`), or a run "
+    "a run: its directory (as `dcs train --out` writes it, or `dcs runs get`), or a run "
     "id on the cluster";
 constexpr char kCheckpointHelp[] =
     "last, best (of the kept checkpoints, the best on the run's own evaluation protocol), or "
@@ -67,7 +67,10 @@ std::vector<CliCommand> AddPolicyCommands(CLI::App& dcs, const GlobalFlags& glob
   CLI::App* eval = dcs.add_subcommand(
       "eval", "Evaluate trained policies over a grid of one or two context features: a table "
               "and a generalisation map");
-  eval->add_option("RUN", eval_flags->runs, kRunHelp)->required();
+  eval->add_option("RUN", eval_flags->runs,
+                   absl::StrCat(kRunHelp, "; or SWEEP_ID:CONDITION[:OBSERVE], a sweep "
+                                          "condition's completed runs, averaged"))
+      ->required();
   eval->add_option("--checkpoint", eval_flags->checkpoint, kCheckpointHelp)
       ->capture_default_str();
   eval->add_option("--grid", eval_flags->grid,

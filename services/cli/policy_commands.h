@@ -6,7 +6,8 @@
 // two context features: a generalisation map), `dcs play` (one episode as a video) and
 // `dcs export` (its weights for PyTorch). Each reads a run's checkpoint, so each runs in
 // `dcs-train` (services/cli/torch_commands.h). A RUN is a run's directory or, if no such
-// directory exists, a run on the cluster, downloaded first (LocalRun).
+// directory exists, a run on the cluster, downloaded first (LocalRun); `dcs eval` also takes
+// SWEEP_ID:CONDITION[:OBSERVE], the completed runs of a sweep's condition, averaged.
 
 #include <cstdint>
 #include <filesystem>

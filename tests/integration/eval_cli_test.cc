@@ -2,8 +2,10 @@
 //
 // `dcs eval` as a researcher runs it on a trained run: a grid of two features gives a table, a
 // JSON of every cell and episode, and a heatmap that loads in headless Chromium; a run on a
-// cluster is evaluated by its id; every bad input is one error line that writes nothing.
+// cluster is evaluated by its id, a sweep's condition as its runs averaged; every bad input is
+// one error line that writes nothing.
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -138,7 +140,10 @@ TEST_F(EvalCliTest, JsonHoldsEveryCellAndEpisodeOfEveryRun) {
   EXPECT_EQ(grid.axes(0).count(), 4);
   EXPECT_EQ(grid.episodes(), 5);
   ASSERT_THAT(grid.policies(), SizeIs(2));
-  EXPECT_EQ(grid.policies(0).step(), 1536);
+  EXPECT_EQ(grid.policies(0).name(), Run());
+  ASSERT_THAT(grid.policies(0).runs(), SizeIs(1));
+  EXPECT_EQ(grid.policies(0).runs(0).step(), 1536);
+  EXPECT_EQ(grid.policies(0).runs(0).checkpoint(), "000000001536");
   ASSERT_THAT(grid.policies(0).cells(), SizeIs(4));
   for (int c = 0; c < 4; ++c) {
     const v1::GridCell& cell = grid.policies(0).cells(c);
@@ -242,6 +247,62 @@ TEST_F(EvalCliTest, ARunOnTheClusterIsEvaluatedByItsId) {
   EXPECT_THAT(Lines(missing.output), SizeIs(1)) << missing.output;
   EXPECT_THAT(missing.output, HasSubstr("no run run-missing: neither a directory nor a run on "
                                         "the cluster at "));
+}
+
+TEST_F(EvalCliTest, ASweepConditionIsItsRunsAveraged) {
+  ClusterProcesses cluster(absl::Seconds(5));
+  StartCoordinatorLearnerAndActors(cluster);
+  const std::string spec = Fresh("sweep.yaml");
+  ASSERT_TRUE(WriteFileAtomically(spec, EightRunSweepSpec("small", 512, 512)).ok());
+  const RunResult submitted =
+      DcsAt({"submit", spec, "--watch"}, cluster.coordinator_address(), absl::Minutes(3));
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+
+  // Both modes of the condition: which one is asked.
+  const RunResult ambiguous = DcsAt({"eval", "sweep-1:static", "--grid", "length=0.3:1.2:3"},
+                                    cluster.coordinator_address());
+  EXPECT_EQ(ambiguous.exit_code, services::kExitDataError) << ambiguous.output;
+  EXPECT_THAT(ambiguous.output,
+              HasSubstr("sweep-1:static is in several modes (choose one of: "
+                        "sweep-1:static:none, sweep-1:static:live, "));
+  const RunResult unknown = DcsAt({"eval", "sweep-1:statik:none", "--grid", "length=0.3:1.2:3"},
+                                  cluster.coordinator_address());
+  EXPECT_THAT(unknown.output, HasSubstr("sweep-1:statik:none is no condition of the sweep"));
+
+  const RunResult condition =
+      DcsAt({"eval", "sweep-1:static:none", "--grid", "length=0.3:1.2:3", "--episodes", "4",
+             "-o", "json"},
+            cluster.coordinator_address());
+  ASSERT_EQ(condition.exit_code, 0) << condition.output;
+  v1::GeneralizationGrid grid;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(condition.output, &grid).ok())
+      << condition.output;
+  ASSERT_THAT(grid.policies(), SizeIs(1));
+  const v1::PolicyGrid& policy = grid.policies(0);
+  ASSERT_THAT(policy.runs(), SizeIs(2));  // its two seeds
+  ASSERT_THAT(policy.cells(), SizeIs(3));
+  bool seeds_differ = false;
+  for (int c = 0; c < 3; ++c) {
+    const v1::GridCell& cell = policy.cells(c);
+    ASSERT_THAT(cell.run_means(), SizeIs(2));
+    seeds_differ |= cell.run_means(0) != cell.run_means(1);
+    EXPECT_THAT(cell.returns(), SizeIs(8));
+    const double a = cell.run_means(0);
+    const double b = cell.run_means(1);
+    EXPECT_DOUBLE_EQ(cell.mean(), (a + b) / 2);
+    EXPECT_DOUBLE_EQ(cell.std(), std::abs(a - b) / 2);
+  }
+  EXPECT_TRUE(seeds_differ) << "the two seeds scored alike everywhere: nothing was averaged";
+  // Each run's mean is what evaluating that run alone gives.
+  const RunResult alone = DcsAt({"eval", policy.runs(1).run(), "--grid", "length=0.3:1.2:3",
+                                 "--episodes", "4", "-o", "json"},
+                                cluster.coordinator_address());
+  ASSERT_EQ(alone.exit_code, 0) << alone.output;
+  v1::GeneralizationGrid single;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(alone.output, &single).ok());
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(single.policies(0).cells(c).mean(), policy.cells(c).run_means(1)) << "cell " << c;
+  }
 }
 
 }  // namespace
