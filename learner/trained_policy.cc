@@ -24,23 +24,13 @@ absl::StatusOr<TrainedPolicy> OpenRun(const std::string& run_dir) {
     return absl::NotFoundError(absl::StrCat("no run in ", run_dir, " (no config.yaml)"));
   }
   DCS_RETURN_IF_ERROR(request.status());
-  TrainedPolicy trained{.run = *std::move(request)};
-  DCS_RETURN_IF_ERROR(env::VisitEnvironment(trained.run.spec.env, [&]<typename Env>() {
-    DCS_ASSIGN_OR_RETURN(trained.plan, run::PlanRun(trained.run.spec, Env::Features()));
-    trained.policy =
-        run::PolicySpecFor<Env>(static_cast<int>(trained.plan.slot.observed_features.size()));
-    return absl::OkStatus();
-  }));
-  return trained;
+  return NewTrainedPolicy(*std::move(request));
 }
 
-// `trained` with checkpoint `name` of its run loaded into a new learner.
+// `trained` with checkpoint `name` of its run loaded into its learner.
 absl::Status LoadCheckpoint(const std::string& name, TrainedPolicy& trained) {
-  const run::RunSpec& spec = trained.run.spec;
   trained.checkpoint_path = absl::StrCat(trained.run.dir, "/checkpoints/", name);
   DCS_ASSIGN_OR_RETURN(run::Checkpoint checkpoint, run::ReadCheckpoint(trained.run.dir, name));
-  DCS_ASSIGN_OR_RETURN(trained.learner,
-                       PpoLearner::Create(trained.policy, spec.ppo, spec.n_envs, spec.seed));
   if (absl::Status loaded = trained.learner->LoadState(checkpoint.learner); !loaded.ok()) {
     return absl::DataLossError(
         absl::StrCat(trained.checkpoint_path, "/learner.bin: ", loaded.message()));
@@ -68,6 +58,20 @@ absl::StatusOr<double> ProtocolScore(const TrainedPolicy& trained) {
 }
 
 }  // namespace
+
+absl::StatusOr<TrainedPolicy> NewTrainedPolicy(run::RunRequest run) {
+  TrainedPolicy trained{.run = std::move(run)};
+  const run::RunSpec& spec = trained.run.spec;
+  DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() {
+    DCS_ASSIGN_OR_RETURN(trained.plan, run::PlanRun(spec, Env::Features()));
+    trained.policy =
+        run::PolicySpecFor<Env>(static_cast<int>(trained.plan.slot.observed_features.size()));
+    return absl::OkStatus();
+  }));
+  DCS_ASSIGN_OR_RETURN(trained.learner,
+                       PpoLearner::Create(trained.policy, spec.ppo, spec.n_envs, spec.seed));
+  return trained;
+}
 
 absl::StatusOr<TrainedPolicy> LoadTrainedPolicy(const std::string& run_dir,
                                                 absl::string_view which) {

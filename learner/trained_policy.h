@@ -30,6 +30,10 @@ struct TrainedPolicy {
   std::unique_ptr<PpoLearner> learner;
 };
 
+// The policy of `run` at its initial weights (seeded as training seeds them): its plan and
+// network shapes, and a new learner. INVALID_ARGUMENT as run::PlanRun for an invalid spec.
+absl::StatusOr<TrainedPolicy> NewTrainedPolicy(run::RunRequest run);
+
 // The policy of run directory `run_dir` at checkpoint `which`: "last" (the one the run's
 // `latest` names); "best", of the kept checkpoints the one whose policy scores the highest
 // avg_combined on the run's own evaluation protocol (evaluated here: the protocol is

@@ -10,10 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "absl/strings/str_cat.h"
 #include "common/random.h"
 #include "common/status_macros.h"
-#include "env/env_registry.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "learner/torch_runtime.h"
@@ -53,19 +51,11 @@ actor::Rollout RandomRollout(const run::PolicySpec& spec, Random& random) {
 }
 
 // The policy of a run of `config` (YAML, as run configs are written; n_steps: kSteps) after
-// three updates, as LoadTrainedPolicy gives it.
+// three updates on random rollouts.
 absl::StatusOr<TrainedPolicy> TrainedOn(const std::string& config) {
-  TrainedPolicy trained;
-  DCS_ASSIGN_OR_RETURN(trained.run.spec, run::ParseRunSpecYaml(config, "test config"));
-  const run::RunSpec& run = trained.run.spec;
-  DCS_RETURN_IF_ERROR(env::VisitEnvironment(run.env, [&]<typename Env>() -> absl::Status {
-    DCS_ASSIGN_OR_RETURN(trained.plan, run::PlanRun(run, Env::Features()));
-    trained.policy = run::PolicySpecFor<Env>(
-        static_cast<int>(trained.plan.slot.observed_features.size()));
-    return absl::OkStatus();
-  }));
-  DCS_ASSIGN_OR_RETURN(trained.learner,
-                       PpoLearner::Create(trained.policy, run.ppo, run.n_envs, run.seed));
+  DCS_ASSIGN_OR_RETURN(run::RunSpec spec, run::ParseRunSpecYaml(config, "test config"));
+  DCS_ASSIGN_OR_RETURN(TrainedPolicy trained,
+                       NewTrainedPolicy({.spec = std::move(spec), .config_text = config}));
   Random random(17);
   for (int update = 0; update < 3; ++update) {
     DCS_RETURN_IF_ERROR(
@@ -74,15 +64,19 @@ absl::StatusOr<TrainedPolicy> TrainedOn(const std::string& config) {
   return trained;
 }
 
-// check_export.py on `trained`'s export, written into `dir`.
-ExportCheck Check(const TrainedPolicy& trained, const std::string& dir) {
-  absl::StatusOr<ExportedPolicy> exported = ExportPolicy(trained);
-  EXPECT_TRUE(exported.ok()) << exported.status();
-  if (!exported.ok()) return {};
+// check_export.py on the export of a run of `config` (TrainedOn): PyTorch must act as DCS.
+void ExpectExportActsAsInDcs(const std::string& config) {
+  const absl::StatusOr<TrainedPolicy> trained = TrainedOn(config);
+  ASSERT_TRUE(trained.ok()) << trained.status();
+  absl::StatusOr<ExportedPolicy> exported = ExportPolicy(*trained);
+  ASSERT_TRUE(exported.ok()) << exported.status();
+  const std::string dir = testing::MakeTempDir();
   const std::string policy_path = dir + "/policy.pt";
   const absl::Status written = WriteExportedPolicy(*exported, policy_path);
-  EXPECT_TRUE(written.ok()) << written;
-  return CheckExport(trained, policy_path, dir);
+  ASSERT_TRUE(written.ok()) << written;
+  const ExportCheck check = CheckExport(*trained, policy_path, dir);
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+  EXPECT_THAT(check.output, HasSubstr("1000 observations, agree"));
 }
 
 class PolicyExportTest : public ::testing::Test {
@@ -91,7 +85,7 @@ class PolicyExportTest : public ::testing::Test {
 };
 
 TEST_F(PolicyExportTest, CategoricalPolicyActsAsInDcs) {
-  const absl::StatusOr<TrainedPolicy> trained = TrainedOn(R"(
+  ExpectExportActsAsInDcs(R"(
 env: cartpole
 feature: length
 training_range: [0.35, 0.75]
@@ -99,14 +93,10 @@ observe: live
 evaluation: {contexts: {id: [0.5]}}
 ppo: {n_steps: 64, batch_size: 32, n_epochs: 2}
 )");
-  ASSERT_TRUE(trained.ok()) << trained.status();
-  const ExportCheck check = Check(*trained, testing::MakeTempDir());
-  EXPECT_EQ(check.exit_code, 0) << check.output;
-  EXPECT_THAT(check.output, HasSubstr("1000 observations, agree"));
 }
 
 TEST_F(PolicyExportTest, GaussianPolicyActsAsInDcs) {
-  const absl::StatusOr<TrainedPolicy> trained = TrainedOn(R"(
+  ExpectExportActsAsInDcs(R"(
 env: bipedal_walker
 context: {PAYLOAD_MASS: 2.0, PAYLOAD_RADIUS: 0.5}
 feature: COM_X
@@ -115,15 +105,11 @@ observe: live
 evaluation: {contexts: {id: [0.0]}}
 ppo: {n_steps: 64, batch_size: 32, n_epochs: 2}
 )");
-  ASSERT_TRUE(trained.ok()) << trained.status();
-  const ExportCheck check = Check(*trained, testing::MakeTempDir());
-  EXPECT_EQ(check.exit_code, 0) << check.output;
-  EXPECT_THAT(check.output, HasSubstr("1000 observations, agree"));
 }
 
 TEST_F(PolicyExportTest, ImagePolicyWithContextBranchActsAsInDcs) {
   // The paper's CarRacing policy: the context through its own branch.
-  const absl::StatusOr<TrainedPolicy> trained = TrainedOn(R"(
+  ExpectExportActsAsInDcs(R"(
 env: car_racing
 context: {PAYLOAD_MASS: 1.0, PAYLOAD_RADIUS: 0.5}
 feature: COM_Y
@@ -132,10 +118,6 @@ observe: live
 evaluation: {contexts: {id: [0.0]}}
 ppo: {n_steps: 64, batch_size: 32, n_epochs: 2, context_layers: [16]}
 )");
-  ASSERT_TRUE(trained.ok()) << trained.status();
-  const ExportCheck check = Check(*trained, testing::MakeTempDir());
-  EXPECT_EQ(check.exit_code, 0) << check.output;
-  EXPECT_THAT(check.output, HasSubstr("1000 observations, agree"));
 }
 
 TEST(PolicyExportLayoutTest, RefusesAStateDictPathEndingInJson) {
