@@ -2,7 +2,8 @@
 //
 // `dcs eval` as a researcher runs it on a trained run: a grid of two features gives a table, a
 // JSON of every cell and episode, and a heatmap that loads in headless Chromium; a run on a
-// cluster is evaluated by its id; every bad input is one error line that writes nothing.
+// cluster is evaluated by its id, in this process or by the cluster's actors (--on-actors), with
+// the same returns; every bad input is one error line that writes nothing.
 
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,8 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include "absl/strings/match.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
@@ -23,6 +26,7 @@
 #include "tests/integration/browser.h"
 #include "tests/integration/cluster_processes.h"
 #include "tests/integration/test_util.h"
+#include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
 
 namespace dcs::integration {
@@ -242,6 +246,76 @@ TEST_F(EvalCliTest, ARunOnTheClusterIsEvaluatedByItsId) {
   EXPECT_THAT(Lines(missing.output), SizeIs(1)) << missing.output;
   EXPECT_THAT(missing.output, HasSubstr("no run run-missing: neither a directory nor a run on "
                                         "the cluster at "));
+}
+
+// The value of the series `name` in a Prometheus exposition fetched from `url`, or -1.
+double MetricAt(const std::string& url, const std::string& series) {
+  absl::StatusOr<std::string> exposition = testing::HttpGet(url);
+  if (!exposition.ok()) return -1;
+  for (const std::string& line : Lines(*exposition)) {
+    double value = -1;
+    if (absl::StartsWith(line, series + " ") &&
+        absl::SimpleAtod(line.substr(series.size() + 1), &value)) {
+      return value;
+    }
+  }
+  return -1;
+}
+
+TEST_F(EvalCliTest, OnActorsTheClustersActorsEvaluateTheCellsWithTheSameReturns) {
+  ClusterProcesses cluster(absl::Seconds(5));
+  StartCoordinatorLearnerAndActors(cluster);
+  const RunResult train =
+      DcsAt({"train", "--cluster", "--config", *dir_ + "/tiny.yaml", "--out",
+             Fresh("actors-run")},
+            cluster.coordinator_address(), absl::Minutes(2));
+  ASSERT_EQ(train.exit_code, 0) << train.output;
+  std::smatch submitted;
+  ASSERT_TRUE(std::regex_search(train.output, submitted, std::regex("submitted (\\S+) to")))
+      << train.output;
+  const std::string run_id = submitted[1];
+  const auto jobs_delivered = [&] {
+    double jobs = 0;
+    for (const std::string actor : {"actor-1", "actor-2"}) {
+      jobs += MetricAt(cluster.metrics_url(actor), "dcs_actor_evaluation_jobs_total");
+    }
+    return jobs;
+  };
+  const double jobs_before = jobs_delivered();
+
+  // A 4 x 3 grid, 12 cells, with a seed of its own (not the run's).
+  const std::vector<std::string> grid = {"--grid",     "length=0.3:1.2:4", "--grid",
+                                         "gravity=5:15:3", "--episodes",    "3",
+                                         "--seed",     "5",                "-o",
+                                         "json"};
+  std::vector<std::string> on_actors = {"eval", run_id, "--on-actors"};
+  on_actors.insert(on_actors.end(), grid.begin(), grid.end());
+  const RunResult remote = DcsAt(on_actors, cluster.coordinator_address(), absl::Minutes(1));
+  ASSERT_EQ(remote.exit_code, 0) << remote.output;
+  // The actors ran every cell (and the client none).
+  EXPECT_GE(jobs_delivered() - jobs_before, 12) << "logs in " << cluster.dir();
+
+  std::vector<std::string> in_process = {"eval", run_id};
+  in_process.insert(in_process.end(), grid.begin(), grid.end());
+  const RunResult local = DcsAt(in_process, cluster.coordinator_address());
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  v1::GeneralizationGrid remote_grid, local_grid;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(remote.output, &remote_grid).ok())
+      << remote.output;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(local.output, &local_grid).ok())
+      << local.output;
+  ASSERT_THAT(remote_grid.policies(), SizeIs(1));
+  ASSERT_THAT(remote_grid.policies(0).cells(), SizeIs(12));
+  // Bit for bit: every cell's context, returns, mean and std, as serialised doubles.
+  EXPECT_EQ(remote_grid.SerializeAsString(), local_grid.SerializeAsString());
+  EXPECT_EQ(remote.output, local.output);
+}
+
+TEST_F(EvalCliTest, OnActorsARunDirectoryIsRefused) {
+  ExpectRefused({Run(), "--grid", "length=0.1:1:3", "--on-actors"},
+                "INVALID_ARGUMENT: --on-actors evaluates runs of the cluster; " + Run() +
+                    " is a directory here",
+                services::kExitDataError);
 }
 
 }  // namespace
