@@ -48,6 +48,11 @@ struct GridAxis {
 // unknown feature or a value outside its physical bounds, the message `dcs train` gives.
 absl::StatusOr<GridAxis> ParseGridAxis(const env::ContextSpace& space, absl::string_view text);
 
+// The axis of `count` values of feature `name` from `low` to `high` (as a grid travels to the
+// cluster's actors): INVALID_ARGUMENT as ParseGridAxis, naming the axis.
+absl::StatusOr<GridAxis> MakeGridAxis(const env::ContextSpace& space, std::string name,
+                                      double low, double high, int count);
+
 // The cells of a grid over `axes` (one or two), the first axis varying fastest: cell
 // i0 + count0 * i1 sets axes[0] to its value i0 and axes[1] to its value i1.
 size_t CellCount(const std::vector<GridAxis>& axes);

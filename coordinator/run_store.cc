@@ -163,6 +163,32 @@ absl::StatusOr<bool> RecordJobResult(SQLite::Database& db, const EvaluationJobKe
   return false;
 }
 
+// Inserts the evaluation (run `number`, `policy_version`) and its jobs, one per context, in the
+// caller's transaction.
+void InsertEvaluation(SQLite::Database& db, int64_t number, int64_t policy_version, int64_t step,
+                      int contexts, int episodes, const std::string& weights, absl::Time now) {
+  SQLite::Statement insert(db, "INSERT INTO evaluations (run, policy_version, step, "
+                               "contexts, episodes, weights, created_at) "
+                               "VALUES (?, ?, ?, ?, ?, ?, ?)");
+  insert.bind(1, number);
+  insert.bind(2, policy_version);
+  insert.bind(3, step);
+  insert.bind(4, contexts);
+  insert.bind(5, episodes);
+  insert.bind(6, weights.data(), static_cast<int>(weights.size()));
+  insert.bind(7, Micros(now));
+  insert.exec();
+  SQLite::Statement job(db, "INSERT INTO evaluation_jobs (run, policy_version, context) "
+                            "VALUES (?, ?, ?)");
+  job.bind(1, number);
+  job.bind(2, policy_version);
+  for (int context = 0; context < contexts; ++context) {  // reset() keeps the bindings above
+    job.bind(3, context);
+    job.exec();
+    job.reset();
+  }
+}
+
 // When no work fits a worker: FAILED_PRECONDITION if some run (of `which` state) waits for
 // workers of other numerics (`column`), naming both fingerprints; nullopt otherwise.
 template <typename Lease>
@@ -378,6 +404,11 @@ absl::Status RunStore::SubmitEvaluation(const LeaseKey& key,
   if (evaluation.weights.empty()) {
     return absl::InvalidArgumentError("an evaluation needs the policy's weights");
   }
+  if (evaluation.policy_version < 0) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "policy version ", evaluation.policy_version,
+        " is negative; negative versions key grid evaluations"));
+  }
   return Transaction([&]() -> absl::Status {
     DCS_RETURN_IF_ERROR(CheckHeld(*db_, key));
     const int64_t number = *RunNumber(key.run_id);
@@ -397,52 +428,88 @@ absl::Status RunStore::SubmitEvaluation(const LeaseKey& key,
       return absl::OkStatus();  // a retry, or a learner repeating it after a resume
     }
     existing.reset();
-    SQLite::Statement insert(*db_, "INSERT INTO evaluations (run, policy_version, step, "
-                                   "contexts, episodes, weights, created_at) "
-                                   "VALUES (?, ?, ?, ?, ?, ?, ?)");
-    insert.bind(1, number);
-    insert.bind(2, evaluation.policy_version);
-    insert.bind(3, evaluation.step);
-    insert.bind(4, evaluation.contexts);
-    insert.bind(5, evaluation.episodes);
-    insert.bind(6, evaluation.weights.data(), static_cast<int>(evaluation.weights.size()));
-    insert.bind(7, Micros(now));
-    insert.exec();
-    SQLite::Statement job(*db_, "INSERT INTO evaluation_jobs (run, policy_version, context) "
-                                "VALUES (?, ?, ?)");
-    for (int context = 0; context < evaluation.contexts; ++context) {
-      job.bind(1, number);
-      job.bind(2, evaluation.policy_version);
-      job.bind(3, context);
-      job.exec();
-      job.reset();
-    }
+    InsertEvaluation(*db_, number, evaluation.policy_version, evaluation.step,
+                     evaluation.contexts, evaluation.episodes, evaluation.weights, now);
     return absl::OkStatus();
+  });
+}
+
+absl::StatusOr<int64_t> RunStore::SubmitGridEvaluation(const GridEvaluationRequest& evaluation,
+                                                       absl::Time now) {
+  if (evaluation.request_id.empty()) {
+    return absl::InvalidArgumentError("a grid evaluation needs a request id");
+  }
+  if (evaluation.cells < 1 || evaluation.episodes < 1) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "a grid evaluation needs cells and episodes; got ", evaluation.cells, " cells of ",
+        evaluation.episodes, " episodes"));
+  }
+  if (evaluation.grid.empty() || evaluation.weights.empty()) {
+    return absl::InvalidArgumentError("a grid evaluation needs its grid and the policy's weights");
+  }
+  return Transaction([&]() -> absl::StatusOr<int64_t> {
+    SQLite::Statement existing(*db_, "SELECT run, policy_version FROM grid_evaluations "
+                                     "WHERE request_id = ?");
+    existing.bind(1, evaluation.request_id);
+    if (existing.executeStep()) {  // a retry
+      const std::string run_id = RunId(existing.getColumn(0).getInt64());
+      if (run_id != evaluation.run_id) {
+        return absl::InvalidArgumentError(absl::StrCat("request id ", evaluation.request_id,
+                                                       " made a grid evaluation of ", run_id,
+                                                       ", not of ", evaluation.run_id));
+      }
+      return existing.getColumn(1).getInt64();
+    }
+    existing.reset();
+    DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(*db_, evaluation.run_id));
+    const int64_t number = *RunNumber(run.id);
+    SQLite::Statement next(*db_, "SELECT min(0, ifnull(min(policy_version), 0)) - 1 "
+                                 "FROM evaluations WHERE run = ?");
+    next.bind(1, number);
+    next.executeStep();
+    const int64_t key = next.getColumn(0).getInt64();
+    next.reset();
+    InsertEvaluation(*db_, number, key, /*step=*/0, evaluation.cells, evaluation.episodes,
+                     evaluation.weights, now);
+    SQLite::Statement grid(*db_, "INSERT INTO grid_evaluations (run, policy_version, "
+                                 "request_id, grid) VALUES (?, ?, ?, ?)");
+    grid.bind(1, number);
+    grid.bind(2, key);
+    grid.bind(3, evaluation.request_id);
+    grid.bind(4, evaluation.grid.data(), static_cast<int>(evaluation.grid.size()));
+    grid.exec();
+    return key;
   });
 }
 
 absl::StatusOr<std::optional<EvaluationGrant>> RunStore::AcquireEvaluationJobs(
     absl::string_view holder, absl::string_view numerics, int max_jobs, int actors,
-    absl::Time now) {
+    bool grid_cells, absl::Time now) {
   return Transaction([&]() -> absl::StatusOr<std::optional<EvaluationGrant>> {
     DCS_RETURN_IF_ERROR(ExpireLapsedLeases(now));
-    // First in, first out across runs: an evaluation waits behind those handed over before it.
+    // The runs' own evaluations first, then grid evaluations (g.run set); first in, first out
+    // within each: an evaluation waits behind those handed over before it (a grid's key counts
+    // down from -1: the older, the nearer 0).
     SQLite::Statement oldest(
         *db_,
-        "SELECT j.run, j.policy_version, e.episodes, e.weights, r.config "
-        "FROM evaluation_jobs j "
+        "SELECT j.run, j.policy_version, e.episodes, e.weights, r.config, "
+        "ifnull(g.grid, x'') FROM evaluation_jobs j "
         "JOIN evaluations e ON e.run = j.run AND e.policy_version = j.policy_version "
         "JOIN runs r ON r.number = j.run "
-        "WHERE j.done = 0 AND j.holder = '' AND r.state = 'running' "
+        "LEFT JOIN grid_evaluations g ON g.run = j.run AND g.policy_version = j.policy_version "
+        "WHERE j.done = 0 AND j.holder = '' "
+        "AND ((g.run IS NULL AND r.state = 'running') OR (g.run IS NOT NULL AND ?)) "
         "AND (r.actor_numerics = '' OR r.actor_numerics = ?) "
-        "ORDER BY e.created_at, j.run, j.policy_version LIMIT 1");
-    oldest.bind(1, std::string(numerics));
+        "ORDER BY g.run IS NOT NULL, e.created_at, j.run, abs(j.policy_version) LIMIT 1");
+    oldest.bind(1, grid_cells ? 1 : 0);
+    oldest.bind(2, std::string(numerics));
     if (!oldest.executeStep()) return std::nullopt;
     const int64_t number = oldest.getColumn(0).getInt64();
     const int64_t policy_version = oldest.getColumn(1).getInt64();
     EvaluationGrant grant{.config = oldest.getColumn(4).getString(),
                           .episodes = oldest.getColumn(2).getInt(),
-                          .weights = oldest.getColumn(3).getString()};
+                          .weights = oldest.getColumn(3).getString(),
+                          .grid = oldest.getColumn(5).getString()};
     oldest.reset();
     SQLite::Statement free(*db_, "SELECT context FROM evaluation_jobs WHERE run = ? AND "
                                  "policy_version = ? AND done = 0 AND holder = '' "
@@ -672,7 +739,8 @@ absl::StatusOr<StoreCounts> RunStore::Counts() {
             .getInt64();
     counts.free_evaluation_jobs =
         db_->execAndGet("SELECT count(*) FROM evaluation_jobs j JOIN runs r ON r.number = j.run "
-                        "WHERE j.done = 0 AND j.holder = '' AND r.state = 'running'")
+                        "WHERE j.done = 0 AND j.holder = '' "
+                        "AND (r.state = 'running' OR j.policy_version < 0)")
             .getInt64();
     SQLite::Statement sweeps(
         *db_,

@@ -16,7 +16,8 @@
 // (FAILED_PRECONDITION), never counted twice. When a run's learner lease is granted anew, its
 // slot leases are freed: they pointed at the old learner. Evaluation jobs are leased the same
 // way, one per evaluation context; their results are kept, the policy they evaluated is
-// dropped once every context is in.
+// dropped once every context is in. A grid evaluation (a client's, `dcs eval --on-actors`) is
+// an evaluation of its own kind: one job per cell of its grid, under a negative policy version.
 //
 // Numeric libraries (DESIGN.md §4): a run remembers the numeric fingerprint of the first
 // learner that took it and of the first actor that stepped one of its slots; only workers
@@ -124,6 +125,17 @@ struct EvaluationRequest {
   std::string weights;  // the policy, serialised by the caller; opaque here
 };
 
+// A grid evaluation a client hands over (`dcs eval --on-actors`): a policy of run `run_id`
+// evaluated in each of `cells` cells of a grid of contexts, `episodes` episodes each.
+struct GridEvaluationRequest {
+  std::string request_id;  // client-chosen; a repeated id returns the evaluation it created
+  std::string run_id;
+  int cells = 0;
+  int episodes = 0;
+  std::string grid;     // the grid's axes and seed, serialised by the caller; opaque here
+  std::string weights;  // the policy, serialised by the caller; opaque here
+};
+
 // Names one evaluation job as its holder was granted it.
 struct EvaluationJobKey {
   std::string run_id;
@@ -138,6 +150,9 @@ struct EvaluationGrant {
   std::string config;                  // the run's, its seed applied
   int episodes = 0;
   std::string weights;
+  // For cells of a grid evaluation, its grid (GridEvaluationRequest::grid: the jobs' contexts
+  // are its cells); empty for a run's own evaluation.
+  std::string grid;
 };
 
 // One context's episodes as an actor evaluated them.
@@ -178,7 +193,8 @@ struct StoreCounts {
   std::vector<std::pair<RunState, int64_t>> runs_by_state;  // every state, zeros included
   int64_t free_learner_leases = 0;  // runs waiting for a learner
   int64_t free_slot_leases = 0;     // slots of running runs waiting for an actor
-  int64_t free_evaluation_jobs = 0;  // evaluation jobs of running runs waiting for an actor
+  // Evaluation jobs waiting for an actor: of running runs, and cells of grid evaluations.
+  int64_t free_evaluation_jobs = 0;
   std::vector<ActiveSweepCounts> active_sweeps;  // in sweep order
 };
 
@@ -380,20 +396,33 @@ class RunStore {
   absl::Status ReleaseLease(const LeaseKey& key, absl::Time now);
 
   // The learner holding `key` hands over an evaluation. Idempotent: the same policy version
-  // again is accepted as it stands. INVALID_ARGUMENT for no contexts, episodes or weights, or
-  // for a version submitted before with other contexts or episodes; otherwise errors as
-  // RenewLease.
+  // again is accepted as it stands. INVALID_ARGUMENT for no contexts, episodes or weights, for
+  // a negative policy version (those key grid evaluations), or for a version submitted before
+  // with other contexts or episodes; otherwise errors as RenewLease.
   absl::Status SubmitEvaluation(const LeaseKey& key, const EvaluationRequest& evaluation,
                                 absl::Time now);
 
-  // Free jobs of the oldest evaluation with any, of a running run that an actor with
-  // `numerics` may run, leased to `holder` until now + lease_duration: at most `max_jobs`, and
-  // at most this actor's share of them among `actors` actors (at least 1), rounded up, so that
-  // one evaluation spreads over the cluster while each actor takes its part in one call.
-  // nullopt if there is none.
+  // A client hands over a grid evaluation of a run in any state, ended ones included: one job
+  // per cell, whose results GetEvaluation gives under the returned key (a negative policy
+  // version of the run, the next one free). Idempotent: a request id seen before returns the
+  // key it was given, the request as it stands. INVALID_ARGUMENT for no request id, cells,
+  // episodes, grid or weights, or a request id used before for another run; NOT_FOUND for an
+  // unknown run. The policy is dropped once every cell is in; the results are kept.
+  absl::StatusOr<int64_t> SubmitGridEvaluation(const GridEvaluationRequest& evaluation,
+                                               absl::Time now);
+
+  // Free jobs of the oldest evaluation with any that an actor with `numerics` may run (of a
+  // running run; or, if `grid_cells`, the actor evaluates them, cells of a grid evaluation of
+  // any run), leased to `holder` until now + lease_duration: at most `max_jobs`, and at most
+  // this actor's share of them among `actors` actors (at least 1), rounded up, so that one
+  // evaluation spreads over the cluster while each actor takes its part in one call. A run's
+  // own evaluations go before grid evaluations, however old: a learner may be waiting for its
+  // result, and they are a few jobs each; a grid waits for an actor at most as long as the
+  // runs' evaluations keep every actor busy. nullopt if there is none.
   absl::StatusOr<std::optional<EvaluationGrant>> AcquireEvaluationJobs(absl::string_view holder,
                                                                        absl::string_view numerics,
                                                                        int max_jobs, int actors,
+                                                                       bool grid_cells,
                                                                        absl::Time now);
 
   // The holder delivers jobs' results, all of them or (on an error) none; returns, for each,
@@ -404,8 +433,8 @@ class RunStore {
   // number of returns other than the evaluation's episodes or a non-finite one.
   absl::StatusOr<std::vector<bool>> ReportEvaluationJobs(absl::Span<const JobResult> results);
 
-  // Where the evaluation of `policy_version` of `run_id` stands. NOT_FOUND if it was never
-  // submitted.
+  // Where the evaluation of `policy_version` of `run_id` stands (a grid evaluation's: its
+  // key; its contexts are the cells). NOT_FOUND if it was never submitted.
   absl::StatusOr<EvaluationProgress> GetEvaluation(absl::string_view run_id,
                                                    int64_t policy_version);
 

@@ -162,7 +162,8 @@ void FreeLeases(SQLite::Database& db, int64_t number, bool learner) {
 }
 
 void DropEvaluationWeights(SQLite::Database& db, int64_t number) {
-  SQLite::Statement update(db, "UPDATE evaluations SET weights = x'' WHERE run = ?");
+  SQLite::Statement update(db, "UPDATE evaluations SET weights = x'' WHERE run = ? AND "
+                               "policy_version >= 0");
   update.bind(1, number);
   update.exec();
 }

@@ -63,7 +63,8 @@ absl::Status SetRunState(SQLite::Database& db, const RunRecord& run, RunState to
 // Frees leases of run `number`: every slot lease, and the learner lease too if `learner`.
 void FreeLeases(SQLite::Database& db, int64_t number, bool learner);
 
-// Drops the policies of run `number`'s evaluations: it ended, nothing evaluates them any more.
+// Drops the policies of run `number`'s own evaluations: it ended, nothing evaluates them any
+// more. Its grid evaluations' (negative policy versions) are a client's, evaluated still.
 void DropEvaluationWeights(SQLite::Database& db, int64_t number);
 
 // Cancels a queued or running run: its leases are freed and its policies dropped.

@@ -198,6 +198,21 @@ ALTER TABLE trials ADD COLUMN retrain INTEGER NOT NULL DEFAULT 0;
 CREATE UNIQUE INDEX trials_by_study_trial ON trials(sweep, study_trial, retrain)
   WHERE study_trial IS NOT NULL;
 )sql",
+    // 5 -> 6: grid evaluations (`dcs eval --on-actors`): a client's policy of a run over a grid
+    // of contexts. Each is an evaluation of the run whose contexts are the grid's cells, under a
+    // negative policy version of its own (a learner's are never negative), so that its jobs are
+    // leased, reported and read as any evaluation's; this row says what makes it a grid: the
+    // request that made it and the grid (axes and seed, serialised by the caller).
+    R"sql(
+CREATE TABLE grid_evaluations (
+  run INTEGER NOT NULL,
+  policy_version INTEGER NOT NULL CHECK (policy_version < 0),
+  request_id TEXT NOT NULL UNIQUE,
+  grid BLOB NOT NULL,
+  PRIMARY KEY (run, policy_version),
+  FOREIGN KEY (run, policy_version) REFERENCES evaluations(run, policy_version)
+);
+)sql",
 };
 
 int UserVersion(SQLite::Database& db) {

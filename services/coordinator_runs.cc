@@ -17,6 +17,7 @@
 #include "coordinator/run_submission.h"
 #include "dcs/v1/trajectory.pb.h"
 #include "services/coordinator_service.h"
+#include "services/evaluation_grid_proto.h"
 #include "services/grpc_status.h"
 #include "services/log.h"
 #include "services/pieces.h"
@@ -451,6 +452,38 @@ grpc::ServerReadReactor<v1::SubmitEvaluationRequest>* CoordinatorService::Submit
       submit, [this](const absl::Status& status) { rejected_.Count(status); });
 }
 
+grpc::ServerReadReactor<v1::SubmitGridEvaluationRequest>*
+CoordinatorService::SubmitGridEvaluation(grpc::CallbackServerContext* context,
+                                         v1::SubmitGridEvaluationResponse* response) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Refuse<grpc::ServerReadReactor<v1::SubmitGridEvaluationRequest>>(refused);
+  }
+  auto submit = [this, response](PieceJoiner<v1::SubmitGridEvaluationRequest>& joined)
+      -> absl::Status {
+    const v1::SubmitGridEvaluationRequest& request = joined.header();
+    // The grid's features are resolved by the actors, against the run's environment.
+    DCS_ASSIGN_OR_RETURN(const int cells, GridCellCount(request.grid()));
+    v1::PolicyWeights weights;  // checked here, so that actors are given what parses
+    DCS_RETURN_IF_ERROR(joined.Parse(weights));
+    DCS_ASSIGN_OR_RETURN(
+        const int64_t key,
+        runs_.store->SubmitGridEvaluation({.request_id = request.request_id(),
+                                           .run_id = request.run_id(),
+                                           .cells = cells,
+                                           .episodes = request.episodes(),
+                                           .grid = request.grid().SerializeAsString(),
+                                           .weights = std::move(joined.payload())},
+                                          absl::Now()));
+    response->set_evaluation_key(key);
+    parked_.Wake(kEvaluationJobsTopic);
+    return absl::OkStatus();
+  };
+  return new JoiningReader<v1::SubmitGridEvaluationRequest>(
+      PieceJoiner<v1::SubmitGridEvaluationRequest>(
+          &v1::SubmitGridEvaluationRequest::mutable_weights, "the grid evaluation's policy"),
+      submit, [this](const absl::Status& status) { rejected_.Count(status); });
+}
+
 grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
     grpc::CallbackServerContext* context, const v1::GetEvaluationRequest* request,
     v1::GetEvaluationResponse* response) {
@@ -485,7 +518,7 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
                          runs_.store->AcquireEvaluationJobs(request->holder(),
                                                             request->numerics(),
                                                             request->max_jobs(), AliveActors(),
-                                                            absl::Now()));
+                                                            request->grid_cells(), absl::Now()));
     v1::AcquireEvaluationResponse header;
     if (!grant.has_value()) return std::vector{std::move(header)};
     evaluation_leases_.Increment(static_cast<double>(grant->jobs.size()));
@@ -494,6 +527,12 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
     }
     header.set_config(std::move(grant->config));
     header.set_episodes(grant->episodes);
+    if (!grant->grid.empty() && !header.mutable_grid()->ParseFromString(grant->grid)) {
+      return absl::DataLossError(absl::StrCat("the grid of the evaluation of ",
+                                              grant->jobs.front().run_id, " with key ",
+                                              grant->jobs.front().policy_version,
+                                              " does not parse"));
+    }
     *header.mutable_lease_duration() = DurationToProto(runs_.lease_duration);
     return CutIntoMessages(std::move(header), grant->weights,
                            &v1::AcquireEvaluationResponse::mutable_weights);

@@ -137,6 +137,8 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
                                       v1::FinishRunResponse* response) override;
   grpc::ServerReadReactor<v1::SubmitEvaluationRequest>* SubmitEvaluation(
       grpc::CallbackServerContext* context, v1::SubmitEvaluationResponse* response) override;
+  grpc::ServerReadReactor<v1::SubmitGridEvaluationRequest>* SubmitGridEvaluation(
+      grpc::CallbackServerContext* context, v1::SubmitGridEvaluationResponse* response) override;
   grpc::ServerUnaryReactor* GetEvaluation(grpc::CallbackServerContext* context,
                                           const v1::GetEvaluationRequest* request,
                                           v1::GetEvaluationResponse* response) override;

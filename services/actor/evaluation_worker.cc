@@ -8,12 +8,14 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
+#include "actor/context_grid.h"
 #include "actor/evaluation.h"
 #include "common/status_macros.h"
 #include "env/env_registry.h"
 #include "run/run_spec_yaml.h"
 #include "services/backoff.h"
 #include "services/channel.h"
+#include "services/evaluation_grid_proto.h"
 #include "services/log.h"
 #include "services/pieces.h"
 #include "services/run_proto.h"
@@ -29,6 +31,9 @@ constexpr BackoffPolicy kRetryBackoff{.initial = absl::Milliseconds(50),
                                       .max = absl::Seconds(1)};
 
 std::string JobName(const v1::EvaluationJob& job) {
+  if (job.policy_version() < 0) {  // a grid evaluation's key
+    return absl::StrCat(job.run_id(), " grid ", -job.policy_version(), " cell ", job.context());
+  }
   return absl::StrCat(job.run_id(), " v", job.policy_version(), " context ", job.context());
 }
 
@@ -74,6 +79,9 @@ absl::Status EvaluationWorker::Prepare(const v1::AcquireEvaluationResponse& gran
   DCS_ASSIGN_OR_RETURN(prepared_.policy, PolicyFromBytes(weights));
   DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(prepared_.plan, run::PlanRun(spec, Env::Features()));
+    if (grant.has_grid()) {
+      DCS_ASSIGN_OR_RETURN(prepared_.grid_axes, GridAxesFromProto(Env::Features(), grant.grid()));
+    }
     return absl::OkStatus();
   }));
   prepared_.spec = std::move(spec);
@@ -86,6 +94,7 @@ absl::StatusOr<v1::ContextReturns> EvaluationWorker::Evaluate(
     const v1::AcquireEvaluationResponse& grant, const v1::EvaluationJob& job,
     absl::string_view weights) {
   DCS_RETURN_IF_ERROR(Prepare(grant, job, weights));
+  if (grant.has_grid()) return EvaluateGridCell(grant, job);
   const run::RunPlan& plan = prepared_.plan;
   const int context = job.context();
   if (context < 0 || static_cast<size_t>(context) >= plan.evaluation_contexts.size()) {
@@ -107,11 +116,34 @@ absl::StatusOr<v1::ContextReturns> EvaluationWorker::Evaluate(
   return ContextReturnsToProto({.returns = std::move(result.returns), .seconds = result.seconds});
 }
 
+absl::StatusOr<v1::ContextReturns> EvaluationWorker::EvaluateGridCell(
+    const v1::AcquireEvaluationResponse& grant, const v1::EvaluationJob& job) {
+  const std::vector<actor::GridAxis>& axes = prepared_.grid_axes;
+  if (job.context() < 0 || static_cast<size_t>(job.context()) >= actor::CellCount(axes)) {
+    return absl::InvalidArgumentError(absl::StrCat("the grid has ", actor::CellCount(axes),
+                                                   " cells, no cell ", job.context()));
+  }
+  const size_t cell = static_cast<size_t>(job.context());
+  actor::ContextResult result;
+  DCS_RETURN_IF_ERROR(
+      env::VisitEnvironment(prepared_.spec.env, [&]<typename Env>() -> absl::Status {
+        DCS_ASSIGN_OR_RETURN(const env::DynamicContextOptions options,
+                             actor::GridCellOptions<Env>(prepared_.plan.slot, axes, cell));
+        absl::MutexLock on_core(&core_);
+        DCS_ASSIGN_OR_RETURN(result, actor::EvaluateGridCell<Env>(*prepared_.policy, options, axes,
+                                                                  cell, grant.episodes(),
+                                                                  grant.grid().seed()));
+        return absl::OkStatus();
+      }));
+  return ContextReturnsToProto({.returns = std::move(result.returns), .seconds = result.seconds});
+}
+
 bool EvaluationWorker::RunJobs() {
   v1::AcquireEvaluationRequest request;
   request.set_holder(options_.holder);
   request.set_numerics(options_.numerics);
   request.set_max_jobs(jobs_wanted_);
+  request.set_grid_cells(true);
   *request.mutable_wait() = DurationToProto(options_.poll_interval);
   PieceJoiner<v1::AcquireEvaluationResponse> reply(
       &v1::AcquireEvaluationResponse::mutable_weights, "the evaluation's policy");

@@ -5,8 +5,10 @@
 // An actor's evaluation jobs (DESIGN.md §3). A thread takes jobs from the coordinator
 // (AcquireEvaluation): a few evaluation contexts of one policy version of a run, this actor's
 // share of them. It evaluates each context with that policy (actor::EvaluateContext, Eigen, as
-// `dcs train` does) and delivers their episodes' returns together (ReportEvaluation, retried
-// while the coordinator is down): a call per share rather than two per context. It evaluates
+// `dcs train` does) or, for the cells of a grid evaluation (`dcs eval --on-actors`), each cell
+// (actor::EvaluateGridCell, as `dcs eval` does in its own process), and delivers their
+// episodes' returns together (ReportEvaluation, retried while the coordinator is down): a
+// call per share rather than two per context. It evaluates
 // holding the actor's core (the mutex its slots step under), so an actor still uses one core:
 // while its slots wait for their runs' updates, it evaluates.
 //
@@ -24,11 +26,13 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
+#include "actor/context_grid.h"
 #include "actor/policy_network.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "run/run_plan.h"
@@ -69,7 +73,11 @@ class EvaluationWorker {
   absl::StatusOr<v1::ContextReturns> Evaluate(const v1::AcquireEvaluationResponse& grant,
                                               const v1::EvaluationJob& job,
                                               absl::string_view weights);
-  // The run and policy of `job`, made once for the consecutive jobs of an evaluation.
+  // The returns of `job`, a cell of `grant`'s grid, with the prepared policy.
+  absl::StatusOr<v1::ContextReturns> EvaluateGridCell(const v1::AcquireEvaluationResponse& grant,
+                                                      const v1::EvaluationJob& job);
+  // The run and policy of `job` (and its grid's axes), made once for the consecutive jobs of an
+  // evaluation.
   absl::Status Prepare(const v1::AcquireEvaluationResponse& grant, const v1::EvaluationJob& job,
                        absl::string_view weights);
 
@@ -80,6 +88,7 @@ class EvaluationWorker {
     run::RunSpec spec;
     run::RunPlan plan;
     std::optional<actor::PolicyNetwork> policy;
+    std::vector<actor::GridAxis> grid_axes;  // of a grid evaluation's; empty for a run's own
   };
   Prepared prepared_;
   int jobs_wanted_ = 1;  // in the next grant; the worker thread's

@@ -1,7 +1,8 @@
 // Copyright 2026 The DCS Authors.
 //
 // `dcs eval` in `dcs-train`: each RUN's policy evaluated over the grid in this process, on
-// every core (actor/context_grid.h); a table or JSON on stdout; with --out, the cells as CSV and
+// every core (actor/context_grid.h), or with --on-actors by the cluster's actors
+// (grid_evaluation_client.h); a table or JSON on stdout; with --out, the cells as CSV and
 // the generalisation map (coordinator/generalization_map.h) rendered by gnuplot. A RUN that
 // names a sweep's condition stands for its completed runs (its seeds): each is evaluated, and
 // the condition's cell is their mean, its spread the standard deviation across them.
@@ -27,6 +28,7 @@
 #include "learner/trained_policy.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/figure_render.h"
+#include "services/cli/grid_evaluation_client.h"
 #include "services/cli/run_client.h"
 #include "services/cli/torch_commands.h"
 
@@ -54,6 +56,11 @@ struct EvaluatedPolicy {
 absl::StatusOr<EvaluatedRun> LoadRun(const std::string& name, const EvalFlags& flags,
                                      const GlobalFlags& global) {
   DCS_ASSIGN_OR_RETURN(const LocalRun local, LocalRun::Find(name, global));
+  if (flags.on_actors && !local.on_cluster()) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "--on-actors evaluates runs of the cluster; ", name,
+        " is a directory here: evaluate it in this process (without --on-actors)"));
+  }
   DCS_ASSIGN_OR_RETURN(learner::TrainedPolicy trained,
                        learner::LoadTrainedPolicy(local.dir(), flags.checkpoint));
   actor::PolicyWeights weights = trained.learner->ActorWeights();
@@ -300,6 +307,18 @@ absl::Status Evaluate(const EvalFlags& flags, const GlobalFlags& global) {
         }
         for (EvaluatedPolicy& policy : policies) {
           for (EvaluatedRun& run : policy.runs) {
+            if (flags.on_actors) {
+              // Every cell checked here, as EvaluateGrid does: an actor cannot refuse one.
+              for (size_t cell = 0; cell < actor::CellCount(axes); ++cell) {
+                DCS_RETURN_IF_ERROR(
+                    actor::GridCellOptions<Env>(run.trained.plan.slot, axes, cell).status());
+              }
+              DCS_ASSIGN_OR_RETURN(run.cells,
+                                   EvaluateGridOnCluster(CoordinatorAddress(global), run.name,
+                                                         run.weights, axes, flags.episodes,
+                                                         flags.seed, global.timeout));
+              continue;
+            }
             DCS_ASSIGN_OR_RETURN(run.cells, actor::EvaluateGrid<Env>(
                                                 run.weights, run.trained.plan.slot, axes,
                                                 flags.episodes, flags.seed, threads));

@@ -91,6 +91,9 @@ std::vector<CliCommand> AddPolicyCommands(CLI::App& dcs, const GlobalFlags& glob
   eval->add_option("--threads", eval_flags->threads, "threads evaluating (default: one a core)")
       ->check(CLI::Range(0, 1024));
   eval->add_flag("--yes", eval_flags->yes, "run a grid however many episodes it makes");
+  eval->add_flag("--on-actors", eval_flags->on_actors,
+                 "evaluate on the cluster's actors instead of in this process (each RUN a run "
+                 "of the cluster; the same returns, bit for bit)");
 
   auto play_flags = std::make_shared<PlayFlags>();
   CLI::App* play = dcs.add_subcommand(

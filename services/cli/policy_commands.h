@@ -30,6 +30,9 @@ struct EvalFlags {
   coordinator::FigureFormat format = coordinator::FigureFormat::kPng;
   int threads = 0;  // 0: one per core
   bool yes = false;  // run a grid above the size that asks first
+  // Each RUN (a run of the cluster, not a directory) evaluated by the cluster's actors, one job
+  // a cell (services/cli/grid_evaluation_client.h), rather than in this process.
+  bool on_actors = false;
 };
 
 struct PlayFlags {
@@ -62,6 +65,8 @@ class LocalRun {
   LocalRun(const LocalRun&) = delete;
 
   const std::string& dir() const { return dir_; }
+  // It is a run of the cluster, downloaded (not a directory of this machine).
+  bool on_cluster() const { return temporary_; }
 
  private:
   LocalRun(std::string dir, bool temporary) : dir_(std::move(dir)), temporary_(temporary) {}

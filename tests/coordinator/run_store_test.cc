@@ -346,9 +346,10 @@ EvaluationRequest Evaluation(int64_t policy_version, int contexts = 2) {
 }
 
 std::optional<EvaluationGrant> AcquireJobs(RunStore& store, int max_jobs, int actors,
-                                           absl::Time now = kStart, std::string numerics = "N") {
+                                           absl::Time now = kStart, std::string numerics = "N",
+                                           bool grid_cells = true) {
   absl::StatusOr<std::optional<EvaluationGrant>> grant =
-      store.AcquireEvaluationJobs("A", numerics, max_jobs, actors, now);
+      store.AcquireEvaluationJobs("A", numerics, max_jobs, actors, grid_cells, now);
   EXPECT_TRUE(grant.ok()) << grant.status();
   return grant.ok() ? *grant : std::nullopt;
 }
@@ -587,6 +588,159 @@ TEST_F(RunStoreTest, AVersionOneDatabaseIsMigrated) {
   EXPECT_EQ(store->GetRun("run-1")->state, RunState::kRunning);
   const LeaseKey learner{.run_id = "run-1", .slot = kLearnerSlot, .epoch = 1};
   EXPECT_TRUE(store->SubmitEvaluation(learner, Evaluation(1), kStart).ok());
+  SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READONLY);
+  EXPECT_EQ(db.execAndGet("PRAGMA user_version").getInt(), CurrentSchemaVersion());
+}
+
+GridEvaluationRequest Grid(std::string request_id, int cells = 3,
+                           std::string run_id = "run-1") {
+  return {.request_id = std::move(request_id),
+          .run_id = std::move(run_id),
+          .cells = cells,
+          .episodes = 2,
+          .grid = std::string("g\0", 2) + std::to_string(cells),
+          .weights = std::string("w\0g", 3)};
+}
+
+std::vector<int> ContextsOf(const std::optional<EvaluationGrant>& grant) {
+  std::vector<int> taken;
+  if (grant.has_value()) {
+    for (const EvaluationJobKey& job : grant->jobs) taken.push_back(job.context);
+  }
+  return taken;
+}
+
+TEST_F(RunStoreTest, AGridEvaluationOfAnEndedRunIsOneJobPerCellWithResultsInCellOrder) {
+  std::unique_ptr<RunStore> store = Open();
+  const LeaseKey learner = SubmitAndAcquire(*store).key;
+  ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/1), kStart).ok());
+  ASSERT_TRUE(store->FinishRun(learner, RunState::kCompleted, "", kStart).ok());
+
+  absl::StatusOr<int64_t> key = store->SubmitGridEvaluation(Grid("grid-a"), kStart);
+  ASSERT_TRUE(key.ok()) << key.status();
+  EXPECT_EQ(*key, -1);
+  // A retry gets the same key and makes no jobs; another request gets the next key.
+  EXPECT_EQ(store->SubmitGridEvaluation(Grid("grid-a"), kStart).value_or(0), -1);
+  EXPECT_EQ(store->Counts()->free_evaluation_jobs, 3);
+  EXPECT_EQ(store->SubmitGridEvaluation(Grid("grid-b", 1), kStart).value_or(0), -2);
+
+  // Only an actor that evaluates grid cells gets them; the ended run's own evaluation is not
+  // open any more.
+  EXPECT_FALSE(AcquireJobs(*store, 8, 1, kStart, "N", /*grid_cells=*/false).has_value());
+  std::optional<EvaluationGrant> grant = AcquireJobs(*store, 8, 1);
+  ASSERT_TRUE(grant.has_value());
+  ASSERT_THAT(ContextsOf(grant), ElementsAre(0, 1, 2));
+  EXPECT_EQ(grant->jobs[0].policy_version, -1);
+  EXPECT_EQ(grant->grid, std::string("g\0", 2) + "3");  // bytes, NULs included
+  EXPECT_EQ(grant->weights, std::string("w\0g", 3));
+  EXPECT_EQ(grant->episodes, 2);
+  EXPECT_EQ(grant->config, "env: cartpole\n");
+
+  // Delivered out of order, read in cell order.
+  const std::vector<JobResult> results = {{grant->jobs[2], {{5, 6}, 0.5}},
+                                          {grant->jobs[0], {{1, 2}, 0.5}}};
+  ASSERT_TRUE(store->ReportEvaluationJobs(results).ok());
+  EXPECT_EQ(store->GetEvaluation("run-1", -1)->done, 2);
+  ASSERT_TRUE(Report(*store, grant->jobs[1], {{3, 4}, 0.5}).ok());
+  absl::StatusOr<EvaluationProgress> done = store->GetEvaluation("run-1", -1);
+  ASSERT_TRUE(done.ok()) << done.status();
+  ASSERT_EQ(done->contexts, 3);
+  ASSERT_EQ(done->results.size(), 3u);
+  EXPECT_THAT(done->results[0].returns, ElementsAre(1, 2));
+  EXPECT_THAT(done->results[1].returns, ElementsAre(3, 4));
+  EXPECT_THAT(done->results[2].returns, ElementsAre(5, 6));
+  // Its policy is dropped; its results stay.
+  SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READONLY);
+  EXPECT_EQ(db.execAndGet("SELECT length(weights) FROM evaluations WHERE policy_version = -1")
+                .getInt(),
+            0);
+  EXPECT_EQ(db.execAndGet("SELECT length(weights) FROM evaluations WHERE policy_version = -2")
+                .getInt(),
+            3);
+}
+
+TEST_F(RunStoreTest, AGridEvaluationNeedsAKnownRunAndAWholeRequest) {
+  std::unique_ptr<RunStore> store = Open();
+  SubmitAndAcquire(*store);
+  EXPECT_EQ(store->SubmitGridEvaluation(Grid("grid-a", 3, "run-9"), kStart).status().code(),
+            absl::StatusCode::kNotFound);
+  ASSERT_TRUE(store->SubmitRun(Submission("request-2"), kStart).ok());
+  ASSERT_TRUE(store->SubmitGridEvaluation(Grid("grid-a"), kStart).ok());
+  EXPECT_THAT(store->SubmitGridEvaluation(Grid("grid-a", 3, "run-2"), kStart).status().message(),
+              HasSubstr("request id grid-a made a grid evaluation of run-1, not of run-2"));
+  for (GridEvaluationRequest bad : {Grid(""), Grid("grid-b", 0)}) {
+    EXPECT_EQ(store->SubmitGridEvaluation(bad, kStart).status().code(),
+              absl::StatusCode::kInvalidArgument);
+  }
+  GridEvaluationRequest no_weights = Grid("grid-c");
+  no_weights.weights.clear();
+  EXPECT_EQ(store->SubmitGridEvaluation(no_weights, kStart).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(store->Counts()->free_evaluation_jobs, 3);
+}
+
+TEST_F(RunStoreTest, ARunsOwnEvaluationGoesBeforeGridsAndNegativeVersionsAreTheGrids) {
+  std::unique_ptr<RunStore> store = Open();
+  const LeaseKey learner = SubmitAndAcquire(*store).key;
+  ASSERT_TRUE(store->SubmitGridEvaluation(Grid("grid-a", 4), kStart).ok());
+  ASSERT_TRUE(
+      store->SubmitEvaluation(learner, Evaluation(1, 2), kStart + absl::Seconds(1)).ok());
+  EXPECT_EQ(store->SubmitEvaluation(learner, Evaluation(-1), kStart).code(),
+            absl::StatusCode::kInvalidArgument);
+  std::optional<EvaluationGrant> first = AcquireJobs(*store, 8, 1);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->jobs[0].policy_version, 1);
+  EXPECT_TRUE(first->grid.empty());
+  // An actor takes its share of a grid's cells as of an evaluation's contexts.
+  std::optional<EvaluationGrant> cells = AcquireJobs(*store, 8, 2);
+  ASSERT_TRUE(cells.has_value());
+  EXPECT_EQ(cells->jobs[0].policy_version, -1);
+  EXPECT_THAT(ContextsOf(cells), ElementsAre(0, 1));
+  // The run ends: its grid's policy stays for the cells still to run.
+  ASSERT_TRUE(store->FinishRun(learner, RunState::kCompleted, "", kStart).ok());
+  std::optional<EvaluationGrant> rest = AcquireJobs(*store, 8, 1);
+  ASSERT_TRUE(rest.has_value());
+  EXPECT_THAT(ContextsOf(rest), ElementsAre(2, 3));
+  EXPECT_EQ(rest->weights, std::string("w\0g", 3));
+}
+
+TEST_F(RunStoreTest, ALapsedGridCellGoesToAnotherActor) {
+  std::unique_ptr<RunStore> store = Open();
+  SubmitAndAcquire(*store);
+  ASSERT_TRUE(store->SubmitGridEvaluation(Grid("grid-a", 1), kStart).ok());
+  std::optional<EvaluationJobKey> old = AcquireJob(*store);
+  ASSERT_TRUE(old.has_value());
+  EXPECT_FALSE(AcquireJob(*store, kStart + kLease / 2).has_value());
+  std::optional<EvaluationJobKey> again = AcquireJob(*store, kStart + kLease + absl::Seconds(1));
+  ASSERT_TRUE(again.has_value());
+  EXPECT_EQ(again->policy_version, -1);
+  EXPECT_EQ(again->epoch, old->epoch + 1);
+  EXPECT_EQ(Report(*store, *again, {{1, 2}, 0}).value_or(true), false);
+  EXPECT_EQ(Report(*store, *old, {{1, 2}, 0}).value_or(false), true);
+  EXPECT_EQ(store->GetEvaluation("run-1", -1)->done, 1);
+}
+
+TEST_F(RunStoreTest, AVersionFiveDatabaseIsMigratedWithItsEvaluations) {
+  {
+    // What DCS wrote before grid evaluations: a run with an evaluation of its own, done.
+    std::unique_ptr<RunStore> store = Open();
+    const LeaseKey learner = SubmitAndAcquire(*store).key;
+    ASSERT_TRUE(store->SubmitEvaluation(learner, Evaluation(1, /*contexts=*/1), kStart).ok());
+    std::optional<EvaluationJobKey> job = AcquireJob(*store);
+    ASSERT_TRUE(job.has_value());
+    ASSERT_TRUE(Report(*store, *job, {{1, 2, 3}, 0}).ok());
+    ASSERT_TRUE(store->FinishRun(learner, RunState::kCompleted, "", kStart).ok());
+  }
+  {
+    SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READWRITE);
+    db.exec("DROP TABLE grid_evaluations; PRAGMA user_version = 5");
+  }
+  std::unique_ptr<RunStore> store = Open();
+  ASSERT_NE(store, nullptr);
+  absl::StatusOr<EvaluationProgress> kept = store->GetEvaluation("run-1", 1);
+  ASSERT_TRUE(kept.ok()) << kept.status();
+  EXPECT_THAT(kept->results[0].returns, ElementsAre(1, 2, 3));
+  EXPECT_EQ(store->SubmitGridEvaluation(Grid("grid-a"), kStart).value_or(0), -1);
   SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READONLY);
   EXPECT_EQ(db.execAndGet("PRAGMA user_version").getInt(), CurrentSchemaVersion());
 }

@@ -457,17 +457,6 @@ v1::SlotRollout CollectSlot0(const FakeActor::Work& work) {
   return services::SlotRolloutToProto((*stepper)->Collect(*policy, work.work.n_steps()));
 }
 
-// The value of the series `name{labels}` in a Prometheus exposition, or -1.
-double MetricValue(const std::string& exposition, const std::string& series) {
-  for (const std::string& line : Lines(exposition)) {
-    if (absl::StartsWith(line, series + " ")) {
-      double value = -1;
-      return absl::SimpleAtod(line.substr(series.size() + 1), &value) ? value : -1;
-    }
-  }
-  return -1;
-}
-
 // One slot whose two pieces of work (BipedalWalker rollouts of 2^16 steps) each take longer
 // than a lease: the actor's manager thread renews the lease while the slot's thread steps, so
 // no lease lapses and the slot is never taken again and rebuilt.

@@ -2,8 +2,9 @@
 //
 // `dcs eval` as a researcher runs it on a trained run: a grid of two features gives a table, a
 // JSON of every cell and episode, and a heatmap that loads in headless Chromium; a run on a
-// cluster is evaluated by its id, a sweep's condition as its runs averaged; every bad input is
-// one error line that writes nothing.
+// cluster is evaluated by its id, in this process or by the cluster's actors (--on-actors), with
+// the same returns, and a sweep's condition as its runs averaged; every bad input is one error
+// line that writes nothing.
 
 #include <cmath>
 #include <filesystem>
@@ -15,6 +16,8 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include "absl/strings/match.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
@@ -25,6 +28,7 @@
 #include "tests/integration/browser.h"
 #include "tests/integration/cluster_processes.h"
 #include "tests/integration/test_util.h"
+#include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
 
 namespace dcs::integration {
@@ -303,6 +307,64 @@ TEST_F(EvalCliTest, ASweepConditionIsItsRunsAveraged) {
   for (int c = 0; c < 3; ++c) {
     EXPECT_EQ(single.policies(0).cells(c).mean(), policy.cells(c).run_means(1)) << "cell " << c;
   }
+}
+
+TEST_F(EvalCliTest, OnActorsTheClustersActorsEvaluateTheCellsWithTheSameReturns) {
+  ClusterProcesses cluster(absl::Seconds(5));
+  StartCoordinatorLearnerAndActors(cluster);
+  const RunResult train =
+      DcsAt({"train", "--cluster", "--config", *dir_ + "/tiny.yaml", "--out",
+             Fresh("actors-run")},
+            cluster.coordinator_address(), absl::Minutes(2));
+  ASSERT_EQ(train.exit_code, 0) << train.output;
+  std::smatch submitted;
+  ASSERT_TRUE(std::regex_search(train.output, submitted, std::regex("submitted (\\S+) to")))
+      << train.output;
+  const std::string run_id = submitted[1];
+  const auto jobs_delivered = [&] {
+    double jobs = 0;
+    for (const std::string actor : {"actor-1", "actor-2"}) {
+      const absl::StatusOr<std::string> metrics = testing::HttpGet(cluster.metrics_url(actor));
+      EXPECT_TRUE(metrics.ok()) << metrics.status();
+      jobs += MetricValue(metrics.value_or(""), "dcs_actor_evaluation_jobs_total");
+    }
+    return jobs;
+  };
+  const double jobs_before = jobs_delivered();
+
+  // A 4 x 3 grid, 12 cells, with a seed of its own (not the run's).
+  const std::vector<std::string> grid = {"--grid",     "length=0.3:1.2:4", "--grid",
+                                         "gravity=5:15:3", "--episodes",    "3",
+                                         "--seed",     "5",                "-o",
+                                         "json"};
+  std::vector<std::string> on_actors = {"eval", run_id, "--on-actors"};
+  on_actors.insert(on_actors.end(), grid.begin(), grid.end());
+  const RunResult remote = DcsAt(on_actors, cluster.coordinator_address(), absl::Minutes(1));
+  ASSERT_EQ(remote.exit_code, 0) << remote.output;
+  // The actors ran every cell (and the client none).
+  EXPECT_GE(jobs_delivered() - jobs_before, 12) << "logs in " << cluster.dir();
+
+  std::vector<std::string> in_process = {"eval", run_id};
+  in_process.insert(in_process.end(), grid.begin(), grid.end());
+  const RunResult local = DcsAt(in_process, cluster.coordinator_address());
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  v1::GeneralizationGrid remote_grid, local_grid;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(remote.output, &remote_grid).ok())
+      << remote.output;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(local.output, &local_grid).ok())
+      << local.output;
+  ASSERT_THAT(remote_grid.policies(), SizeIs(1));
+  ASSERT_THAT(remote_grid.policies(0).cells(), SizeIs(12));
+  // Bit for bit: every cell's context, returns, mean and std, as serialised doubles.
+  EXPECT_EQ(remote_grid.SerializeAsString(), local_grid.SerializeAsString());
+  EXPECT_EQ(remote.output, local.output);
+}
+
+TEST_F(EvalCliTest, OnActorsARunDirectoryIsRefused) {
+  ExpectRefused({Run(), "--grid", "length=0.1:1:3", "--on-actors"},
+                "INVALID_ARGUMENT: --on-actors evaluates runs of the cluster; " + Run() +
+                    " is a directory here",
+                services::kExitDataError);
 }
 
 }  // namespace

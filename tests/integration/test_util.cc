@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "absl/strings/match.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
@@ -61,6 +62,16 @@ int LoaderReport::LibtorchStarts() const {
 
 std::vector<std::string> Lines(const std::string& text) {
   return absl::StrSplit(text, '\n', absl::SkipEmpty());
+}
+
+double MetricValue(const std::string& exposition, const std::string& series) {
+  for (const std::string& line : Lines(exposition)) {
+    if (absl::StartsWith(line, series + " ")) {
+      double value = -1;
+      return absl::SimpleAtod(line.substr(series.size() + 1), &value) ? value : -1;
+    }
+  }
+  return -1;
 }
 
 }  // namespace dcs::integration

@@ -53,6 +53,9 @@ class LoaderReport {
 // The lines of `text`, without empty ones.
 std::vector<std::string> Lines(const std::string& text);
 
+// The value of the series `name{labels}` in a Prometheus exposition, or -1.
+double MetricValue(const std::string& exposition, const std::string& series);
+
 }  // namespace dcs::integration
 
 #endif  // DCS_TESTS_INTEGRATION_TEST_UTIL_H_
