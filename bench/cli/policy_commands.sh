@@ -2,7 +2,8 @@
 # How long `dcs eval`, `dcs play` and `dcs export` take, start to exit, on a trained CartPole run
 # of a local cluster (`dcs up`): the paper's static blind pool-7 config (150k steps), trained on
 # the cluster first. `dcs eval` takes the run by its id (downloaded from the coordinator) over the
-# issue's grid, pole length x gravity (40 x 16 cells, 30 episodes each), and writes its heatmap;
+# issue's grid, pole length x gravity (40 x 16 cells, 30 episodes each), and writes its heatmap,
+# once in its own process and once with --on-actors (the cluster's two actors run the cells);
 # `dcs play` records one 500-step episode as MP4 with a strip; `dcs export` writes the state
 # dict and layout. Each runs ROUNDS times (default 5) in turn with the others; prints the median
 # and the slowest, in seconds, and the peak resident memory of the slowest.
@@ -26,6 +27,9 @@ commands = {
     "dcs eval RUN_ID --grid length=0.05:2:40 --grid gravity=2:25:16 --episodes 30 --out D":
         ["eval", run_id, "--grid", "length=0.05:2:40", "--grid", "gravity=2:25:16",
          "--episodes", "30", "--out", f"{out}/eval"],
+    "dcs eval RUN_ID --on-actors (the same grid)":
+        ["eval", run_id, "--on-actors", "--grid", "length=0.05:2:40", "--grid",
+         "gravity=2:25:16", "--episodes", "30", "--out", f"{out}/eval-actors"],
     "dcs play RUN_DIR --context length=0.9 --out E.mp4 --strip S.png":
         ["play", f"{out}/run", "--context", "length=0.9", "--out", f"{out}/e.mp4",
          "--strip", f"{out}/s.png"],

@@ -7,6 +7,8 @@
 // names a sweep's condition stands for its completed runs (its seeds): each is evaluated, and
 // the condition's cell is their mean, its spread the standard deviation across them.
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -122,6 +124,16 @@ absl::StatusOr<EvaluatedPolicy> LoadPolicy(const std::string& name, const EvalFl
     DCS_ASSIGN_OR_RETURN(policy.runs.emplace_back(), LoadRun(run, flags, global));
   }
   return policy;
+}
+
+// On a terminal, a line on stderr rewritten as the actors deliver `run`'s cells; elsewhere
+// nothing (logs get the table).
+GridProgress CellProgress(const std::string& run) {
+  if (!isatty(STDERR_FILENO)) return nullptr;
+  return [run](int done, int cells) {
+    std::cerr << "\rdcs: " << run << " on the actors: " << done << "/" << cells << " cells"
+              << (done == cells ? "\n" : "") << std::flush;
+  };
 }
 
 // The grid's axes, parsed against `Env`'s features: one or two, of different features.
@@ -316,7 +328,8 @@ absl::Status Evaluate(const EvalFlags& flags, const GlobalFlags& global) {
               DCS_ASSIGN_OR_RETURN(run.cells,
                                    EvaluateGridOnCluster(CoordinatorAddress(global), run.name,
                                                          run.weights, axes, flags.episodes,
-                                                         flags.seed, global.timeout));
+                                                         flags.seed, global.timeout,
+                                                         CellProgress(run.name)));
               continue;
             }
             DCS_ASSIGN_OR_RETURN(run.cells, actor::EvaluateGrid<Env>(
