@@ -39,7 +39,7 @@ struct PlayFlags {
   std::string run;
   std::string checkpoint = "last";
   std::vector<std::string> context;  // FEATURE=VALUE
-  std::string schedule;              // a YAML file: the varied feature's stages
+  std::string schedule;              // a YAML file: one schedule of the varied feature
   uint64_t seed = 0;
   std::string out;    // .mp4 or .gif
   std::string strip;  // a PNG of a few frames side by side
