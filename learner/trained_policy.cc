@@ -40,8 +40,13 @@ absl::Status LoadCheckpoint(const std::string& name, TrainedPolicy& trained) {
   return absl::OkStatus();
 }
 
-// avg_combined of `trained`'s policy on its run's evaluation protocol.
+// avg_combined of `trained`'s policy on its run's evaluation protocol: as its checkpoint
+// records it if the run evaluated that policy version (the protocol is deterministic, so that is
+// what evaluating it again gives), else evaluated here.
 absl::StatusOr<double> ProtocolScore(const TrainedPolicy& trained) {
+  for (const actor::EvaluationResult& evaluation : trained.state.evaluations) {
+    if (evaluation.updates == trained.learner->updates()) return evaluation.avg_combined;
+  }
   DCS_ASSIGN_OR_RETURN(actor::PolicyNetwork policy,
                        actor::PolicyNetwork::Create(trained.learner->ActorWeights()));
   double score = 0;

@@ -36,8 +36,8 @@ absl::StatusOr<TrainedPolicy> NewTrainedPolicy(run::RunRequest run);
 
 // The policy of run directory `run_dir` at checkpoint `which`: "last" (the one the run's
 // `latest` names); "best", of the kept checkpoints the one whose policy scores the highest
-// avg_combined on the run's own evaluation protocol (evaluated here: the protocol is
-// deterministic, so a checkpoint the run evaluated scores what its log says); or a step, one of
+// avg_combined on the run's own evaluation protocol (as the run's log has it for a policy the
+// run evaluated, the protocol being deterministic; others evaluated here); or a step, one of
 // the kept checkpoints'. Read strictly: a corrupt checkpoint is an error, never replaced by an
 // older one.
 // NOT_FOUND naming the directory if it holds no run, or naming the kept checkpoints if none is
