@@ -3,8 +3,8 @@
 #define DCS_SERVICES_CLI_RUN_CLIENT_H_
 
 // The coordinator's runs and sweeps, as the `dcs` client uses them: submit, follow, list,
-// cancel, download; a sweep's results; a backup of the coordinator's store. Every call has a deadline (`timeout`); errors are annotated with the coordinator's
-// address. Thread-safe.
+// cancel, download; a sweep's results; a backup of the coordinator's store. Every call has a
+// deadline (`timeout`); errors are annotated with the coordinator's address. Thread-safe.
 
 #include <cstdint>
 #include <functional>
