@@ -24,6 +24,15 @@ namespace dcs {
 absl::Status WriteFileAtomically(const std::string& path, absl::string_view contents,
                                  mode_t mode = 0644);
 
+// Moves the finished, fsync'd file `temporary` onto `path` (in the same directory) and fsyncs
+// the directory, for a file written otherwise than by WriteFileAtomically (a database SQLite
+// wrote). On failure `temporary` is removed. Errors as WriteFileAtomically's.
+absl::Status RenameDurably(const std::string& temporary, const std::string& path);
+
+// The error of a failed system call on `path` (`error` is its errno), as WriteFileAtomically
+// reports it: "<what> <path>: <reason>", coded as it says.
+absl::Status FileError(int error, absl::string_view what, const std::string& path);
+
 // The whole contents of `path`. NOT_FOUND if it does not exist.
 absl::StatusOr<std::string> ReadFile(const std::string& path);
 

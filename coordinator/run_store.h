@@ -270,6 +270,13 @@ struct StudyRecord {
   absl::Time created_at;
 };
 
+// What a backup of the store holds (RunStore::Backup).
+struct BackupCounts {
+  int64_t runs = 0;
+  int64_t sweeps = 0;
+  int64_t studies = 0;
+};
+
 struct RunStoreOptions {
   absl::Duration lease_duration = absl::Seconds(10);
 };
@@ -461,6 +468,16 @@ class RunStore {
                          absl::Time now);
 
   absl::StatusOr<StoreCounts> Counts();
+
+  // Writes a consistent copy of the store as of one moment (SQLite's online backup) to `path`,
+  // atomically: into a temporary file beside it, synced, then renamed over it; a failed backup
+  // leaves nothing behind. Open opens the copy as it would this store, and a coordinator on it
+  // goes on as one restarted on this store would (given the runs' files, which are not in the
+  // store: coordinator/run_files.h). The copy is taken in one step under the store's lock, so
+  // every other call waits for it (bench/RESULTS.md, Reliability: how long). Returns what the
+  // copy holds. Errors name `path`: PERMISSION_DENIED for a directory it may not write in,
+  // NOT_FOUND for a missing one, RESOURCE_EXHAUSTED for a full disk, else INTERNAL.
+  absl::StatusOr<BackupCounts> Backup(const std::string& path);
 
  private:
   RunStore(std::unique_ptr<SQLite::Database> db, RunStoreOptions options);

@@ -1,8 +1,10 @@
 // Copyright 2026 The DCS Authors.
 //
 // CoordinatorService's runs and leases: the run store (coordinator/run_store.h) and the runs'
-// directories (coordinator/run_files.h) on the wire.
+// directories (coordinator/run_files.h) on the wire; and the store's backups.
 
+#include <atomic>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -11,6 +13,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
+#include "common/atomic_file.h"
 #include "common/status_macros.h"
 #include "common/status_util.h"
 #include "coordinator/run_files.h"
@@ -264,6 +267,36 @@ grpc::ServerWriteReactor<v1::RunFile>* CoordinatorService::GetRunFiles(
   absl::StatusOr<std::vector<v1::RunFile>> pieces = get();
   rejected_.Count(pieces.status());
   return new PiecesWriter<v1::RunFile>(std::move(pieces));
+}
+
+grpc::ServerWriteReactor<v1::BackupPiece>* CoordinatorService::BackupStore(
+    grpc::CallbackServerContext* context, const v1::BackupStoreRequest* /*request*/) {
+  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
+    return Refuse<grpc::ServerWriteReactor<v1::BackupPiece>>(refused);
+  }
+  static std::atomic<int64_t> backups = 0;
+  // Written beside the store (its disk, its permissions), read whole, and removed.
+  const std::string path =
+      (std::filesystem::path(runs_.data_dir) / absl::StrCat("backup-", ++backups, ".db")).string();
+  auto back_up = [&]() -> absl::StatusOr<std::vector<v1::BackupPiece>> {
+    DCS_ASSIGN_OR_RETURN(const coordinator::BackupCounts counts, runs_.store->Backup(path));
+    absl::StatusOr<std::string> bytes = ReadFile(path);
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+    if (!bytes.ok()) return bytes.status();
+    v1::BackupPiece header;
+    header.set_size(static_cast<int64_t>(bytes->size()));
+    header.set_sha256(run::Sha256Hex(*bytes));
+    header.set_runs(counts.runs);
+    header.set_sweeps(counts.sweeps);
+    header.set_studies(counts.studies);
+    Log(LogLevel::kInfo, "store backed up",
+        {{"bytes", std::to_string(bytes->size())}, {"runs", std::to_string(counts.runs)}});
+    return CutIntoMessages(std::move(header), *bytes, &v1::BackupPiece::mutable_data);
+  };
+  absl::StatusOr<std::vector<v1::BackupPiece>> pieces = back_up();
+  rejected_.Count(pieces.status());
+  return new PiecesWriter<v1::BackupPiece>(std::move(pieces));
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerContext* context,

@@ -4,7 +4,7 @@
 
 // dcs.v1.CoordinatorService over the coordinator library: each method decodes the request,
 // calls the library, encodes the reply and converts the status. Workers' membership is in
-// coordinator_service.cc, runs and leases in coordinator_runs.cc, sweeps in
+// coordinator_service.cc, runs, leases and the store's backups in coordinator_runs.cc, sweeps in
 // coordinator_sweeps.cc. The calls by which workers ask for work (AcquireRun, AcquireSlot,
 // AcquireEvaluation) and a learner for its evaluation (GetEvaluation) may wait for it: with a
 // `wait`, a call that finds nothing is parked (services/parked_calls.h) until the work may have
@@ -78,6 +78,8 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
                                       v1::CancelRunResponse* response) override;
   grpc::ServerWriteReactor<v1::RunFile>* GetRunFiles(
       grpc::CallbackServerContext* context, const v1::GetRunFilesRequest* request) override;
+  grpc::ServerWriteReactor<v1::BackupPiece>* BackupStore(
+      grpc::CallbackServerContext* context, const v1::BackupStoreRequest* request) override;
 
   grpc::ServerUnaryReactor* SubmitSweep(grpc::CallbackServerContext* context,
                                         const v1::SubmitSweepRequest* request,

@@ -14,6 +14,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "services/auth.h"
+#include "services/cli/backup_command.h"
 #include "services/cli/cli_command.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/cluster_commands.h"
@@ -38,7 +39,7 @@ namespace {
 constexpr AddCommandsFunction kCommandFiles[] = {
     AddClusterCommands, AddVersionCommand, AddEnvCommands,    AddScheduleCommands,
     AddTrainCommand,    AddRunsCommands,   AddSweepCommands,  AddReportCommands,
-    AddSummarizeCommand, AddStudyCommands, AddPolicyCommands,
+    AddSummarizeCommand, AddStudyCommands, AddPolicyCommands, AddBackupCommand,
 };
 
 int Main(int argc, char** argv) {

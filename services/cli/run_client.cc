@@ -18,7 +18,9 @@
 #include "common/status_macros.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "google/protobuf/util/message_differencer.h"
+#include "run/run_checkpoint.h"
 #include "services/channel.h"
+#include "services/pieces.h"
 #include "services/stream_call.h"
 #include "services/unary_call.h"
 
@@ -240,6 +242,25 @@ absl::Status DownloadRun(const std::string& address, const std::string& run_id,
         return absl::OkStatus();
       }));
   return file.path().empty() ? absl::OkStatus() : write();
+}
+
+absl::StatusOr<v1::BackupPiece> BackupStore(const std::string& address, const std::string& out,
+                                            absl::Duration timeout) {
+  PieceJoiner<v1::BackupPiece> backup(&v1::BackupPiece::mutable_data, "the store's backup");
+  DCS_RETURN_IF_ERROR(CallServerStream(
+      *Coordinator(address), &v1::CoordinatorService::Stub::BackupStore, v1::BackupStoreRequest(),
+      timeout, Peer(address),
+      [&](const v1::BackupPiece& piece) { return backup.Add(piece); }));
+  const std::string& bytes = backup.payload();
+  if (!backup.started() || static_cast<int64_t>(bytes.size()) != backup.header().size() ||
+      run::Sha256Hex(bytes) != backup.header().sha256()) {
+    return absl::DataLossError(absl::StrCat(
+        "the store's backup from ", Peer(address), " arrived damaged: ", bytes.size(), " of ",
+        backup.header().size(), " bytes, SHA-256 ", run::Sha256Hex(bytes), " for ",
+        backup.header().sha256(), "; nothing was written to ", out));
+  }
+  DCS_RETURN_IF_ERROR(WriteFileAtomically(out, bytes));
+  return backup.header();
 }
 
 ProgressLine ProgressLineOf(const v1::RunProgress& progress) {

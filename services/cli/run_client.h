@@ -3,8 +3,8 @@
 #define DCS_SERVICES_CLI_RUN_CLIENT_H_
 
 // The coordinator's runs and sweeps, as the `dcs` client uses them: submit, follow, list,
-// cancel, download; and a sweep's results. Every call has a deadline (`timeout`); errors are annotated with the coordinator's
-// address. Thread-safe.
+// cancel, download; a sweep's results; a backup of the coordinator's store. Every call has a
+// deadline (`timeout`); errors are annotated with the coordinator's address. Thread-safe.
 
 #include <cstdint>
 #include <functional>
@@ -51,6 +51,12 @@ absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& 
 // --out dir` lays them out. INVALID_ARGUMENT for a file path that would leave `dir`.
 absl::Status DownloadRun(const std::string& address, const std::string& run_id,
                          const std::string& dir, absl::Duration timeout);
+
+// Writes a backup of the coordinator's store to `out`, atomically, once every piece is in and
+// the whole has the size and SHA-256 the coordinator gave (DATA_LOSS otherwise), and returns
+// the first piece without its data: the size, the digest and what the backup holds.
+absl::StatusOr<v1::BackupPiece> BackupStore(const std::string& address, const std::string& out,
+                                            absl::Duration timeout);
 
 // Queues the sweep of `spec` (named `spec_name` in errors; `name` when the spec gives none)
 // under a new random request id, resent as is if the call must be retried; with

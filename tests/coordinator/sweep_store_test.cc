@@ -1,7 +1,15 @@
 // Copyright 2026 The DCS Authors.
 //
-// RunStore's sweeps (coordinator/sweep_store.cc) on a real SQLite file.
+// RunStore's sweeps (coordinator/sweep_store.cc) on a real SQLite file, and backups of a store
+// holding them (RunStore::Backup).
 
+#include <sys/mount.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -219,6 +227,108 @@ TEST_F(SweepStoreTest, UnknownSweepsAreNotFound) {
   EXPECT_EQ(store->GetSweep("run-1").status().code(), absl::StatusCode::kNotFound);
   EXPECT_EQ(store->ListSweepRuns("sweep-9").status().code(), absl::StatusCode::kNotFound);
   EXPECT_EQ(store->CancelSweep("sweep-9", kStart).status().code(), absl::StatusCode::kNotFound);
+}
+
+// What a test compares of a store's runs and sweeps.
+std::vector<std::string> Contents(RunStore& store) {
+  std::vector<std::string> contents;
+  absl::StatusOr<std::vector<RunRecord>> runs = store.ListRuns();
+  EXPECT_TRUE(runs.ok()) << runs.status();
+  for (const RunRecord& run : runs.ok() ? *runs : std::vector<RunRecord>{}) {
+    contents.push_back(absl::StrCat(run.id, " ", NameOf(kRunStateNames, run.state), " ",
+                                    run.sweep_id, " ", run.trial.value_or(-1), " ",
+                                    run.progress.timesteps, " ", run.submission.request_id));
+  }
+  absl::StatusOr<std::vector<SweepRecord>> sweeps = store.ListSweeps();
+  EXPECT_TRUE(sweeps.ok()) << sweeps.status();
+  for (const SweepRecord& sweep : sweeps.ok() ? *sweeps : std::vector<SweepRecord>{}) {
+    contents.push_back(absl::StrCat(sweep.id, " ", sweep.name, " ", sweep.trials.size(), " ",
+                                    NameOf(kSweepStateNames, sweep.state)));
+  }
+  return contents;
+}
+
+TEST_F(SweepStoreTest, ABackupIsTheStoreAsItWasAndOpensAsIt) {
+  std::unique_ptr<RunStore> store = Open();
+  ASSERT_TRUE(store->SubmitSweep(Sweep("s", 3, 2), kStart).ok());
+  ASSERT_TRUE(store->SubmitSweep(Sweep("t", 1, 1), kStart).ok());
+  absl::StatusOr<std::optional<LearnerLease>> lease = store->AcquireRun("L", "a", "N", kStart);
+  ASSERT_TRUE(lease.ok() && lease->has_value());
+  ASSERT_TRUE(store->ReportProgress((*lease)->key, {.timesteps = 400}, kStart).ok());
+  const std::vector<std::string> before = Contents(*store);
+
+  absl::StatusOr<BackupCounts> counts = store->Backup(Path("backup.db"));
+  ASSERT_TRUE(counts.ok()) << counts.status();
+  EXPECT_EQ(counts->runs, 7);
+  EXPECT_EQ(counts->sweeps, 2);
+  EXPECT_EQ(counts->studies, 0);
+  // The store goes on; the backup does not.
+  ASSERT_TRUE(store->SubmitSweep(Sweep("later", 1, 1), kStart).ok());
+
+  absl::StatusOr<std::unique_ptr<RunStore>> restored =
+      RunStore::Open(Path("backup.db"), {.lease_duration = absl::Seconds(10)}, kStart);
+  ASSERT_TRUE(restored.ok()) << restored.status();
+  EXPECT_EQ(Contents(**restored), before);
+  EXPECT_THAT(before, ::testing::Contains(HasSubstr("run-1 running sweep-1 0 400")));
+  // Nothing but the backup was written beside it.
+  restored->reset();
+  EXPECT_FALSE(std::filesystem::exists(Path(absl::StrCat("backup.db.tmp.", ::getpid()))));
+}
+
+// A directory at `path` that Backup may not write in (`read_only`: read-only to its owner, or
+// for root, whom modes do not stop, a read-only tmpfs), or that holds `bytes` at most (a tmpfs:
+// root only). Unmounted and writable again when destroyed.
+class SmallDirectory {
+ public:
+  SmallDirectory(const std::string& path, bool read_only, int bytes) : path_(path) {
+    std::filesystem::create_directories(path);
+    if (::geteuid() != 0) {
+      if (read_only) ::chmod(path.c_str(), 0500);
+      usable_ = read_only;
+      return;
+    }
+    const std::string options = absl::StrCat("size=", bytes);
+    mounted_ = ::mount("dcs-test", path.c_str(), "tmpfs", read_only ? MS_RDONLY : 0,
+                       options.c_str()) == 0;
+    usable_ = mounted_;
+    if (!mounted_) why_ = std::strerror(errno);
+  }
+  ~SmallDirectory() {
+    if (mounted_) ::umount2(path_.c_str(), MNT_DETACH);
+    ::chmod(path_.c_str(), 0700);
+  }
+  bool usable() const { return usable_; }
+  const std::string& why() const { return why_; }
+
+ private:
+  const std::string path_;
+  bool mounted_ = false;
+  bool usable_ = false;
+  std::string why_ = "a full disk needs a tmpfs, which needs root";
+};
+
+TEST_F(SweepStoreTest, ABackupWhereItCannotBeWrittenFailsNamingItAndLeavesNothing) {
+  std::unique_ptr<RunStore> store = Open();
+  ASSERT_TRUE(store->SubmitSweep(Sweep("s", 100, 10), kStart).ok());  // over 64 KiB
+  const std::string missing = Path("missing/backup.db");
+  EXPECT_EQ(store->Backup(missing).status().code(), absl::StatusCode::kNotFound);
+  EXPECT_THAT(store->Backup(missing).status().message(), HasSubstr(missing));
+
+  SmallDirectory locked(Path("locked"), /*read_only=*/true, 1 << 20);
+  ASSERT_TRUE(locked.usable()) << locked.why();
+  absl::Status refused = store->Backup(Path("locked/backup.db")).status();
+  EXPECT_EQ(refused.code(), absl::StatusCode::kPermissionDenied) << refused;
+  EXPECT_THAT(refused.message(), HasSubstr(Path("locked/backup.db")));
+  EXPECT_TRUE(std::filesystem::is_empty(Path("locked")));
+
+  SmallDirectory full(Path("full"), /*read_only=*/false, 64 << 10);
+  if (!full.usable()) GTEST_SKIP() << full.why();
+  absl::Status exhausted = store->Backup(Path("full/backup.db")).status();
+  EXPECT_EQ(exhausted.code(), absl::StatusCode::kResourceExhausted) << exhausted;
+  EXPECT_THAT(exhausted.message(), HasSubstr(Path("full/backup.db")));
+  EXPECT_TRUE(std::filesystem::is_empty(Path("full")));
+  // The store is as it was.
+  EXPECT_EQ(store->ListRuns()->size(), 1000u);
 }
 
 TEST(SweepStateTest, DerivesFromItsRuns) {

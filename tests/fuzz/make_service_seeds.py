@@ -87,6 +87,7 @@ def coordinator_calls():
         "ListRuns": [[""]],
         "CancelRun": [['run_id: "run-1"']],
         "GetRunFiles": [['run_id: "run-1"']],
+        "BackupStore": [[""]],
         "SubmitSweep": [[f'request_id: "sweep-a" spec: {quoted(sweep_spec)} '
                          'spec_name: "quickstart.yaml" name: "quickstart"'],
                         [f'request_id: "sweep-b" spec: {quoted(sweep_spec)} validate_only: true']],

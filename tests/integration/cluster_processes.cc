@@ -23,6 +23,8 @@ namespace dcs::integration {
 ClusterProcesses::ClusterProcesses(absl::Duration lease)
     : dir_(testing::MakeTempDir()), lease_(lease), coordinator_port_(testing::PickFreePort()) {}
 
+std::string ClusterProcesses::data_dir() const { return dir_ + "/data"; }
+
 std::string ClusterProcesses::coordinator_address() const {
   return absl::StrCat("127.0.0.1:", coordinator_port_);
 }
@@ -30,7 +32,7 @@ std::string ClusterProcesses::coordinator_address() const {
 void ClusterProcesses::StartCoordinator(std::optional<absl::Duration> lease) {
   Start("coordinator",
         {.path = BinaryPath("dcs-coordinator"),
-         .args = {absl::StrCat("--listen=", coordinator_address()), "--data-dir=" + dir_ + "/data",
+         .args = {absl::StrCat("--listen=", coordinator_address()), "--data-dir=" + data_dir(),
                   absl::StrCat("--lease-duration=",
                                absl::FormatDuration(lease.value_or(lease_)))}});
 }

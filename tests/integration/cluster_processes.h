@@ -24,6 +24,9 @@ class ClusterProcesses {
   explicit ClusterProcesses(absl::Duration lease);
 
   const std::string& dir() const { return dir_; }
+  // The coordinator's data directory (its store, coordinator.db, and runs/), in dir(): a test
+  // may put a restored store there before StartCoordinator.
+  std::string data_dir() const;
   std::string coordinator_address() const;
 
   // The coordinator on its port and data directory (again, after Kill), with the cluster's lease

@@ -3,9 +3,11 @@
 // Sweeps end to end, with real processes on loopback and the `dcs` client: a sweep submitted
 // with `dcs submit` runs to completion, `dcs report` tabulates it and `dcs plot` draws it (its
 // index.html looked at in headless Chromium, as `make demo`'s is); a sweep whose coordinator is
-// killed (SIGKILL) mid-way and restarted on its data directory gives the same report; a bad
-// spec is refused whole, every problem named, and nothing of it is stored.
+// killed (SIGKILL) mid-way and restarted on its data directory gives the same report, and so
+// does a coordinator restored from a `dcs backup` taken mid-way (README, Backups); a bad spec is
+// refused whole, every problem named, and nothing of it is stored.
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -98,6 +100,66 @@ TEST(SweepTest, ASweepSurvivesItsCoordinatorsDeathAndReportsTheSame) {
       DcsAt({"watch", "sweep-1"}, faulty.coordinator_address(), absl::Minutes(5));
   ASSERT_EQ(watched.exit_code, 0) << watched.output << "; logs in " << faulty.dir();
   EXPECT_EQ(SweepReports(faulty, "sweep-1"), undisturbed);
+}
+
+// Copies the run files under `from` into `to` while a coordinator may be writing them, as
+// `rsync -a` would: a file that vanishes (an old checkpoint pruned) is skipped, and so is a
+// temporary file (common/atomic_file.h) not yet renamed into place.
+void CopyRunFiles(const std::filesystem::path& from, const std::filesystem::path& to) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  for (fs::recursive_directory_iterator it(from, error), end; !error && it != end;
+       it.increment(error)) {
+    const fs::path target = to / fs::relative(it->path(), from);
+    if (it->is_directory(error)) {
+      fs::create_directories(target, error);
+    } else if (it->path().filename().string().find(".tmp.") == std::string::npos) {
+      fs::copy_file(it->path(), target, error);
+    }
+    error.clear();
+  }
+}
+
+TEST(SweepTest, ACoordinatorRestoredFromABackupTakenMidSweepFinishesItWithTheSameReport) {
+  const std::string spec = WriteSpec(EightRunSweepSpec("small", 1536, 512));
+  ClusterProcesses original(kLease);
+  StartCoordinatorLearnerAndActors(original);
+  const RunResult queued = DcsAt({"submit", spec}, original.coordinator_address());
+  ASSERT_EQ(queued.exit_code, 0) << queued.output;
+  WaitForCompleted(original, "sweep-1", 2);
+
+  // Backed up mid-sweep; restored as README's Backups says: the backup as the new coordinator's
+  // store, the runs' files copied after it.
+  const std::string backup = original.dir() + "/backup.db";
+  const RunResult backed_up =
+      DcsAt({"backup", "--out", backup}, original.coordinator_address());
+  ASSERT_EQ(backed_up.exit_code, 0) << backed_up.output << "; logs in " << original.dir();
+  EXPECT_THAT(backed_up.output, HasSubstr(backup + ": "));
+  EXPECT_THAT(backed_up.output, HasSubstr(" bytes, 8 runs, 1 sweeps, 0 studies"));
+  ClusterProcesses restored(kLease);
+  std::filesystem::create_directories(restored.data_dir());
+  std::filesystem::copy_file(backup, restored.data_dir() + "/coordinator.db");
+  CopyRunFiles(original.data_dir() + "/runs", restored.data_dir() + "/runs");
+
+  const RunResult finished =
+      DcsAt({"watch", "sweep-1"}, original.coordinator_address(), absl::Minutes(5));
+  ASSERT_EQ(finished.exit_code, 0) << finished.output << "; logs in " << original.dir();
+  const std::string reports = SweepReports(original, "sweep-1");
+  for (const char* worker : {"learner", "actor-1", "actor-2"}) original.Kill(worker);
+
+  restored.StartCoordinator();
+  absl::StatusOr<v1::GetSweepResponse> as_backed_up =
+      services::cli::GetSweep(restored.coordinator_address(), "sweep-1", kTimeout);
+  ASSERT_TRUE(as_backed_up.ok()) << as_backed_up.status();
+  EXPECT_GE(as_backed_up->sweep().completed(), 2);
+  EXPECT_LT(as_backed_up->sweep().completed(), 8) << "the backup was not taken mid-sweep";
+  restored.StartLearner("learner");
+  restored.StartActor("actor-1", 4);
+  restored.StartActor("actor-2", 4);
+  const RunResult watched =
+      DcsAt({"watch", "sweep-1"}, restored.coordinator_address(), absl::Minutes(5));
+  ASSERT_EQ(watched.exit_code, 0) << watched.output << "; logs in " << restored.dir();
+  EXPECT_EQ(SweepReports(restored, "sweep-1"), reports);
 }
 
 TEST(SweepTest, ABadSpecIsRefusedWholeWithEveryProblemAndNothingIsStored) {
