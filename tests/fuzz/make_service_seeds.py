@@ -104,7 +104,8 @@ def coordinator_calls():
         "TellTrial": [['study_id: "study-1" number: 0 state: "complete" value: 1.5']],
         "ReportTrial": [['study_id: "study-1" number: 0 step: 10 value: 2.5']],
         "AcquireRun": [['holder: "learner-1" address: "127.0.0.1:6000" numerics: "fingerprint"']],
-        "AcquireSlot": [['holder: "actor-1" numerics: "fingerprint" except_run_ids: "run-2"']],
+        "AcquireSlot": [['holder: "actor-1" numerics: "fingerprint" '
+                         'complete_learners {run_id: "run-2" slot: -1 epoch: 1}']],
         "RenewLease": [[lease]],
         "ReleaseLease": [['lease {run_id: "run-1" slot: 0 epoch: 1}']],
         "ReportProgress": [[f'{lease} progress {{timesteps: 64 total_timesteps: 150000 '
@@ -119,6 +120,9 @@ def coordinator_calls():
         "AcquireEvaluation": [['holder: "actor-1" numerics: "fingerprint" max_jobs: 2']],
         "ReportEvaluation": [['results {job {run_id: "run-1" policy_version: 1 context: 0 '
                               'epoch: 1} result {returns: [12, 30] seconds: 0.01}}']],
+        "SubmitGridEvaluation": [['request_id: "grid-1" run_id: "run-1" grid {axes {feature: '
+                                  '"length" low: 0.2 high: 1.2 count: 3} seed: 5} episodes: 2 '
+                                  'weights: "policy"']],
     }
 
 
