@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include "services/log.h"
+
 namespace dcs::services {
 namespace {
 
@@ -22,7 +24,12 @@ prometheus::ClientMetric::Label StateLabel(coordinator::RunState state) {
 
 std::vector<prometheus::MetricFamily> RunCollector::Collect() const {
   absl::StatusOr<coordinator::StoreCounts> counts = store_.Counts();
-  if (!counts.ok()) return {};  // the scrape shows the series missing; the logs say why
+  if (!counts.ok()) {
+    // The scrape shows the series missing (an alert's `absent`); the log says why.
+    Log(LogLevel::kError, "cannot count the store's runs for /metrics",
+        {{"error", counts.status().ToString()}});
+    return {};
+  }
   prometheus::MetricFamily runs{"dcs_runs", "Runs the coordinator knows, by state.",
                                 prometheus::MetricType::Gauge, {}};
   for (const auto& [state, count] : counts->runs_by_state) {

@@ -33,6 +33,15 @@ std::unique_ptr<v1::CoordinatorService::Stub> Coordinator(const std::string& add
   return v1::CoordinatorService::NewStub(OpenChannel(address));
 }
 
+// Between the attempts of a submission to a coordinator that did not answer.
+constexpr BackoffPolicy kSubmitBackoff{.initial = absl::Milliseconds(200),
+                                       .max = absl::Seconds(1)};
+
+// RetryTransient's keep_trying: `attempts` in all.
+auto AttemptsUpTo(int attempts) {
+  return [attempts, failures = 0](const absl::Status&) mutable { return ++failures < attempts; };
+}
+
 // "RUN_STATE_COMPLETED" without `prefix`, in lower case: "completed".
 std::string EnumValueName(absl::string_view name, absl::string_view prefix) {
   absl::ConsumePrefix(&name, prefix);
@@ -58,15 +67,10 @@ absl::StatusOr<v1::Run> SubmitRun(const std::string& address, const std::string&
   request.set_config_name(config_name);
   if (seed.has_value()) request.set_seed(*seed);
   v1::SubmitRunResponse response;
-  auto stub = Coordinator(address);
-  absl::Status status;
-  // The request id makes the retry safe if the first attempt was taken but not answered.
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    status = CallUnary(*stub, &v1::CoordinatorService::Stub::SubmitRun, request, response,
-                       timeout, Peer(address));
-    if (!IsTransient(status)) break;
-  }
-  DCS_RETURN_IF_ERROR(status);
+  // The request id makes a retry safe if the first attempt was taken but not answered.
+  DCS_RETURN_IF_ERROR(CallWithRetries(*Coordinator(address),
+                                      &v1::CoordinatorService::Stub::SubmitRun, request, response,
+                                      timeout, Peer(address), kSubmitBackoff, AttemptsUpTo(3)));
   return response.run();
 }
 
@@ -80,15 +84,10 @@ absl::StatusOr<v1::Sweep> SubmitSweep(const std::string& address, const std::str
   request.set_name(name);
   request.set_validate_only(validate_only);
   v1::SubmitSweepResponse response;
-  auto stub = Coordinator(address);
-  absl::Status status;
-  // The request id makes the retry safe if the first attempt was taken but not answered.
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    status = CallUnary(*stub, &v1::CoordinatorService::Stub::SubmitSweep, request, response,
-                       timeout, Peer(address));
-    if (!IsTransient(status)) break;
-  }
-  DCS_RETURN_IF_ERROR(status);
+  // The request id makes a retry safe if the first attempt was taken but not answered.
+  DCS_RETURN_IF_ERROR(CallWithRetries(*Coordinator(address),
+                                      &v1::CoordinatorService::Stub::SubmitSweep, request, response,
+                                      timeout, Peer(address), kSubmitBackoff, AttemptsUpTo(3)));
   return response.sweep();
 }
 

@@ -46,10 +46,11 @@ std::vector<TrialCount> CountTrials(const v1::GetSweepResponse& response) {
   return trials;
 }
 
-std::optional<double> Iqm(const std::vector<double>& values) {
+// The IQM of the completed runs' last scores; nullopt before any completed. An error (a score
+// that is NaN) is shown, not taken for "none yet".
+std::optional<absl::StatusOr<double>> Iqm(const std::vector<double>& values) {
   if (values.empty()) return std::nullopt;
-  absl::StatusOr<double> iqm = coordinator::InterquartileMean(values);
-  return iqm.ok() ? std::optional<double>(*iqm) : std::nullopt;
+  return coordinator::InterquartileMean(values);
 }
 
 std::string TrialName(const v1::Trial& trial) {
@@ -89,9 +90,9 @@ std::string SweepHeadline(const v1::GetSweepResponse& response) {
   std::optional<double> best;
   int best_trial = -1;
   for (size_t t = 0; t < trials.size(); ++t) {
-    const std::optional<double> iqm = Iqm(trials[t].last);
-    if (iqm.has_value() && (!best.has_value() || *iqm > *best)) {
-      best = iqm;
+    const std::optional<absl::StatusOr<double>> iqm = Iqm(trials[t].last);
+    if (iqm.has_value() && iqm->ok() && (!best.has_value() || **iqm > *best)) {
+      best = **iqm;
       best_trial = static_cast<int>(t);
     }
   }
@@ -109,12 +110,14 @@ std::string SweepProgressView(const v1::GetSweepResponse& response) {
       {"CONDITION", "MODE", "DONE", "RUNNING", "QUEUED", "FAILED", "LAST (IQM)"}};
   for (size_t t = 0; t < trials.size(); ++t) {
     const TrialCount& count = trials[t];
-    const std::optional<double> iqm = Iqm(count.last);
+    const std::optional<absl::StatusOr<double>> iqm = Iqm(count.last);
     rows.push_back({sweep.trials(t).condition(), sweep.trials(t).observe(),
                     absl::StrCat(count.completed, "/", sweep.seeds()),
                     absl::StrCat(count.running), absl::StrCat(count.queued),
                     absl::StrCat(count.failed),
-                    iqm.has_value() ? absl::StrFormat("%.1f", *iqm) : "-"});
+                    !iqm.has_value() ? "-"
+                    : iqm->ok()      ? absl::StrFormat("%.1f", **iqm)
+                                     : absl::StrCat("error: ", iqm->status().message())});
   }
   return absl::StrCat(SweepHeadline(response), "\n", RenderTable(rows));
 }

@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 #include "services/cli/sweep_view.h"
 
+#include <cmath>
 #include <string>
 
 #include "gmock/gmock.h"
@@ -69,6 +70,14 @@ TEST(SweepViewTest, NoPaceOrBestBeforeAnyRunMovesOrEnds) {
   EXPECT_THAT(headline, Not(HasSubstr("steps/s")));
   EXPECT_THAT(headline, Not(HasSubstr("best")));
   EXPECT_THAT(SweepProgressView(sweep), HasSubstr("static      none  0/2   0        0       0       -"));
+}
+
+TEST(SweepViewTest, AScoreThatIsNotANumberIsShownAsAnErrorNotAsNoneYet) {
+  v1::GetSweepResponse sweep = Sweep();
+  sweep.mutable_runs(2)->mutable_progress()->set_avg_combined(std::nan(""));
+  EXPECT_THAT(SweepProgressView(sweep),
+              HasSubstr("sinusoidal  none  1/2   1        0       0       error: "));
+  EXPECT_THAT(SweepHeadline(sweep), HasSubstr("best: static (none) 410.0"));
 }
 
 TEST(SweepViewTest, OnlyCompletedFailedAndCancelledSweepsHaveEnded) {
