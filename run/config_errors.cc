@@ -19,6 +19,21 @@ absl::Status ConfigErrors::At(absl::string_view path, absl::string_view message)
   return absl::InvalidArgumentError(text);
 }
 
+void ConfigProblems::Add(const absl::Status& status) {
+  if (status.ok()) return;
+  ++reported_;
+  if (seen_.emplace(status.message()).second) problems_.push_back(status);
+}
+
+absl::Status ConfigProblems::ToStatus(absl::string_view where) const {
+  if (problems_.empty()) return absl::OkStatus();
+  if (problems_.size() == 1) return problems_[0];
+  std::string text = absl::StrCat(problems_.size(), " problems",
+                                  where.empty() ? "" : absl::StrCat(" in ", where), ":");
+  for (const absl::Status& problem : problems_) absl::StrAppend(&text, "\n  ", problem.message());
+  return absl::InvalidArgumentError(text);
+}
+
 std::string ItemPath(absl::string_view path, size_t index) {
   return absl::StrCat(path, "[", index, "]");
 }

@@ -10,8 +10,10 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "absl/strings/string_view.h"
@@ -38,10 +40,38 @@ class ConfigErrors {
   // line is the one noted for `path`; the path shown is `shown_path`'s.
   absl::Status At(absl::string_view path, absl::string_view message) const;
 
+  // The file errors name; empty for a config built in code.
+  const std::string& where() const { return where_; }
+
  private:
   std::string where_;
   const std::map<std::string, int>* lines_ = nullptr;
   const PathMap* shown_path_ = nullptr;
+};
+
+// The problems of one config, collected so that they are reported together rather than one at
+// a time: each check adds what it finds and goes on. Each problem is kept once (a sweep spec
+// finds the same problem of its base in every trial), in the order found.
+class ConfigProblems {
+ public:
+  // Adds `status` unless it is OK or a problem with the same message is already kept.
+  void Add(const absl::Status& status);
+
+  bool empty() const { return problems_.empty(); }
+  // Problems added, repetitions included: a check compares it before and after to learn
+  // whether it found anything.
+  int reported() const { return reported_; }
+  // Each problem once, in the order found.
+  const std::vector<absl::Status>& problems() const { return problems_; }
+
+  // OK if there are none; the problem itself if there is one; otherwise INVALID_ARGUMENT
+  // "N problems in <where>:" (or "N problems:" without `where`) with each on its own line.
+  absl::Status ToStatus(absl::string_view where) const;
+
+ private:
+  std::vector<absl::Status> problems_;
+  std::set<std::string, std::less<>> seen_;
+  int reported_ = 0;
 };
 
 // "<path>[<index>]".

@@ -40,9 +40,14 @@ struct PpoConfig {
   std::vector<int> context_layers;
 };
 
-// OK, or INVALID_ARGUMENT naming the first field out of range by its path in a run config
+// Adds to `problems` each field of `config` out of range, by its path in a run config
 // (`ppo.gamma`; SB3's guards included: batch_size > 1 with advantage normalisation,
-// n_steps * n_envs > 1), through `errors` (with the config's file and line when read from one).
+// n_steps * n_envs > 1), through `errors` (with the config's file and line when read from one);
+// a field is named once, by the first of its rules it breaks (n_steps * n_envs only with
+// n_envs >= 1: a smaller n_envs is the run config's problem).
+void CheckPpoConfig(const PpoConfig& config, int n_envs, const ConfigErrors& errors,
+                    ConfigProblems& problems);
+// OK, or INVALID_ARGUMENT with CheckPpoConfig's problems (run/config_errors.h: ConfigProblems).
 absl::Status ValidatePpoConfig(const PpoConfig& config, int n_envs,
                                const ConfigErrors& errors = ConfigErrors());
 

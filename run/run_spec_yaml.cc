@@ -42,64 +42,24 @@ std::string SchedulePath(size_t index, bool schedule_key) {
 // ---------------------------------------------------------------------------------------------
 // Validation.
 
-absl::Status CheckWithEnvironment(const RunSpec& spec, const env::ContextSpace& space,
-                                  absl::Status (*validate_context)(std::span<const double>),
-                                  const ConfigErrors& errors, bool schedule_key) {
+// Adds `spec`'s problems that need its environment's features and rules to `problems`. An
+// unknown feature or an unusable training range stops the checks of values against them (the
+// pool, the contexts, the schedules over the range); a context the environment refuses is named
+// once, at the first value of the feature it fails with.
+void CheckWithEnvironment(const RunSpec& spec, const env::ContextSpace& space,
+                          absl::Status (*validate_context)(std::span<const double>),
+                          const ConfigErrors& errors, bool schedule_key,
+                          ConfigProblems& problems) {
   // The varied feature and its training range.
   absl::StatusOr<int> feature = space.IndexOf(spec.feature);
-  if (!feature.ok()) return errors.At("feature", feature.status().message());
+  if (!feature.ok()) problems.Add(errors.At("feature", feature.status().message()));
   const double lo = spec.range_lo;
   const double hi = spec.range_hi;
-  if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
-    return errors.At(
+  const bool range_ok = std::isfinite(lo) && std::isfinite(hi) && lo < hi;
+  if (!range_ok) {
+    problems.Add(errors.At(
         "training_range",
-        absl::StrCat("must be [lo, hi] with lo < hi, both finite, got [", lo, ", ", hi, "]"));
-  }
-  if (absl::Status s = space.Validate(*feature, lo); !s.ok()) {
-    return errors.At("training_range[0]", s.message());
-  }
-  if (absl::Status s = space.Validate(*feature, hi); !s.ok()) {
-    return errors.At("training_range[1]", s.message());
-  }
-
-  // The other features' values.
-  if (spec.context.contains(spec.feature)) {
-    return errors.At(KeyPath("context", spec.feature),
-                     absl::StrCat("'", spec.feature,
-                                  "' is the varied feature: its values come from "
-                                  "training_range, pool and evaluation.contexts"));
-  }
-  absl::StatusOr<std::vector<double>> values = space.WithValues(spec.context);
-  if (!values.ok()) {
-    return errors.At(KeyPath("context", ErrorField(values.status()).value_or("")),
-                     values.status().message());
-  }
-  // The full context, at every value the varied feature takes in training and evaluation.
-  auto check_full = [&](double value, absl::string_view path) -> absl::Status {
-    (*values)[*feature] = value;
-    if (absl::Status s = validate_context(*values); !s.ok()) {
-      return errors.At(path, absl::StrCat("the context is invalid with ", spec.feature, " = ",
-                                          value, ": ", s.message()));
-    }
-    return absl::OkStatus();
-  };
-  DCS_RETURN_IF_ERROR(check_full(lo, "context"));
-  DCS_RETURN_IF_ERROR(check_full(hi, "context"));
-
-  // The pool.
-  if (!spec.pool_values.empty()) {
-    for (size_t i = 0; i < spec.pool_values.size(); ++i) {
-      const double value = spec.pool_values[i];
-      const std::string path = ItemPath("pool.values", i);
-      if (!(value >= lo && value <= hi)) {
-        return errors.At(
-            path, absl::StrCat("must be within training_range [", lo, ", ", hi, "], got ", value));
-      }
-      DCS_RETURN_IF_ERROR(check_full(value, path));
-    }
-  } else if (spec.pool_size < 1 || spec.pool_size > kMaxPoolSize) {
-    return errors.At("pool.size",
-                     absl::StrCat("must be in [1, ", kMaxPoolSize, "], got ", spec.pool_size));
+        absl::StrCat("must be [lo, hi] with lo < hi, both finite, got [", lo, ", ", hi, "]")));
   }
 
   // The stages.
@@ -108,22 +68,82 @@ absl::Status CheckWithEnvironment(const RunSpec& spec, const env::ContextSpace& 
   for (size_t i = 0; i < spec.stages.size(); ++i) {
     const RunSpec::Stage& stage = spec.stages[i];
     if (!whole_run && stage.steps <= 0) {
-      return errors.At(absl::StrCat(ItemPath("stages", i), ".steps"),
-                       absl::StrCat("must be at least 1 (0 only for a single stage, which "
-                                    "then runs for the whole run), got ",
-                                    stage.steps));
+      problems.Add(errors.At(absl::StrCat(ItemPath("stages", i), ".steps"),
+                             absl::StrCat("must be at least 1 (0 only for a single stage, "
+                                          "which then runs for the whole run), got ",
+                                          stage.steps)));
     }
     if (i > 0 && start >= spec.total_timesteps) {
-      return errors.At(ItemPath("stages", i),
-                       absl::StrCat("starts at step ", start, ", not before total_timesteps (",
-                                    spec.total_timesteps, "): it would never run"));
+      problems.Add(errors.At(
+          ItemPath("stages", i),
+          absl::StrCat("starts at step ", start, ", not before total_timesteps (",
+                       spec.total_timesteps, "): it would never run")));
     }
-    start += stage.steps;
+    start += std::max<int64_t>(stage.steps, 0);
+    if (!range_ok) continue;
     absl::StatusOr<env::ScheduleSpec> schedule =
         env::ParseScheduleSpec(stage.schedule, lo, hi, static_cast<uint32_t>(spec.seed));
     if (!schedule.ok()) {
-      return ScheduleError(errors, SchedulePath(i, schedule_key), schedule.status());
+      problems.Add(ScheduleError(errors, SchedulePath(i, schedule_key), schedule.status()));
     }
+  }
+  if (!feature.ok() || !range_ok) return;
+
+  bool range_in_bounds = true;
+  for (const auto& [value, path] : {std::pair{lo, "training_range[0]"},
+                                    std::pair{hi, "training_range[1]"}}) {
+    if (absl::Status s = space.Validate(*feature, value); !s.ok()) {
+      problems.Add(errors.At(path, s.message()));
+      range_in_bounds = false;
+    }
+  }
+
+  // The other features' values.
+  bool context_ok = true;
+  if (spec.context.contains(spec.feature)) {
+    problems.Add(errors.At(KeyPath("context", spec.feature),
+                           absl::StrCat("'", spec.feature,
+                                        "' is the varied feature: its values come from "
+                                        "training_range, pool and evaluation.contexts")));
+    context_ok = false;
+  }
+  absl::StatusOr<std::vector<double>> values = space.WithValues(spec.context);
+  if (!values.ok()) {
+    problems.Add(errors.At(KeyPath("context", ErrorField(values.status()).value_or("")),
+                           values.status().message()));
+    context_ok = false;
+  }
+  // The full context, at every value the varied feature takes in training and evaluation; once
+  // it fails, the other features' values are what is wrong, and one problem says so.
+  auto check_full = [&](double value, absl::string_view path) {
+    if (!context_ok) return;
+    (*values)[*feature] = value;
+    if (absl::Status s = validate_context(*values); !s.ok()) {
+      problems.Add(errors.At(path, absl::StrCat("the context is invalid with ", spec.feature,
+                                                " = ", value, ": ", s.message())));
+      context_ok = false;
+    }
+  };
+  if (range_in_bounds) {
+    check_full(lo, "context");
+    check_full(hi, "context");
+  }
+
+  // The pool.
+  if (!spec.pool_values.empty()) {
+    for (size_t i = 0; i < spec.pool_values.size(); ++i) {
+      const double value = spec.pool_values[i];
+      const std::string path = ItemPath("pool.values", i);
+      if (!(value >= lo && value <= hi)) {
+        problems.Add(errors.At(path, absl::StrCat("must be within training_range [", lo, ", ",
+                                                  hi, "], got ", value)));
+      } else if (range_in_bounds) {
+        check_full(value, path);
+      }
+    }
+  } else if (spec.pool_size < 1 || spec.pool_size > kMaxPoolSize) {
+    problems.Add(errors.At(
+        "pool.size", absl::StrCat("must be in [1, ", kMaxPoolSize, "], got ", spec.pool_size)));
   }
 
   // The evaluation contexts: physical bounds only (OOD values lie outside the training range).
@@ -133,60 +153,67 @@ absl::Status CheckWithEnvironment(const RunSpec& spec, const env::ContextSpace& 
     for (size_t i = 0; i < contexts.size(); ++i) {
       const std::string path = ItemPath(split_path, i);
       if (absl::Status s = space.Validate(*feature, contexts[i]); !s.ok()) {
-        return errors.At(path, s.message());
+        problems.Add(errors.At(path, s.message()));
+      } else {
+        check_full(contexts[i], path);
       }
-      DCS_RETURN_IF_ERROR(check_full(contexts[i], path));
     }
   }
-  return absl::OkStatus();
 }
 
-absl::Status Validate(const RunSpec& spec, const ConfigErrors& errors, bool schedule_key) {
+// Adds each of `spec`'s problems to `problems` (ValidateRunSpec's rules). Each field's own
+// checks run whatever the others found; an unknown environment stops the checks that need it.
+void Validate(const RunSpec& spec, const ConfigErrors& errors, bool schedule_key,
+              ConfigProblems& problems) {
   if (spec.total_timesteps < 1) {
-    return errors.At("total_timesteps",
-                     absl::StrCat("must be at least 1, got ", spec.total_timesteps));
+    problems.Add(errors.At("total_timesteps",
+                           absl::StrCat("must be at least 1, got ", spec.total_timesteps)));
   }
   if (spec.n_envs < 1) {
-    return errors.At("n_envs", absl::StrCat("must be at least 1, got ", spec.n_envs));
+    problems.Add(errors.At("n_envs", absl::StrCat("must be at least 1, got ", spec.n_envs)));
   }
   if (spec.eval_freq < 1) {
-    return errors.At("evaluation.freq", absl::StrCat("must be at least 1, got ", spec.eval_freq));
+    problems.Add(
+        errors.At("evaluation.freq", absl::StrCat("must be at least 1, got ", spec.eval_freq)));
   }
   if (spec.eval_episodes < 1) {
-    return errors.At("evaluation.episodes",
-                     absl::StrCat("must be at least 1, got ", spec.eval_episodes));
+    problems.Add(errors.At("evaluation.episodes",
+                           absl::StrCat("must be at least 1, got ", spec.eval_episodes)));
   }
   if (std::all_of(spec.eval_contexts.begin(), spec.eval_contexts.end(),
                   [](const std::vector<double>& values) { return values.empty(); })) {
-    return errors.At("evaluation.contexts",
-                     absl::StrCat("needs at least one evaluation context (in ",
-                                  ListNames(actor::kSplitNames), ")"));
+    problems.Add(errors.At("evaluation.contexts",
+                           absl::StrCat("needs at least one evaluation context (in ",
+                                        ListNames(actor::kSplitNames), ")")));
   }
   const std::vector<std::string> environments = env::EnvironmentNames();
   if (std::find(environments.begin(), environments.end(), spec.env) == environments.end()) {
-    return errors.At("env", absl::StrCat("unknown environment '", spec.env, "' (known: ",
-                                         absl::StrJoin(environments, ", "), ")"));
+    problems.Add(errors.At("env", absl::StrCat("unknown environment '", spec.env, "' (known: ",
+                                               absl::StrJoin(environments, ", "), ")")));
+  } else {
+    problems.Add(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
+      CheckWithEnvironment(spec, Env::Features(), &Env::ValidateContext, errors, schedule_key,
+                           problems);
+      if (!spec.ppo.context_layers.empty() &&
+          !std::is_same_v<typename Env::Observation, uint8_t>) {  // an image's bytes
+        problems.Add(errors.At("ppo.context_layers",
+                               absl::StrCat("a context branch is for image policies; ",
+                                            spec.env, "'s observation has no image")));
+      }
+      if (!spec.coverage.has_value()) return absl::OkStatus();
+      if (spec.coverage->window < 1) {
+        problems.Add(errors.At("coverage.window",
+                               absl::StrCat("must be at least 1, got ", spec.coverage->window)));
+      }
+      absl::StatusOr<std::vector<env::StateProjection>> projections =
+          SelectProjections(*spec.coverage, EnvironmentProjections<Env>());
+      if (!projections.ok()) {
+        problems.Add(errors.At("coverage.projections", projections.status().message()));
+      }
+      return absl::OkStatus();
+    }));
   }
-  DCS_RETURN_IF_ERROR(env::VisitEnvironment(spec.env, [&]<typename Env>() -> absl::Status {
-    DCS_RETURN_IF_ERROR(CheckWithEnvironment(spec, Env::Features(), &Env::ValidateContext,
-                                             errors, schedule_key));
-    if (!spec.ppo.context_layers.empty() &&
-        !std::is_same_v<typename Env::Observation, uint8_t>) {  // an image's bytes
-      return errors.At("ppo.context_layers",
-                       absl::StrCat("a context branch is for image policies; ", spec.env,
-                                    "'s observation has no image"));
-    }
-    if (!spec.coverage.has_value()) return absl::OkStatus();
-    if (spec.coverage->window < 1) {
-      return errors.At("coverage.window",
-                       absl::StrCat("must be at least 1, got ", spec.coverage->window));
-    }
-    absl::StatusOr<std::vector<env::StateProjection>> projections =
-        SelectProjections(*spec.coverage, EnvironmentProjections<Env>());
-    if (!projections.ok()) return errors.At("coverage.projections", projections.status().message());
-    return absl::OkStatus();
-  }));
-  return ValidatePpoConfig(spec.ppo, spec.n_envs, errors);
+  CheckPpoConfig(spec.ppo, spec.n_envs, errors, problems);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -197,8 +224,10 @@ class Parser {
  public:
   explicit Parser(YamlReader& reader) : r_(reader) {}
 
-  // Reads `root`; `schedule_key` tells whether the config gave `schedule` (not `stages`).
-  absl::Status Document(const YAML::Node& root, RunSpec& spec, bool& schedule_key);
+  // Reads `root`; `schedule_key` tells whether the config gave `schedule` (not `stages`). Each
+  // top-level key is read on its own: its problems go to `problems` and the others are read.
+  void Document(const YAML::Node& root, RunSpec& spec, bool& schedule_key,
+                ConfigProblems& problems);
 
  private:
   absl::Status Context(const YAML::Node& node, const std::string& path, RunSpec& spec);
@@ -361,75 +390,84 @@ absl::Status Parser::Ppo(const YAML::Node& node, PpoConfig& ppo) {
       });
 }
 
-absl::Status Parser::Document(const YAML::Node& root, RunSpec& spec, bool& schedule_key) {
+void Parser::Document(const YAML::Node& root, RunSpec& spec, bool& schedule_key,
+                      ConfigProblems& problems) {
   // Kept until every key is read: `schedule` and `stages` exclude each other.
   std::optional<YAML::Node> schedule_node;
   std::optional<YAML::Node> stages_node;
-  DCS_RETURN_IF_ERROR(r_.ForEachKey(
+  auto read = [&](const std::string& key, const YAML::Node& value,
+                  const std::string& path) -> absl::Status {
+    if (key == "env") {
+      DCS_ASSIGN_OR_RETURN(spec.env, r_.Word(value, path));
+    } else if (key == "seed") {
+      DCS_ASSIGN_OR_RETURN(spec.seed, r_.Uint64(value, path));
+    } else if (key == "total_timesteps") {
+      DCS_ASSIGN_OR_RETURN(spec.total_timesteps, r_.Int64(value, path));
+    } else if (key == "n_envs") {
+      DCS_ASSIGN_OR_RETURN(spec.n_envs, r_.Int(value, path));
+    } else if (key == "context") {
+      return Context(value, path, spec);
+    } else if (key == "feature") {
+      DCS_ASSIGN_OR_RETURN(spec.feature, r_.Word(value, path));
+    } else if (key == "training_range") {
+      DCS_ASSIGN_OR_RETURN(const std::vector<double> range, r_.Numbers(value, path));
+      if (range.size() != 2) {
+        return r_.Error(
+            path, value,
+            absl::StrCat("must be a list of two numbers [lo, hi], got ", range.size()));
+      }
+      spec.range_lo = range[0];
+      spec.range_hi = range[1];
+    } else if (key == "pool") {
+      return Pool(value, path, spec);
+    } else if (key == "schedule") {
+      schedule_node = value;
+    } else if (key == "stages") {
+      stages_node = value;
+    } else if (key == "observe") {
+      DCS_ASSIGN_OR_RETURN(const std::string mode, r_.Word(value, path));
+      const std::optional<env::ObserveMode> observe = FindByName(env::kObserveModeNames, mode);
+      if (!observe.has_value()) {
+        return r_.Error(path, value,
+                        absl::StrCat("must be ", ListNames(env::kObserveModeNames), ", got '",
+                                     mode, "'"));
+      }
+      spec.observe = *observe;
+    } else if (key == "evaluation") {
+      return Evaluation(value, spec);
+    } else if (key == "coverage") {
+      return Coverage(value, spec);
+    } else {
+      return Ppo(value, spec.ppo);
+    }
+    return absl::OkStatus();
+  };
+  problems.Add(r_.ForEachKey(
       root, "",
       {"env", "seed", "total_timesteps", "n_envs", "context", "feature", "training_range", "pool",
        "schedule", "stages", "observe", "evaluation", "ppo", "coverage"},
-      [&](const std::string& key, const YAML::Node& value,
-          const std::string& path) -> absl::Status {
-        if (key == "env") {
-          DCS_ASSIGN_OR_RETURN(spec.env, r_.Word(value, path));
-        } else if (key == "seed") {
-          DCS_ASSIGN_OR_RETURN(spec.seed, r_.Uint64(value, path));
-        } else if (key == "total_timesteps") {
-          DCS_ASSIGN_OR_RETURN(spec.total_timesteps, r_.Int64(value, path));
-        } else if (key == "n_envs") {
-          DCS_ASSIGN_OR_RETURN(spec.n_envs, r_.Int(value, path));
-        } else if (key == "context") {
-          return Context(value, path, spec);
-        } else if (key == "feature") {
-          DCS_ASSIGN_OR_RETURN(spec.feature, r_.Word(value, path));
-        } else if (key == "training_range") {
-          DCS_ASSIGN_OR_RETURN(const std::vector<double> range, r_.Numbers(value, path));
-          if (range.size() != 2) {
-            return r_.Error(
-                path, value,
-                absl::StrCat("must be a list of two numbers [lo, hi], got ", range.size()));
-          }
-          spec.range_lo = range[0];
-          spec.range_hi = range[1];
-        } else if (key == "pool") {
-          return Pool(value, path, spec);
-        } else if (key == "schedule") {
-          schedule_node = value;
-        } else if (key == "stages") {
-          stages_node = value;
-        } else if (key == "observe") {
-          DCS_ASSIGN_OR_RETURN(const std::string mode, r_.Word(value, path));
-          const std::optional<env::ObserveMode> observe = FindByName(env::kObserveModeNames, mode);
-          if (!observe.has_value()) {
-            return r_.Error(path, value,
-                            absl::StrCat("must be ", ListNames(env::kObserveModeNames), ", got '",
-                                         mode, "'"));
-          }
-          spec.observe = *observe;
-        } else if (key == "evaluation") {
-          return Evaluation(value, spec);
-        } else if (key == "coverage") {
-          return Coverage(value, spec);
-        } else {
-          return Ppo(value, spec.ppo);
-        }
+      [&](const std::string& key, const YAML::Node& value, const std::string& path) {
+        problems.Add(read(key, value, path));
         return absl::OkStatus();
       }));
 
   // The schedule: one for the whole run, or stages.
   if (schedule_node.has_value() && stages_node.has_value()) {
-    return r_.Error("stages", *stages_node,
-                    "give either 'schedule' (one for the whole run) or 'stages', not both");
+    problems.Add(r_.Error("stages", *stages_node,
+                          "give either 'schedule' (one for the whole run) or 'stages', not both"));
+    return;
   }
   schedule_key = schedule_node.has_value();
   if (schedule_node.has_value()) {
-    DCS_ASSIGN_OR_RETURN(env::ScheduleConfig schedule,
-                         ReadScheduleConfig(r_, *schedule_node, "schedule"));
-    spec.stages.push_back({.steps = 0, .schedule = std::move(schedule)});
+    absl::StatusOr<env::ScheduleConfig> schedule =
+        ReadScheduleConfig(r_, *schedule_node, "schedule");
+    if (schedule.ok()) {
+      spec.stages.push_back({.steps = 0, .schedule = *std::move(schedule)});
+    } else {
+      problems.Add(schedule.status());
+    }
   }
-  if (stages_node.has_value()) DCS_RETURN_IF_ERROR(Stages(*stages_node, spec));
-  return absl::OkStatus();
+  if (stages_node.has_value()) problems.Add(Stages(*stages_node, spec));
 }
 
 }  // namespace
@@ -441,20 +479,35 @@ absl::StatusOr<RunSpec> ParseRunSpecYaml(absl::string_view text, absl::string_vi
 }
 
 absl::StatusOr<RunSpec> ReadRunSpec(YamlReader& reader, const YAML::Node& root) {
+  ConfigProblems problems;
+  std::optional<RunSpec> spec = ReadRunSpec(reader, root, problems);
+  if (!spec.has_value()) return problems.ToStatus(reader.where());
+  return *std::move(spec);
+}
+
+std::optional<RunSpec> ReadRunSpec(YamlReader& reader, const YAML::Node& root,
+                                   ConfigProblems& problems) {
   RunSpec spec;
   bool schedule_key = false;
+  const int reported = problems.reported();
   try {
-    DCS_RETURN_IF_ERROR(Parser(reader).Document(root, spec, schedule_key));
+    Parser(reader).Document(root, spec, schedule_key, problems);
   } catch (const YAML::Exception& e) {  // not expected: every access is checked first
-    return absl::InvalidArgumentError(absl::StrCat(reader.where(), ": line ", e.mark.line + 1,
-                                                   ", column ", e.mark.column + 1, ": ", e.msg));
+    problems.Add(absl::InvalidArgumentError(absl::StrCat(reader.where(), ": line ",
+                                                         e.mark.line + 1, ", column ",
+                                                         e.mark.column + 1, ": ", e.msg)));
   }
-  DCS_RETURN_IF_ERROR(Validate(spec, reader.errors(), schedule_key));
+  // A config read in part is not validated: its checks would see defaults for what was not.
+  if (problems.reported() != reported) return std::nullopt;
+  Validate(spec, reader.errors(), schedule_key, problems);
+  if (problems.reported() != reported) return std::nullopt;
   return spec;
 }
 
 absl::Status ValidateRunSpec(const RunSpec& spec) {
-  return Validate(spec, ConfigErrors(), /*schedule_key=*/false);
+  ConfigProblems problems;
+  Validate(spec, ConfigErrors(), /*schedule_key=*/false, problems);
+  return problems.ToStatus("");
 }
 
 }  // namespace dcs::run

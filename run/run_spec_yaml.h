@@ -50,9 +50,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <optional>
+
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "run/config_errors.h"
 #include "run/run_spec.h"
 #include "run/yaml_reader.h"
 
@@ -71,10 +74,16 @@ absl::StatusOr<RunSpec> ParseRunSpecYaml(absl::string_view text, absl::string_vi
 // The run config `root` (a document loaded by `reader`, or assembled from one's nodes, as a
 // sweep spec's trials are: run/sweep_spec_yaml.h), read and validated as ParseRunSpecYaml does,
 // with the same errors; `reader` names the document and shows the paths (run/yaml_reader.h).
+// Every problem found is reported, together (run/config_errors.h: ConfigProblems): each field's
+// own checks run whatever the others found; a key that cannot be read stops validation (whose
+// checks would see defaults), an unknown environment the checks that need it.
 absl::StatusOr<RunSpec> ReadRunSpec(YamlReader& reader, const YAML::Node& root);
+// The same, adding each problem to `problems`; the spec if there were none.
+std::optional<RunSpec> ReadRunSpec(YamlReader& reader, const YAML::Node& root,
+                                   ConfigProblems& problems);
 
-// OK if `spec` is a run its environment can carry out, else INVALID_ARGUMENT naming the first
-// offending field by its YAML path and saying what is allowed:
+// OK if `spec` is a run its environment can carry out, else INVALID_ARGUMENT naming each
+// offending field (all of them, as ReadRunSpec) by its YAML path and saying what is allowed:
 //   - `env` is a known environment (env/env_registry.h);
 //   - every `context` name is a feature of it other than the varied one, with a value within the
 //     feature's physical bounds, and the full context passes the environment's ValidateContext

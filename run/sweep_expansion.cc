@@ -2,6 +2,7 @@
 #include "run/sweep_expansion.h"
 
 #include <algorithm>
+#include <optional>
 #include <set>
 
 #include "absl/strings/escaping.h"
@@ -169,9 +170,11 @@ void SweepExpansion::AddCondition(const SpecCondition& condition, const YAML::No
     YamlReader reader(reader_.where(), [&trial_rules](absl::string_view path) {
       return ShownPath(trial_rules, path);
     });
-    absl::StatusOr<RunSpec> run = ReadRunSpec(reader, document);
-    if (!run.ok()) {
-      problems.push_back(run.status());
+    ConfigProblems run_problems;
+    std::optional<RunSpec> run = ReadRunSpec(reader, document, run_problems);
+    if (!run.has_value()) {
+      problems.insert(problems.end(), run_problems.problems().begin(),
+                      run_problems.problems().end());
       continue;
     }
     trials_.push_back({.condition = name,

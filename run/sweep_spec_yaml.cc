@@ -98,14 +98,11 @@ class SweepParser {
   // The modes `condition` runs in: its own, else the sweep's; null if those are wrong.
   const std::vector<SpecMode>* ModesOf(const Condition& condition) const;
   void CheckRuns();
-  absl::Status ToStatus() const;
 
   std::string where_;
   YamlReader reader_;
   std::optional<YamlArena> arena_;  // of the spec's document
-  std::vector<std::string> problems_;  // each once, in the order found
-  std::set<std::string> seen_problems_;
-  int reported_ = 0;  // problems reported, repetitions included
+  ConfigProblems problems_;
 
   // Read from the top level.
   std::string name_;
@@ -152,12 +149,7 @@ void SweepParser::Problem(const std::string& path, const YAML::Node& node,
   Problem(reader_.Error(path, node, message));
 }
 
-void SweepParser::Problem(const absl::Status& status) {
-  if (status.ok()) return;
-  ++reported_;
-  std::string message(status.message());
-  if (seen_problems_.insert(message).second) problems_.push_back(std::move(message));
-}
+void SweepParser::Problem(const absl::Status& status) { problems_.Add(status); }
 
 void SweepParser::UnknownKey(const std::string& key_path, const YAML::Node& key_node,
                              absl::string_view where,
@@ -342,7 +334,7 @@ void SweepParser::ReadGrid(const YAML::Node& node, const std::string& path,
       node, path, "a mapping of key paths to lists of values (e.g. {schedule.period: [100, 200]})",
       [&](const std::string& key, const YAML::Node& key_node, const YAML::Node& values,
           const std::string& key_path) {
-        const int reported = reported_;
+        const int reported = problems_.reported();
         std::optional<std::vector<KeyPathStep>> steps = ParseKeyPath(key);
         if (!steps.has_value()) {
           Problem(key_path, key_node,
@@ -381,7 +373,7 @@ void SweepParser::ReadGrid(const YAML::Node& node, const std::string& path,
           }
         }
         std::vector<std::string> created;
-        if (reported_ == reported) {
+        if (problems_.reported() == reported) {
           absl::StatusOr<YAML::Node> next =
               WithValueAt(*arena_, *placed, *steps, values[0], &created);
           if (next.ok()) {
@@ -392,7 +384,7 @@ void SweepParser::ReadGrid(const YAML::Node& node, const std::string& path,
                                  next.status().message()));
           }
         }
-        if (reported_ != reported) {
+        if (problems_.reported() != reported) {
           condition.ok = false;
           return;
         }
@@ -435,13 +427,6 @@ void SweepParser::CheckRuns() {
                        " runs; a sweep may make at most ", kMaxRuns));
 }
 
-absl::Status SweepParser::ToStatus() const {
-  if (problems_.size() == 1) return absl::InvalidArgumentError(problems_[0]);
-  std::string text = absl::StrCat(problems_.size(), " problems in ", where_, ":");
-  for (const std::string& problem : problems_) absl::StrAppend(&text, "\n  ", problem);
-  return absl::InvalidArgumentError(text);
-}
-
 absl::StatusOr<SweepSpec> SweepParser::Parse(absl::string_view text) {
   absl::StatusOr<YAML::Node> root = reader_.Load(text);
   if (!root.ok()) return root.status();
@@ -467,9 +452,9 @@ absl::StatusOr<SweepSpec> SweepParser::Parse(absl::string_view text) {
           "conditions", "missing: a sweep needs at least one condition (e.g. [{name: static}])"));
     } else {
       Conditions(*conditions_node_);
-      const int reported = reported_;
+      const int reported = problems_.reported();
       CheckRuns();
-      if (reported_ == reported) {
+      if (problems_.reported() == reported) {
         internal::SweepExpansion expansion(where_, base_, *arena_);
         for (const Condition& condition : conditions_) {
           if (!condition.ok) continue;
@@ -488,7 +473,7 @@ absl::StatusOr<SweepSpec> SweepParser::Parse(absl::string_view text) {
     return absl::InvalidArgumentError(absl::StrCat(where_, ": line ", e.mark.line + 1,
                                                    ", column ", e.mark.column + 1, ": ", e.msg));
   }
-  if (!problems_.empty()) return ToStatus();
+  if (!problems_.empty()) return problems_.ToStatus(where_);
 
   spec.name = name_;
   spec.study = study_;

@@ -500,5 +500,43 @@ evaluation: {contexts: {ood_low: [-2.9], ood_high: [2.9]}}
               AllOf(HasSubstr("evaluation.contexts.ood_high[0]"), HasSubstr("[-3, 3]")));
 }
 
+// The issue's example: every problem named at once, each with its path and line, in a sweep
+// spec's format. (amplitude_frac 7 is allowed: a sinusoidal amplitude has no upper bound.)
+TEST(RunSpecYamlTest, ListsEveryProblemAtOnce) {
+  EXPECT_EQ(ErrorOf(R"(env: cartpole
+feature: length
+training_range: [0.35, 0.75]
+stages:
+  - {steps: 0, schedule: {family: sinusoidal, amplitude_frac: 7, period: -3}}
+ppo: {learning_rate: -1, gamma: 2}
+evaluation: {episodes: 0, contexts: {id: [0.5]}}
+)"),
+            "4 problems in run.yaml:\n"
+            "  run.yaml: evaluation.episodes: line 7: must be at least 1, got 0\n"
+            "  run.yaml: stages[0].schedule.period: line 5: schedule 'sinusoidal': period must "
+            "be in [0, inf], got -3\n"
+            "  run.yaml: ppo.learning_rate: line 6: must be positive, got -1\n"
+            "  run.yaml: ppo.gamma: line 6: must be in [0, 1], got 2");
+}
+
+// A key that cannot be read stops validation, not the reading of the other keys.
+TEST(RunSpecYamlTest, ListsEveryKeyThatCannotBeRead) {
+  EXPECT_EQ(ErrorOf(Edit("seed: 3", "seed: x\nn_envs: [1]")),
+            "2 problems in run.yaml:\n"
+            "  run.yaml: seed: line 2: must be a non-negative integer, got 'x'\n"
+            "  run.yaml: n_envs: line 3: must be an integer, got a list");
+}
+
+// Built in code, the problems come without a file.
+TEST(RunSpecYamlTest, ValidateRunSpecListsEveryProblem) {
+  absl::StatusOr<RunSpec> spec = ParseRunSpecYaml(kBase, "run.yaml");
+  ASSERT_TRUE(spec.ok()) << spec.status();
+  spec->n_envs = 0;
+  spec->ppo.learning_rate = 0;
+  EXPECT_EQ(std::string(ValidateRunSpec(*spec).message()),
+            "2 problems:\n  n_envs: must be at least 1, got 0\n"
+            "  ppo.learning_rate: must be positive, got 0");
+}
+
 }  // namespace
 }  // namespace dcs::run
