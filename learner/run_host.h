@@ -140,6 +140,11 @@ class RunHost {
   // returns CANCELLED.
   void Stop();
 
+  // Whether the run has all its steps: resumed from the checkpoint of its end (its learner
+  // stopped after storing it, before it could finish the run), it has nothing left to step.
+  // Call from Step's thread.
+  bool complete() const { return session_->complete(); }
+
   // Every parameter of the current policy (runs are compared with it). Call from Step's thread.
   std::vector<float> Parameters() const { return session_->Parameters(); }
 

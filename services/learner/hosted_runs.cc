@@ -296,6 +296,14 @@ void HostedRuns::Train(Run& run) {
     if (run.lost) run.host->Stop();
   }
   learner::RunHost& host = **loaded;
+  if (host.complete()) {
+    // Its checkpoint holds its end, final evaluation included (RunHost::Step stores it once
+    // every evaluation is in): a learner stopped between storing it and finishing the run.
+    Finish(run, coordinator::RunState::kCompleted, "");
+    Log(LogLevel::kInfo, "run complete: its checkpoint holds its end",
+        {{"run_id", run.lease.run_id}});
+    return;
+  }
   RunMetrics metrics(metric_families_, run.metric_labels);
   while (true) {
     const absl::Time start = absl::Now();

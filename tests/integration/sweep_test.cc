@@ -129,7 +129,9 @@ TEST(SweepTest, ACoordinatorRestoredFromABackupTakenMidSweepFinishesItWithTheSam
   WaitForCompleted(original, "sweep-1", 2);
 
   // Backed up mid-sweep; restored as README's Backups says: the backup as the new coordinator's
-  // store, the runs' files copied after it.
+  // store, the runs' files copied after it (here once the sweep ended: runs the backup holds as
+  // running then have the checkpoints of their ends, which a learner resuming them must
+  // finish at once).
   const std::string backup = original.dir() + "/backup.db";
   const RunResult backed_up =
       DcsAt({"backup", "--out", backup}, original.coordinator_address());
@@ -139,11 +141,11 @@ TEST(SweepTest, ACoordinatorRestoredFromABackupTakenMidSweepFinishesItWithTheSam
   ClusterProcesses restored(kLease);
   std::filesystem::create_directories(restored.data_dir());
   std::filesystem::copy_file(backup, restored.data_dir() + "/coordinator.db");
-  CopyRunFiles(original.data_dir() + "/runs", restored.data_dir() + "/runs");
 
   const RunResult finished =
       DcsAt({"watch", "sweep-1"}, original.coordinator_address(), absl::Minutes(5));
   ASSERT_EQ(finished.exit_code, 0) << finished.output << "; logs in " << original.dir();
+  CopyRunFiles(original.data_dir() + "/runs", restored.data_dir() + "/runs");
   const std::string reports = SweepReports(original, "sweep-1");
   for (const char* worker : {"learner", "actor-1", "actor-2"}) original.Kill(worker);
 

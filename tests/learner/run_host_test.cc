@@ -167,6 +167,31 @@ TEST_F(RunHostTest, TellsASlotWhenTheRunIsComplete) {
   EXPECT_FALSE(work->ready);
 }
 
+TEST_F(RunHostTest, AHostResumedFromTheRunsEndIsCompleteAtOnce) {
+  Actors actors(Spec(kSmallRun));
+  std::unique_ptr<RunHost> host = NewHost();
+  ASSERT_NE(host, nullptr);
+  EXPECT_FALSE(host->complete());
+  std::optional<run::Checkpoint> last;
+  for (bool complete = false; !complete;) {
+    actors.CollectRollout(*host);
+    absl::StatusOr<HostStep> step = host->Step();
+    ASSERT_TRUE(step.ok()) << step.status();
+    if (step->checkpoint.has_value()) last = step->checkpoint;
+    complete = step->complete;
+  }
+  // The checkpoint of the end, with the final evaluation: a learner that resumes from it has
+  // nothing left to step (its slots are told so), and finishes the run at once.
+  ASSERT_TRUE(last.has_value());
+  ASSERT_EQ(last->state.timesteps, Spec(kSmallRun).total_timesteps);
+  std::unique_ptr<RunHost> resumed = NewHost(&*last);
+  ASSERT_NE(resumed, nullptr);
+  EXPECT_TRUE(resumed->complete());
+  absl::StatusOr<SlotWork> work = resumed->GetSlotWork(0, 1, -1, absl::ZeroDuration());
+  ASSERT_TRUE(work.ok()) << work.status();
+  EXPECT_TRUE(work->run_complete);
+}
+
 TEST_F(RunHostTest, AsksItsEvaluatorForThePolicyThatFellDueAndStoppingCancelsIt) {
   Actors actors(Spec(kSmallRun));
   absl::Mutex mu;
