@@ -9,16 +9,19 @@
 
 namespace dcs::services {
 
+v1::GridAxis GridAxisToProto(const actor::GridAxis& axis) {
+  v1::GridAxis out;
+  out.set_feature(axis.name);
+  out.set_low(axis.low);
+  out.set_high(axis.high);
+  out.set_count(axis.count);
+  return out;
+}
+
 v1::EvaluationGrid EvaluationGridToProto(const std::vector<actor::GridAxis>& axes,
                                          uint64_t seed) {
   v1::EvaluationGrid grid;
-  for (const actor::GridAxis& axis : axes) {
-    v1::GridAxis& out = *grid.add_axes();
-    out.set_feature(axis.name);
-    out.set_low(axis.low);
-    out.set_high(axis.high);
-    out.set_count(axis.count);
-  }
+  for (const actor::GridAxis& axis : axes) *grid.add_axes() = GridAxisToProto(axis);
   grid.set_seed(seed);
   return grid;
 }

@@ -16,6 +16,9 @@
 
 namespace dcs::services {
 
+// One axis by its feature's name (`dcs eval -o json` shows them so too).
+v1::GridAxis GridAxisToProto(const actor::GridAxis& axis);
+
 v1::EvaluationGrid EvaluationGridToProto(const std::vector<actor::GridAxis>& axes,
                                          uint64_t seed);
 

@@ -33,6 +33,7 @@
 #include "services/cli/grid_evaluation_client.h"
 #include "services/cli/run_client.h"
 #include "services/cli/torch_commands.h"
+#include "services/evaluation_grid_proto.h"
 
 namespace dcs::services::cli {
 namespace {
@@ -183,13 +184,7 @@ v1::GeneralizationGrid ToProto(const std::vector<EvaluatedPolicy>& policies,
                                const std::vector<actor::GridAxis>& axes, const EvalFlags& flags) {
   v1::GeneralizationGrid grid;
   grid.set_env(policies.front().runs.front().trained.run.spec.env);
-  for (const actor::GridAxis& axis : axes) {
-    v1::GridAxis& out = *grid.add_axes();
-    out.set_feature(axis.name);
-    out.set_low(axis.low);
-    out.set_high(axis.high);
-    out.set_count(axis.count);
-  }
+  for (const actor::GridAxis& axis : axes) *grid.add_axes() = GridAxisToProto(axis);
   grid.set_episodes(flags.episodes);
   grid.set_seed(flags.seed);
   for (const EvaluatedPolicy& policy : policies) {

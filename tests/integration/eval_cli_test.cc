@@ -83,6 +83,20 @@ class EvalCliTest : public ::testing::Test {
     EXPECT_FALSE(fs::exists(out)) << out;
   }
 
+  // The tiny run trained on `cluster` (its directory `name`): its run id, empty on a failure.
+  static std::string TrainOnCluster(const ClusterProcesses& cluster, const std::string& name) {
+    const RunResult train = DcsAt(
+        {"train", "--cluster", "--config", *dir_ + "/tiny.yaml", "--out", Fresh(name)},
+        cluster.coordinator_address(), absl::Minutes(2));
+    EXPECT_EQ(train.exit_code, 0) << train.output;
+    std::smatch submitted;
+    if (!std::regex_search(train.output, submitted, std::regex("submitted (\\S+) to"))) {
+      ADD_FAILURE() << "no run id in: " << train.output;
+      return "";
+    }
+    return submitted[1];
+  }
+
   static std::string* dir_;
   static int refusals_;
 };
@@ -225,15 +239,8 @@ TEST_F(EvalCliTest, AGridTooLargeStatesItsCountAndAsksForYes) {
 TEST_F(EvalCliTest, ARunOnTheClusterIsEvaluatedByItsId) {
   ClusterProcesses cluster(absl::Seconds(5));
   StartCoordinatorLearnerAndActors(cluster);
-  const RunResult train =
-      DcsAt({"train", "--cluster", "--config", *dir_ + "/tiny.yaml", "--out",
-             Fresh("cluster-run")},
-            cluster.coordinator_address(), absl::Minutes(2));
-  ASSERT_EQ(train.exit_code, 0) << train.output;
-  std::smatch submitted;
-  ASSERT_TRUE(std::regex_search(train.output, submitted, std::regex("submitted (\\S+) to")))
-      << train.output;
-  const std::string run_id = submitted[1];
+  const std::string run_id = TrainOnCluster(cluster, "cluster-run");
+  ASSERT_FALSE(run_id.empty());
   const RunResult eval = DcsAt({"eval", run_id, "--grid", "length=0.5:1:2", "--episodes", "2"},
                                cluster.coordinator_address());
   ASSERT_EQ(eval.exit_code, 0) << eval.output;
@@ -312,15 +319,8 @@ TEST_F(EvalCliTest, ASweepConditionIsItsRunsAveraged) {
 TEST_F(EvalCliTest, OnActorsTheClustersActorsEvaluateTheCellsWithTheSameReturns) {
   ClusterProcesses cluster(absl::Seconds(5));
   StartCoordinatorLearnerAndActors(cluster);
-  const RunResult train =
-      DcsAt({"train", "--cluster", "--config", *dir_ + "/tiny.yaml", "--out",
-             Fresh("actors-run")},
-            cluster.coordinator_address(), absl::Minutes(2));
-  ASSERT_EQ(train.exit_code, 0) << train.output;
-  std::smatch submitted;
-  ASSERT_TRUE(std::regex_search(train.output, submitted, std::regex("submitted (\\S+) to")))
-      << train.output;
-  const std::string run_id = submitted[1];
+  const std::string run_id = TrainOnCluster(cluster, "actors-run");
+  ASSERT_FALSE(run_id.empty());
   const auto jobs_delivered = [&] {
     double jobs = 0;
     for (const std::string actor : {"actor-1", "actor-2"}) {
