@@ -5,10 +5,12 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
 #include "absl/strings/strip.h"
 #include "common/enum_names.h"
 #include "common/status_macros.h"
@@ -49,7 +51,15 @@ RunRecord ReadRun(SQLite::Statement& row) {
                     .env = row.getColumn(4).getString(),
                     .n_envs = row.getColumn(5).getInt(),
                     .total_timesteps = row.getColumn(6).getInt64()};
-  run.state = FindByName(kRunStateNames, row.getColumn(7).getString()).value_or(RunState::kFailed);
+  const std::string state = row.getColumn(7).getString();
+  const std::optional<RunState> known = FindByName(kRunStateNames, state);
+  if (!known.has_value()) {
+    // The schema's CHECK keeps other names out: only a damaged file holds one. Thrown as
+    // SQLite's own corruption, which the store's edge reports as DATA_LOSS (StoreError).
+    throw SQLite::Exception(absl::StrCat(run.id, " has an unknown state '", state, "'"),
+                            SQLITE_CORRUPT);
+  }
+  run.state = *known;
   run.error = row.getColumn(8).getString();
   run.learner_numerics = row.getColumn(9).getString();
   run.actor_numerics = row.getColumn(10).getString();

@@ -439,6 +439,21 @@ TEST_F(RunStoreTest, AnEvaluationContextOutsideItsCountIsDataLoss) {
   }
 }
 
+TEST_F(RunStoreTest, ARunOfAnUnknownStateIsDataLossNotAFailedRun) {
+  SubmitAndAcquire(*Open());
+  {
+    SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READWRITE);
+    db.exec("PRAGMA ignore_check_constraints = ON");
+    db.exec("UPDATE runs SET state = 'teleported'");
+  }
+  std::unique_ptr<RunStore> store = Open();
+  const absl::Status status = store->GetRun("run-1").status();
+  EXPECT_EQ(status.code(), absl::StatusCode::kDataLoss) << status;
+  EXPECT_THAT(status.message(),
+              HasSubstr("coordinator.db is corrupt: run-1 has an unknown state 'teleported'"));
+  EXPECT_EQ(store->ListRuns().status().code(), absl::StatusCode::kDataLoss);
+}
+
 TEST_F(RunStoreTest, AnActorTakesItsShareOfAnEvaluationsFreeJobsInOneGrant) {
   std::unique_ptr<RunStore> store = Open();
   const LeaseKey learner = SubmitAndAcquire(*store).key;
