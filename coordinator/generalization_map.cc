@@ -166,8 +166,8 @@ absl::StatusOr<GnuplotFigure> HeatmapsFigure(const GeneralizationMap& map) {
         TrainingRange(sx, sy),
         "$training", p, " << EOD\n", points, "EOD\n",
         "plot data every ::", p * cells, "::", (p + 1) * cells - 1, " using 'x':'y':(",
-        CsvNumber(dx), "):(", CsvNumber(dy), "):'mean' with boxxyerror fillstyle solid 1.0 noborder",
-        " linecolor palette notitle, \\\n",
+        CsvNumber(dx), "):(", CsvNumber(dy), "):'mean' with boxxyerror",
+        " fillstyle solid 1.0 noborder linecolor palette notitle, \\\n",
         "     $training", p, " using 'x':'y' with points pointtype 7 pointsize 1.2",
         " linecolor rgb '", kTrainingColor, "' title 'training contexts'\n"));
   }
