@@ -104,10 +104,11 @@ absl::StatusOr<std::vector<actor::ContextResult>> EvaluateGridOnCluster(
     if (asked.ok()) {
       answered = absl::Now();
       failures = 0;
-      if (answer.done() == answer.contexts()) return ToCells(axes, episodes, answer);
+      // Every change is heard, the last one (every cell in) too.
       if (answer.done() != done && on_progress != nullptr) {
         on_progress(answer.done(), answer.contexts());
       }
+      if (answer.done() == answer.contexts()) return ToCells(axes, episodes, answer);
       done = answer.done();
       continue;
     }
