@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-// Fuzzes every request handler of the coordinator's service (services/coordinator_service.h):
+// Fuzzes every request handler of the coordinator's service (services/coordinator/coordinator_service.h):
 // the real CoordinatorService over a SQLite store and a data directory of its own, served
 // in-process by a gRPC server; each input is one call of one of its methods, with the cluster's
 // token, so that it passes authentication and reaches the handler (tests/fuzz/fuzzed_call.h
@@ -32,7 +32,7 @@
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "services/auth.h"
 #include "services/build_info.h"
-#include "services/coordinator_service.h"
+#include "services/coordinator/coordinator_service.h"
 #include "tests/fuzz/fuzz_check.h"
 #include "tests/fuzz/fuzzed_call.h"
 #include "tests/fuzz/scratch_dir.h"

@@ -18,7 +18,7 @@
 #include "coordinator/run_store.h"
 #include "coordinator/worker_registry.h"
 #include "services/build_info.h"
-#include "services/coordinator_service.h"
+#include "services/coordinator/coordinator_service.h"
 #include "services/server.h"
 
 namespace dcs::testing {

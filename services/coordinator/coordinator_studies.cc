@@ -8,7 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
-#include "services/coordinator_service.h"
+#include "services/coordinator/coordinator_service.h"
 #include "services/log.h"
 #include "services/study_proto.h"
 

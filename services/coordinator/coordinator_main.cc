@@ -19,11 +19,11 @@
 #include "coordinator/sweep_results.h"
 #include "coordinator/worker_registry.h"
 #include "services/command_line.h"
-#include "services/coordinator_service.h"
+#include "services/coordinator/coordinator_service.h"
 #include "services/log.h"
-#include "services/run_collector.h"
+#include "services/coordinator/run_collector.h"
 #include "services/service_main.h"
-#include "services/worker_collector.h"
+#include "services/coordinator/worker_collector.h"
 
 namespace dcs::services {
 namespace {

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_SERVICES_RUN_COLLECTOR_H_
-#define DCS_SERVICES_RUN_COLLECTOR_H_
+#ifndef DCS_SERVICES_COORDINATOR_RUN_COLLECTOR_H_
+#define DCS_SERVICES_COORDINATOR_RUN_COLLECTOR_H_
 
 // The coordinator's runs, read from the store at each scrape:
 //   dcs_runs{state}                       every state, zeros included
@@ -33,4 +33,4 @@ class RunCollector final : public prometheus::Collectable {
 
 }  // namespace dcs::services
 
-#endif  // DCS_SERVICES_RUN_COLLECTOR_H_
+#endif  // DCS_SERVICES_COORDINATOR_RUN_COLLECTOR_H_

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "services/worker_collector.h"
+#include "services/coordinator/worker_collector.h"
 
 #include <map>
 #include <memory>

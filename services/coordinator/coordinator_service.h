@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_SERVICES_COORDINATOR_SERVICE_H_
-#define DCS_SERVICES_COORDINATOR_SERVICE_H_
+#ifndef DCS_SERVICES_COORDINATOR_COORDINATOR_SERVICE_H_
+#define DCS_SERVICES_COORDINATOR_COORDINATOR_SERVICE_H_
 
 // dcs.v1.CoordinatorService over the coordinator library: each method decodes the request,
 // calls the library, encodes the reply and converts the status. Workers' membership is in
@@ -224,4 +224,4 @@ StreamReactor* CoordinatorService::Refuse(const absl::Status& status) {
 
 }  // namespace dcs::services
 
-#endif  // DCS_SERVICES_COORDINATOR_SERVICE_H_
+#endif  // DCS_SERVICES_COORDINATOR_COORDINATOR_SERVICE_H_

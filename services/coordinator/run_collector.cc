@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "services/run_collector.h"
+#include "services/coordinator/run_collector.h"
 
 #include <string>
 #include <utility>

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_SERVICES_WORKER_COLLECTOR_H_
-#define DCS_SERVICES_WORKER_COLLECTOR_H_
+#ifndef DCS_SERVICES_COORDINATOR_WORKER_COLLECTOR_H_
+#define DCS_SERVICES_COORDINATOR_WORKER_COLLECTOR_H_
 
 // dcs_workers{role, state}: how many workers the coordinator knows, by role and state, read
 // from the registry at each scrape (a worker turns LOST by the passing of time, not by an
@@ -27,4 +27,4 @@ class WorkerCollector final : public prometheus::Collectable {
 
 }  // namespace dcs::services
 
-#endif  // DCS_SERVICES_WORKER_COLLECTOR_H_
+#endif  // DCS_SERVICES_COORDINATOR_WORKER_COLLECTOR_H_

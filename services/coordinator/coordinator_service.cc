@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "services/coordinator_service.h"
+#include "services/coordinator/coordinator_service.h"
 
 #include <algorithm>
 #include <chrono>

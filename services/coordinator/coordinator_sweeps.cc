@@ -14,7 +14,7 @@
 #include "coordinator/run_files.h"
 #include "coordinator/sweep_results.h"
 #include "coordinator/sweep_submission.h"
-#include "services/coordinator_service.h"
+#include "services/coordinator/coordinator_service.h"
 #include "services/log.h"
 #include "services/run_proto.h"
 
