@@ -25,8 +25,9 @@ std::string FormatBound(double value) {
 }
 
 // Reads one schedule config's parameters, remembering which it has read, so that Finish() can
-// name any it did not recognise. Every error names the family and the parameter, and carries
-// the parameter as its field (common/status_util.h).
+// name any it did not recognise, and keeping every problem found (Check), so that each
+// parameter is checked whatever the others' checks found. Every error names the family and the
+// parameter, and carries the parameter as its field (common/status_util.h).
 class ParamReader {
  public:
   ParamReader(const ScheduleConfig& config, double min_value, double max_value, uint32_t seed)
@@ -178,19 +179,25 @@ class ParamReader {
     return it == config_.params.end() ? nullptr : &it->second;
   }
 
-  // INVALID_ARGUMENT for any parameter no reader asked for.
-  absl::Status Finish() const {
+  // Keeps `status` as a problem of the config unless it is OK; the caller goes on.
+  void Check(absl::Status status) {
+    if (!status.ok()) problems_.push_back(std::move(status));
+  }
+
+  // Keeps a problem for each parameter no reader asked for, and for parts outside a sequential
+  // schedule; then returns every problem kept, in the order found.
+  std::vector<absl::Status> Finish() && {
     for (const auto& [name, value] : config_.params) {
       if (!known_.contains(name)) {
-        return Error(name, absl::StrCat("unknown parameter (allowed: ",
-                                        known_.empty() ? "none" : absl::StrJoin(known_, ", "),
-                                        ")"));
+        Check(Error(name, absl::StrCat("unknown parameter (allowed: ",
+                                       known_.empty() ? "none" : absl::StrJoin(known_, ", "),
+                                       ")")));
       }
     }
     if (!config_.parts.empty() && config_.family != "sequential") {
-      return Error("parts", "only a sequential schedule has parts");
+      Check(Error("parts", "only a sequential schedule has parts"));
     }
-    return absl::OkStatus();
+    return std::move(problems_);
   }
 
   absl::Status Error(absl::string_view name, absl::string_view message) const {
@@ -237,6 +244,7 @@ class ParamReader {
   const double max_;
   const uint32_t seed_;
   std::set<std::string> known_;
+  std::vector<absl::Status> problems_;
 };
 
 const std::vector<std::pair<std::string, Direction>> kDirections = {
@@ -248,98 +256,97 @@ const std::vector<std::pair<std::string, EdgeMode>> kEdgeModes = {{"clip", EdgeM
 absl::StatusOr<ScheduleParams> ParseSinusoidal(ParamReader& r) {
   SinusoidalParams p;
   using D = SinusoidalParams::InitialDirection;
-  DCS_RETURN_IF_ERROR(r.Magnitude("amplitude", "amplitude_frac", 0.5, 0.0, &p.amplitude));
-  DCS_RETURN_IF_ERROR(r.Number("period", 0.0, 0, kInf, &p.period));
-  DCS_RETURN_IF_ERROR(r.Choice("initial_direction", D::kRandom,
-                               {{"random", D::kRandom}, {"down", D::kDown}, {"up", D::kUp}},
-                               &p.initial_direction));
+  r.Check(r.Magnitude("amplitude", "amplitude_frac", 0.5, 0.0, &p.amplitude));
+  r.Check(r.Number("period", 0.0, 0, kInf, &p.period));
+  r.Check(r.Choice("initial_direction", D::kRandom,
+                   {{"random", D::kRandom}, {"down", D::kDown}, {"up", D::kUp}},
+                   &p.initial_direction));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseCosineAnnealing(ParamReader& r) {
   using P = CosineAnnealingParams;
   P p;
-  DCS_RETURN_IF_ERROR(r.Choice("mode", P::Mode::kCycle,
-                               {{"cycle", P::Mode::kCycle}, {"once", P::Mode::kOnce}}, &p.mode));
-  DCS_RETURN_IF_ERROR(r.Steps("T_0", p.mode == P::Mode::kOnce ? std::optional<int64_t>(200)
-                                                                : std::nullopt,
-                              1, &p.t_0));
-  DCS_RETURN_IF_ERROR(r.Steps("T_mult", 1, 1, &p.t_mult));
-  DCS_RETURN_IF_ERROR(r.Steps("T_max", 1000, 1, &p.t_max));
-  DCS_RETURN_IF_ERROR(r.OptionalValue("start", &p.start));
-  DCS_RETURN_IF_ERROR(r.OptionalValue("end", &p.end));
+  r.Check(r.Choice("mode", P::Mode::kCycle,
+                   {{"cycle", P::Mode::kCycle}, {"once", P::Mode::kOnce}}, &p.mode));
+  r.Check(r.Steps("T_0", p.mode == P::Mode::kOnce ? std::optional<int64_t>(200)
+                                                    : std::nullopt,
+                  1, &p.t_0));
+  r.Check(r.Steps("T_mult", 1, 1, &p.t_mult));
+  r.Check(r.Steps("T_max", 1000, 1, &p.t_max));
+  r.Check(r.OptionalValue("start", &p.start));
+  r.Check(r.OptionalValue("end", &p.end));
   if (p.end.has_value() && p.mode != P::Mode::kOnce) {
     return r.Error("end", "applies to mode once only (cycles choose their end by direction)");
   }
   double radius = 0;
-  DCS_RETURN_IF_ERROR(r.Magnitude("neighborhood_radius", "neighborhood_radius_frac", 0.5, 0.0,
-                                  &radius));
+  r.Check(r.Magnitude("neighborhood_radius", "neighborhood_radius_frac", 0.5, 0.0,
+                      &radius));
   if (radius > 0) p.neighborhood_radius = radius;
-  DCS_RETURN_IF_ERROR(r.Number("min_delta", 0.0, 0, kInf, &p.min_delta));
-  DCS_RETURN_IF_ERROR(r.Choice("direction", P::EndDirection::kAuto,
-                               {{"auto", P::EndDirection::kAuto},
-                                {"to_min", P::EndDirection::kToMin},
-                                {"to_max", P::EndDirection::kToMax},
-                                {"random", P::EndDirection::kRandom}},
-                               &p.direction));
-  DCS_RETURN_IF_ERROR(r.Choice("retarget", P::Retarget::kRestart,
-                               {{"swap", P::Retarget::kSwap},
-                                {"restart", P::Retarget::kRestart},
-                                {"random", P::Retarget::kRandom}},
-                               &p.retarget));
-  DCS_RETURN_IF_ERROR(r.Number("repel_edge_eps_frac", 0.05, 0, 0.5, &p.repel_edge_eps_frac));
+  r.Check(r.Number("min_delta", 0.0, 0, kInf, &p.min_delta));
+  r.Check(r.Choice("direction", P::EndDirection::kAuto,
+                   {{"auto", P::EndDirection::kAuto},
+                    {"to_min", P::EndDirection::kToMin},
+                    {"to_max", P::EndDirection::kToMax},
+                    {"random", P::EndDirection::kRandom}},
+                   &p.direction));
+  r.Check(r.Choice("retarget", P::Retarget::kRestart,
+                   {{"swap", P::Retarget::kSwap},
+                    {"restart", P::Retarget::kRestart},
+                    {"random", P::Retarget::kRandom}},
+                   &p.retarget));
+  r.Check(r.Number("repel_edge_eps_frac", 0.05, 0, 0.5, &p.repel_edge_eps_frac));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseContinuousIncrementer(ParamReader& r) {
   using P = ContinuousIncrementerParams;
   P p;
-  DCS_RETURN_IF_ERROR(r.Magnitude("delta", "delta_frac", 1.0, std::nullopt, &p.delta));
-  DCS_RETURN_IF_ERROR(r.Choice("direction", Direction::kBoth, kDirections, &p.direction));
-  DCS_RETURN_IF_ERROR(r.Number("direction_prob", 0.5, 0, 1, &p.direction_prob));
-  DCS_RETURN_IF_ERROR(r.Choice("edge_mode", EdgeMode::kReflect, kEdgeModes, &p.edge_mode));
-  DCS_RETURN_IF_ERROR(r.Choice("episode_direction", P::EpisodeDirection::kRandom,
-                               {{"none", P::EpisodeDirection::kNone},
-                                {"up", P::EpisodeDirection::kUp},
-                                {"down", P::EpisodeDirection::kDown},
-                                {"random", P::EpisodeDirection::kRandom}},
-                               &p.episode_direction));
-  DCS_RETURN_IF_ERROR(r.Number("noise_std", 0.0, 0, kInf, &p.noise_std));
+  r.Check(r.Magnitude("delta", "delta_frac", 1.0, std::nullopt, &p.delta));
+  r.Check(r.Choice("direction", Direction::kBoth, kDirections, &p.direction));
+  r.Check(r.Number("direction_prob", 0.5, 0, 1, &p.direction_prob));
+  r.Check(r.Choice("edge_mode", EdgeMode::kReflect, kEdgeModes, &p.edge_mode));
+  r.Check(r.Choice("episode_direction", P::EpisodeDirection::kRandom,
+                   {{"none", P::EpisodeDirection::kNone},
+                    {"up", P::EpisodeDirection::kUp},
+                    {"down", P::EpisodeDirection::kDown},
+                    {"random", P::EpisodeDirection::kRandom}},
+                   &p.episode_direction));
+  r.Check(r.Number("noise_std", 0.0, 0, kInf, &p.noise_std));
   double follow = 0;
-  DCS_RETURN_IF_ERROR(r.Number("follow_predefined_prob", 0.8, 0, 1, &follow));
+  r.Check(r.Number("follow_predefined_prob", 0.8, 0, 1, &follow));
   p.follow_predefined_prob = follow;
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseRandomWalk(ParamReader& r) {
   RandomWalkParams p;
-  DCS_RETURN_IF_ERROR(r.Magnitude("std", "std_frac", 1.0, 0.01, &p.std));
+  r.Check(r.Magnitude("std", "std_frac", 1.0, 0.01, &p.std));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParsePiecewiseConstant(ParamReader& r) {
   PiecewiseConstantParams p;
-  DCS_RETURN_IF_ERROR(r.Values("values", std::nullopt, &p.values));
-  DCS_RETURN_IF_ERROR(r.Interval("interval_range", {30, 50}, &p.interval));
+  r.Check(r.Values("values", std::nullopt, &p.values));
+  r.Check(r.Interval("interval_range", {30, 50}, &p.interval));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseSuddenJump(ParamReader& r) {
   SuddenJumpParams p;
-  DCS_RETURN_IF_ERROR(
-      r.MagnitudeRange("step_size_range", "step_size_frac_range", {0.1, 0.3}, &p.step_size));
-  DCS_RETURN_IF_ERROR(r.Interval("interval_range", {10, 30}, &p.interval));
-  DCS_RETURN_IF_ERROR(r.Choice("direction", Direction::kBoth, kDirections, &p.direction));
-  DCS_RETURN_IF_ERROR(r.Number("direction_prob", 0.5, 0, 1, &p.direction_prob));
-  DCS_RETURN_IF_ERROR(r.Choice("edge_mode", EdgeMode::kClip, kEdgeModes, &p.edge_mode));
+  r.Check(r.MagnitudeRange("step_size_range", "step_size_frac_range", {0.1, 0.3}, &p.step_size));
+  r.Check(r.Interval("interval_range", {10, 30}, &p.interval));
+  r.Check(r.Choice("direction", Direction::kBoth, kDirections, &p.direction));
+  r.Check(r.Number("direction_prob", 0.5, 0, 1, &p.direction_prob));
+  r.Check(r.Choice("edge_mode", EdgeMode::kClip, kEdgeModes, &p.edge_mode));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseOrnsteinUhlenbeck(ParamReader& r) {
   const double min_value = r.min();
   OrnsteinUhlenbeckParams p;
-  DCS_RETURN_IF_ERROR(r.Number("theta", 0.05, 0, 1, &p.theta));
-  DCS_RETURN_IF_ERROR(r.Magnitude("sigma", "sigma_frac", 1.0, 0.08, &p.sigma));
+  r.Check(r.Number("theta", 0.05, 0, 1, &p.theta));
+  r.Check(r.Magnitude("sigma", "sigma_frac", 1.0, 0.08, &p.sigma));
   r.Allow("mu", "mu_frac");
   const ScheduleParam* mu = r.Take("mu");
   if (mu != nullptr && r.Has("mu_frac")) {
@@ -349,10 +356,10 @@ absl::StatusOr<ScheduleParams> ParseOrnsteinUhlenbeck(ParamReader& r) {
     if (*word != "initial") return r.Error("mu", "must be a number or 'initial'");
     p.mu_is_episode_initial = true;  // the paper's variant
   } else if (mu != nullptr) {
-    DCS_RETURN_IF_ERROR(r.Number("mu", std::nullopt, min_value, min_value + r.span(), &p.mu));
+    r.Check(r.Number("mu", std::nullopt, min_value, min_value + r.span(), &p.mu));
   } else {
     double fraction = 0.5;
-    DCS_RETURN_IF_ERROR(r.Number("mu_frac", 0.5, 0, 1, &fraction));
+    r.Check(r.Number("mu_frac", 0.5, 0, 1, &fraction));
     p.mu = min_value + fraction * r.span();
   }
   return p;
@@ -360,45 +367,53 @@ absl::StatusOr<ScheduleParams> ParseOrnsteinUhlenbeck(ParamReader& r) {
 
 absl::StatusOr<ScheduleParams> ParseSinusoidalJump(ParamReader& r) {
   SinusoidalJumpParams p;
-  DCS_RETURN_IF_ERROR(r.Magnitude("amplitude", "amplitude_frac", 0.5, 0.3, &p.amplitude));
-  DCS_RETURN_IF_ERROR(r.Number("period", 100.0, 0, kInf, &p.period));
-  DCS_RETURN_IF_ERROR(
-      r.MagnitudeRange("step_size_range", "step_size_frac_range", {0.2, 0.4}, &p.step_size));
-  DCS_RETURN_IF_ERROR(r.Interval("interval_range", {80, 150}, &p.interval));
+  r.Check(r.Magnitude("amplitude", "amplitude_frac", 0.5, 0.3, &p.amplitude));
+  r.Check(r.Number("period", 100.0, 0, kInf, &p.period));
+  r.Check(r.MagnitudeRange("step_size_range", "step_size_frac_range", {0.2, 0.4}, &p.step_size));
+  r.Check(r.Interval("interval_range", {80, 150}, &p.interval));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParsePhasedOu(ParamReader& r) {
   const double min_value = r.min();
   PhasedOuParams p;
-  DCS_RETURN_IF_ERROR(r.Number("theta", 0.05, 0, 1, &p.theta));
-  DCS_RETURN_IF_ERROR(r.Magnitude("sigma", "sigma_frac", 1.0, 0.04, &p.sigma));
-  DCS_RETURN_IF_ERROR(r.Values(
+  r.Check(r.Number("theta", 0.05, 0, 1, &p.theta));
+  r.Check(r.Magnitude("sigma", "sigma_frac", 1.0, 0.04, &p.sigma));
+  r.Check(r.Values(
       "values", std::vector<double>{min_value, r.midpoint(), min_value + r.span()}, &p.values));
-  DCS_RETURN_IF_ERROR(r.Interval("interval_range", {100, 150}, &p.interval));
+  r.Check(r.Interval("interval_range", {100, 150}, &p.interval));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseLevyWalk(ParamReader& r) {
   LevyWalkParams p;
-  DCS_RETURN_IF_ERROR(r.Magnitude("std", "std_frac", 1.0, 0.008, &p.std));
-  DCS_RETURN_IF_ERROR(
-      r.MagnitudeRange("step_size_range", "step_size_frac_range", {0.2, 0.4}, &p.step_size));
-  DCS_RETURN_IF_ERROR(r.Interval("interval_range", {40, 80}, &p.interval));
+  r.Check(r.Magnitude("std", "std_frac", 1.0, 0.008, &p.std));
+  r.Check(r.MagnitudeRange("step_size_range", "step_size_frac_range", {0.2, 0.4}, &p.step_size));
+  r.Check(r.Interval("interval_range", {40, 80}, &p.interval));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseIdentity(ParamReader&) { return IdentityParams{}; }
+
+// The spec of `config` and every problem found in it (the spec only if there were none).
+struct CheckedSchedule {
+  std::optional<ScheduleSpec> spec;
+  std::vector<absl::Status> problems;
+};
+CheckedSchedule CheckSchedule(const ScheduleConfig& config, double min_value, double max_value,
+                              uint32_t seed);
 
 absl::StatusOr<ScheduleParams> ParseSequential(ParamReader& r) {
   const std::vector<ScheduleConfig>& parts = r.config().parts;
   if (parts.empty()) return r.Error("parts", "missing (a list of schedules)");
   SequentialParams sequential;
   for (size_t i = 0; i < parts.size(); ++i) {
-    absl::StatusOr<ScheduleSpec> part = ParseScheduleSpec(
+    CheckedSchedule part = CheckSchedule(
         parts[i], r.min(), r.max(), internal::SpawnSeed(r.seed(), static_cast<uint32_t>(i)));
-    if (!part.ok()) return ErrorInField(part.status(), absl::StrCat("parts[", i, "]"));
-    sequential.parts.push_back(*std::move(part));
+    for (absl::Status& problem : part.problems) {
+      r.Check(ErrorInField(std::move(problem), absl::StrCat("parts[", i, "]")));
+    }
+    if (part.spec.has_value()) sequential.parts.push_back(*std::move(part.spec));
   }
   return sequential;
 }
@@ -445,6 +460,30 @@ const Family* FindFamily(absl::string_view name) {
   return nullptr;
 }
 
+CheckedSchedule CheckSchedule(const ScheduleConfig& config, double min_value, double max_value,
+                              uint32_t seed) {
+  if (!std::isfinite(min_value) || !std::isfinite(max_value) || min_value >= max_value) {
+    return {.problems = {absl::InvalidArgumentError(absl::StrCat(
+                "schedule '", config.family, "': bounds must be finite with min < max, got [",
+                min_value, ", ", max_value, "]"))}};
+  }
+  const Family* family = FindFamily(config.family);
+  if (family == nullptr) {
+    return {.problems = {absl::InvalidArgumentError(absl::StrCat(
+                "unknown schedule family '", config.family, "' (known: ", kIdentityAlias, ", ",
+                absl::StrJoin(ScheduleFamilyNames(), ", "), ")"))}};
+  }
+  ParamReader reader(config, min_value, max_value, seed);
+  absl::StatusOr<ScheduleParams> params = family->parse(reader);
+  reader.Check(params.status());  // a check between parameters, made once each was read
+  CheckedSchedule checked{.problems = std::move(reader).Finish()};
+  if (checked.problems.empty()) {
+    checked.spec = ScheduleSpec{
+        .min_value = min_value, .max_value = max_value, .seed = seed, .params = *std::move(params)};
+  }
+  return checked;
+}
+
 }  // namespace
 
 absl::string_view ScheduleFamilyName(ScheduleFamily family) {
@@ -459,24 +498,14 @@ std::vector<std::string> ScheduleFamilyNames() {
 
 absl::StatusOr<ScheduleSpec> ParseScheduleSpec(const ScheduleConfig& config, double min_value,
                                                double max_value, uint32_t seed) {
-  if (!std::isfinite(min_value) || !std::isfinite(max_value) || min_value >= max_value) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("schedule '", config.family, "': bounds must be finite with min < max, got [",
-                     min_value, ", ", max_value, "]"));
-  }
-  const Family* family = FindFamily(config.family);
-  if (family == nullptr) {
-    return absl::InvalidArgumentError(absl::StrCat("unknown schedule family '", config.family,
-                                                   "' (known: ", kIdentityAlias, ", ",
-                                                   absl::StrJoin(ScheduleFamilyNames(), ", "),
-                                                   ")"));
-  }
-  ParamReader reader(config, min_value, max_value, seed);
-  absl::StatusOr<ScheduleParams> params = family->parse(reader);
-  if (!params.ok()) return params.status();
-  DCS_RETURN_IF_ERROR(reader.Finish());
-  return ScheduleSpec{
-      .min_value = min_value, .max_value = max_value, .seed = seed, .params = *std::move(params)};
+  CheckedSchedule checked = CheckSchedule(config, min_value, max_value, seed);
+  if (!checked.problems.empty()) return checked.problems.front();
+  return *std::move(checked.spec);
+}
+
+std::vector<absl::Status> ScheduleConfigProblems(const ScheduleConfig& config, double min_value,
+                                                 double max_value) {
+  return CheckSchedule(config, min_value, max_value, /*seed=*/0).problems;
 }
 
 }  // namespace dcs::env

@@ -69,6 +69,13 @@ struct ScheduleConfig {
 absl::StatusOr<ScheduleSpec> ParseScheduleSpec(const ScheduleConfig& config, double min_value,
                                                double max_value, uint32_t seed);
 
+// Every problem ParseScheduleSpec finds in `config`, not only the first, each as it would report
+// it: each parameter is checked whatever the others' checks found (a check between parameters,
+// as `end` with mode cycle, once they are read). Empty if `config` is valid over
+// [min_value, max_value]; validity does not depend on the seed.
+std::vector<absl::Status> ScheduleConfigProblems(const ScheduleConfig& config, double min_value,
+                                                 double max_value);
+
 // The names ParseScheduleSpec knows, in the order of env/schedule_spec.h.
 std::vector<std::string> ScheduleFamilyNames();
 

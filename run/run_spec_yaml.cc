@@ -81,10 +81,8 @@ void CheckWithEnvironment(const RunSpec& spec, const env::ContextSpace& space,
     }
     start += std::max<int64_t>(stage.steps, 0);
     if (!range_ok) continue;
-    absl::StatusOr<env::ScheduleSpec> schedule =
-        env::ParseScheduleSpec(stage.schedule, lo, hi, static_cast<uint32_t>(spec.seed));
-    if (!schedule.ok()) {
-      problems.Add(ScheduleError(errors, SchedulePath(i, schedule_key), schedule.status()));
+    for (const absl::Status& problem : env::ScheduleConfigProblems(stage.schedule, lo, hi)) {
+      problems.Add(ScheduleError(errors, SchedulePath(i, schedule_key), problem));
     }
   }
   if (!feature.ok() || !range_ok) return;

@@ -13,6 +13,7 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "common/status_util.h"
 #include "env/schedule_spec.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
@@ -24,6 +25,7 @@ namespace {
 using ::testing::AllOf;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
+using ::testing::IsEmpty;
 using ::testing::Not;
 
 
@@ -165,6 +167,31 @@ TEST(ScheduleConfigTest, IllTypedParameters) {
               HasSubstr("values"));
   EXPECT_THAT(ErrorOf(Config("ornstein_uhlenbeck", {{"mu", std::string("start")}})),
               AllOf(HasSubstr("mu"), HasSubstr("initial")));
+}
+
+// Every parameter is checked whatever the others' checks found, each problem with its field;
+// ParseScheduleSpec reports the first.
+TEST(ScheduleConfigTest, ProblemsNameEveryBadParameterWithItsField) {
+  const ScheduleConfig config =
+      Config("sinusoidal", {{"amplitude_frac", -1.0}, {"period", -3.0}, {"periode", 5.0}});
+  std::vector<std::string> fields;
+  for (const absl::Status& problem : ScheduleConfigProblems(config, 0, 1)) {
+    EXPECT_EQ(problem.code(), absl::StatusCode::kInvalidArgument);
+    fields.push_back(ErrorField(problem).value_or("?"));
+  }
+  EXPECT_THAT(fields, ElementsAre("amplitude_frac", "period", "periode"));
+  EXPECT_THAT(ErrorOf(config), HasSubstr("amplitude_frac must be in [0, inf], got -1"));
+  EXPECT_THAT(ScheduleConfigProblems(Config("sinusoidal", {{"period", 5.0}}), 0, 1), IsEmpty());
+
+  // A sequential schedule's parts, each problem placed in its part.
+  ScheduleConfig sequential = Config("sequential");
+  sequential.parts = {Config("random_walk", {{"std_frac", -0.1}}), Config("identity"),
+                      Config("sinusoidal", {{"period", -1.0}})};
+  fields.clear();
+  for (const absl::Status& problem : ScheduleConfigProblems(sequential, 0, 1)) {
+    fields.push_back(ErrorField(problem).value_or("?"));
+  }
+  EXPECT_THAT(fields, ElementsAre("parts[0].std_frac", "parts[2].period"));
 }
 
 TEST(ScheduleConfigTest, OutOfRangeValuesNameTheAllowedRange) {

@@ -2,7 +2,7 @@
 //
 // `dcs train` as a user runs it: a run writes its directory and summary; a second run into the
 // same directory is refused; Ctrl-C stops with a checkpoint that --resume continues; a bad
-// config is one error line naming the field.
+// config is one error line naming the field, and a config with several problems lists them all.
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -181,6 +181,27 @@ evaluation: {contexts: {id: [0.5], ood_high: [1.0, 9.0]}}
   train = Dcs({"train", "--config", dir + "/missing.yaml"});
   EXPECT_EQ(train.exit_code, services::kExitFailure);
   EXPECT_THAT(train.output, HasSubstr("cannot read the run config"));
+}
+
+// Issue 35: a bad learning rate, amplitude and period are named together, each with its path
+// and line, as a sweep spec's problems are; nothing is trained.
+TEST(TrainCliTest, BadConfigListsEveryProblemWithItsPathAndLine) {
+  const std::string dir = MakeTempDir();
+  const std::string config = absl::StrCat(dir, "/bad.yaml");
+  ASSERT_TRUE(WriteFileAtomically(config, R"(env: cartpole
+feature: length
+training_range: [0.35, 0.75]
+schedule: {family: sinusoidal, amplitude_frac: -0.5, period: -3}
+evaluation: {contexts: {id: [0.5]}}
+ppo: {learning_rate: -1}
+)").ok());
+  const RunResult train = Dcs({"train", "--config", config, "--out", dir + "/run"});
+  EXPECT_EQ(train.exit_code, services::kExitDataError);
+  EXPECT_THAT(train.output, HasSubstr(absl::StrCat("3 problems in ", config, ":\n")));
+  EXPECT_THAT(train.output, HasSubstr(absl::StrCat(config, ": schedule.amplitude_frac: line 4: ")));
+  EXPECT_THAT(train.output, HasSubstr(absl::StrCat(config, ": schedule.period: line 4: ")));
+  EXPECT_THAT(train.output, HasSubstr(absl::StrCat(config, ": ppo.learning_rate: line 6: ")));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/run"));
 }
 
 }  // namespace

@@ -519,6 +519,21 @@ evaluation: {episodes: 0, contexts: {id: [0.5]}}
             "  run.yaml: ppo.gamma: line 6: must be in [0, 1], got 2");
 }
 
+// Issue 35's example: a bad learning rate, amplitude and period, each named with its line; the
+// amplitude and the period are of one schedule.
+TEST(RunSpecYamlTest, ListsEveryBadParameterOfOneSchedule) {
+  EXPECT_EQ(ErrorOf(Edit("observe: live", R"(observe: live
+schedule: {family: sinusoidal, amplitude_frac: -0.5, period: -3}
+ppo:
+  learning_rate: -1)")),
+            "3 problems in run.yaml:\n"
+            "  run.yaml: schedule.amplitude_frac: line 8: schedule 'sinusoidal': amplitude_frac "
+            "must be in [0, inf], got -0.5\n"
+            "  run.yaml: schedule.period: line 8: schedule 'sinusoidal': period must be in "
+            "[0, inf], got -3\n"
+            "  run.yaml: ppo.learning_rate: line 10: must be positive, got -1");
+}
+
 // A key that cannot be read stops validation, not the reading of the other keys.
 TEST(RunSpecYamlTest, ListsEveryKeyThatCannotBeRead) {
   EXPECT_EQ(ErrorOf(Edit("seed: 3", "seed: x\nn_envs: [1]")),
