@@ -16,10 +16,14 @@ absl::StatusOr<run::RunRequest> CheckSubmittedRun(std::string config_text,
   DCS_ASSIGN_OR_RETURN(run::RunRequest request,
                        run::RequestRun(std::move(config_text), config_name, /*dir=*/"-",
                                        /*data_dir=*/""));
-  DCS_RETURN_IF_ERROR(env::VisitEnvironment(request.spec.env, [&]<typename Env>() {
-    return run::PlanRun(request.spec, Env::Features()).status();
-  }));
+  DCS_RETURN_IF_ERROR(CheckPlannable(request.spec));
   return request;
+}
+
+absl::Status CheckPlannable(const run::RunSpec& spec) {
+  return env::VisitEnvironment(spec.env, [&]<typename Env>() {
+    return run::PlanRun(spec, Env::Features()).status();
+  });
 }
 
 RunSubmission SubmissionOf(const run::RunRequest& request, std::string request_id) {

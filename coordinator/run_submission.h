@@ -24,6 +24,11 @@ absl::StatusOr<run::RunRequest> CheckSubmittedRun(std::string config_text,
                                                   const std::string& config_name,
                                                   std::optional<uint64_t> seed);
 
+// OK if the validated run `spec` can be planned for its environment (run/run_plan.h), as a
+// learner plans it first; its seed plays no part, so one check serves every seed of a trial.
+// INVALID_ARGUMENT as PlanRun, or for an unknown environment.
+absl::Status CheckPlannable(const run::RunSpec& spec);
+
 // The store's submission of the checked run `request`, named `request_id`.
 RunSubmission SubmissionOf(const run::RunRequest& request, std::string request_id);
 

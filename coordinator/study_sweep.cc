@@ -127,23 +127,18 @@ class Step {
   // trial whose run config does not validate fails.
   absl::Status Queue(StudyTrial& trial, bool retrain) {
     const std::string condition = StudyTrialCondition(trial.number, retrain);
-    absl::StatusOr<std::string> config = run::TrialRunConfig(spec_.sweep.trials.front().config,
-                                                             condition, spec_.space, trial.values);
+    absl::StatusOr<run::SeededRuns> config = run::TrialRunConfig(
+        spec_.sweep.trials.front().config, condition, spec_.space, trial.values);
+    if (!config.ok() || !CheckPlannable(config->spec()).ok()) {
+      return Tell(trial, TrialState::kFailed, kNaN);
+    }
     std::vector<run::RunRequest> requests;
     std::vector<RunSubmission> submissions;
-    const std::vector<uint64_t>& seeds = retrain ? spec_.retrain_seeds : spec_.sweep.seeds;
-    for (uint64_t seed : seeds) {
-      if (!config.ok()) break;
-      absl::StatusOr<run::RunRequest> request = CheckSubmittedRun(*config, condition, seed);
-      if (!request.ok()) {
-        config = request.status();
-        break;
-      }
-      submissions.push_back(
-          SubmissionOf(*request, absl::StrCat(sweep_.request_id, "/", condition, "/", seed)));
-      requests.push_back(*std::move(request));
+    for (uint64_t seed : retrain ? spec_.retrain_seeds : spec_.sweep.seeds) {
+      requests.push_back(config->Run(seed));
+      submissions.push_back(SubmissionOf(
+          requests.back(), absl::StrCat(sweep_.request_id, "/", condition, "/", seed)));
     }
-    if (!config.ok()) return Tell(trial, TrialState::kFailed, kNaN);
     const run::SweepTrial& base = spec_.sweep.trials.front();
     absl::StatusOr<std::vector<RunRecord>> runs =
         store_.AddSweepTrial(sweep_.id,

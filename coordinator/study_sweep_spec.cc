@@ -156,7 +156,7 @@ absl::Status CheckSamples(const StudySweepSpec& spec, const std::string& where) 
   Random random(StreamSeed(spec.study.seed, "space check"));
   for (int i = 0; i < kCheckedSamples; ++i) {
     const run::ParameterValues values = RandomValues(spec.space, random);
-    absl::StatusOr<std::string> config =
+    absl::StatusOr<run::SeededRuns> config =
         run::TrialRunConfig(spec.sweep.trials.front().config, where, spec.space, values);
     if (!config.ok()) {
       return absl::InvalidArgumentError(
@@ -173,9 +173,16 @@ absl::Status CheckSamples(const StudySweepSpec& spec, const std::string& where) 
 
 absl::StatusOr<StudySweepSpec> ParseStudySweepYaml(absl::string_view text,
                                                    absl::string_view where) {
-  StudySweepSpec spec;
-  DCS_ASSIGN_OR_RETURN(spec.sweep, run::ParseSweepSpecYaml(text, where));
-  const std::string where_text(where);
+  run::YamlReader reader{std::string(where)};
+  DCS_ASSIGN_OR_RETURN(const YAML::Node root, reader.Load(text));
+  DCS_ASSIGN_OR_RETURN(run::SweepSpec sweep, run::ReadSweepSpec(reader, root));
+  return ReadStudySweep(reader, root, std::move(sweep));
+}
+
+absl::StatusOr<StudySweepSpec> ReadStudySweep(run::YamlReader& reader, const YAML::Node& root,
+                                              run::SweepSpec sweep) {
+  StudySweepSpec spec{.sweep = std::move(sweep)};
+  const std::string& where = reader.where();
   if (!spec.sweep.study) {
     return absl::InvalidArgumentError(
         absl::StrCat(where, ": study: missing: a study sweep has a study block"));
@@ -187,8 +194,6 @@ absl::StatusOr<StudySweepSpec> ParseStudySweepYaml(absl::string_view text,
         "has ",
         spec.sweep.trials.size(), " (conditions times modes)"));
   }
-  run::YamlReader reader(where_text);
-  DCS_ASSIGN_OR_RETURN(const YAML::Node root, reader.Load(text));
   const YAML::Node block = root["study"];
   constexpr absl::string_view kKeys[] = {"trials",    "parallel", "sampler", "seed", "tpe",
                                          "objective", "pruner",   "retrain", "space"};
@@ -242,7 +247,7 @@ absl::StatusOr<StudySweepSpec> ParseStudySweepYaml(absl::string_view text,
   YAML::Emitter emitter;
   emitter << *space;
   spec.study.space = emitter.c_str();
-  DCS_RETURN_IF_ERROR(CheckSamples(spec, where_text));
+  DCS_RETURN_IF_ERROR(CheckSamples(spec, where));
   return spec;
 }
 

@@ -57,12 +57,15 @@
 #include <cstdint>
 #include <vector>
 
+#include <yaml-cpp/yaml.h>
+
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "common/enum_names.h"
 #include "coordinator/run_store.h"
 #include "run/search_space.h"
 #include "run/sweep_spec.h"
+#include "run/yaml_reader.h"
 
 namespace dcs::coordinator {
 
@@ -87,6 +90,12 @@ struct StudySweepSpec {
 // The study sweep in `text` (named `where` in errors). INVALID_ARGUMENT as listed above, and
 // for a spec without a `study:` block.
 absl::StatusOr<StudySweepSpec> ParseStudySweepYaml(absl::string_view text, absl::string_view where);
+
+// The study sweep of `sweep`, the sweep spec `reader` read from the document `root`
+// (run::ReadSweepSpec): its `study:` block read from `root`, without loading the text again.
+// INVALID_ARGUMENT as ParseStudySweepYaml after its sweep spec.
+absl::StatusOr<StudySweepSpec> ReadStudySweep(run::YamlReader& reader, const YAML::Node& root,
+                                              run::SweepSpec sweep);
 
 }  // namespace dcs::coordinator
 

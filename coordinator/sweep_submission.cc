@@ -1,14 +1,19 @@
 // Copyright 2026 The DCS Authors.
 #include "coordinator/sweep_submission.h"
 
+#include <yaml-cpp/yaml.h>
+
 #include <utility>
 
 #include "absl/strings/str_cat.h"
 #include "common/enum_names.h"
+#include "common/status_macros.h"
+#include "common/status_util.h"
 #include "coordinator/run_submission.h"
-#include "coordinator/study_sweep_spec.h"
 #include "env/observe_mode.h"
+#include "run/seeded_runs.h"
 #include "run/sweep_spec_yaml.h"
+#include "run/yaml_reader.h"
 
 namespace dcs::coordinator {
 
@@ -16,39 +21,41 @@ absl::StatusOr<ExpandedSweep> ExpandSweep(const std::string& spec_text,
                                           const std::string& spec_name,
                                           const std::string& default_name,
                                           const std::string& request_id) {
-  absl::StatusOr<run::SweepSpec> spec = run::ParseSweepSpecYaml(spec_text, spec_name);
-  if (!spec.ok()) return spec.status();
+  run::YamlReader reader(spec_name);
+  DCS_ASSIGN_OR_RETURN(const YAML::Node root, reader.Load(spec_text));
+  DCS_ASSIGN_OR_RETURN(run::SweepSpec spec, run::ReadSweepSpec(reader, root));
   ExpandedSweep sweep;
   SweepSubmission& submission = sweep.submission;
   submission = {.request_id = request_id,
-                .name = spec->name.empty() ? default_name : spec->name,
+                .name = spec.name.empty() ? default_name : spec.name,
                 .spec = spec_text,
-                .seeds = static_cast<int>(spec->seeds.size())};
-  if (spec->study) {  // its trials and runs come as its study asks for them
-    absl::StatusOr<StudySweepSpec> study = ParseStudySweepYaml(spec_text, spec_name);
-    if (!study.ok()) return study.status();
-    submission.study = std::move(study->study);
+                .seeds = static_cast<int>(spec.seeds.size())};
+  if (spec.study) {  // its trials and runs come as its study asks for them
+    DCS_ASSIGN_OR_RETURN(StudySweepSpec study, ReadStudySweep(reader, root, std::move(spec)));
+    submission.study = study.study;
     submission.study->request_id = request_id;
     submission.study->name = submission.name;
+    sweep.study = std::move(study);
     return sweep;
   }
-  for (const run::SweepTrial& trial : spec->trials) {
-    submission.trials.push_back({.condition = trial.condition,
-                                 .family = trial.family,
-                                 .observe = std::string(NameOf(env::kObserveModeNames,
-                                                               trial.observe))});
+  std::vector<run::SeededRuns> trials;
+  for (run::SweepTrial& trial : spec.trials) {
+    const TrialRecord& record = submission.trials.emplace_back(
+        TrialRecord{.condition = trial.condition,
+                    .family = trial.family,
+                    .observe = std::string(NameOf(env::kObserveModeNames, trial.observe))});
+    DCS_RETURN_IF_ERROR(Annotate(
+        CheckPlannable(trial.spec),
+        absl::StrCat(spec_name, ": ", record.condition, " (", record.observe, ")")));
+    trials.emplace_back(std::move(trial.spec), std::move(trial.config));
   }
-  for (uint64_t seed : spec->seeds) {
-    for (size_t t = 0; t < spec->trials.size(); ++t) {
-      const TrialRecord& trial = submission.trials[t];
-      const std::string trial_name = absl::StrCat(trial.condition, " (", trial.observe, ")");
-      absl::StatusOr<run::RunRequest> run = CheckSubmittedRun(
-          spec->trials[t].config, absl::StrCat(spec_name, ": ", trial_name), seed);
-      if (!run.ok()) return run.status();
+  for (uint64_t seed : spec.seeds) {
+    for (size_t t = 0; t < trials.size(); ++t) {
+      run::RunRequest run = trials[t].Run(seed);
       submission.runs.push_back(
           {.trial = static_cast<int>(t),
-           .run = SubmissionOf(*run, absl::StrCat(request_id, "/", t, "/", seed))});
-      sweep.requests.push_back(*std::move(run));
+           .run = SubmissionOf(run, absl::StrCat(request_id, "/", t, "/", seed))});
+      sweep.requests.push_back(std::move(run));
     }
   }
   return sweep;

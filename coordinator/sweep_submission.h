@@ -2,16 +2,19 @@
 #ifndef DCS_COORDINATOR_SWEEP_SUBMISSION_H_
 #define DCS_COORDINATOR_SWEEP_SUBMISSION_H_
 
-// A sweep spec submitted remotely, checked whole before anything is stored: parsed and
+// A sweep spec submitted remotely, checked whole before anything is stored: read once and
 // validated (run/sweep_spec_yaml.h: every problem with its path and line), then each of its
-// runs checked as a run submitted alone is (coordinator/run_submission.h), so nothing is
-// queued that no learner could train. Thread-safe (pure functions).
+// trials planned as a run submitted alone is (coordinator/run_submission.h), so nothing is
+// queued that no learner could train. Each run is made from its trial's spec and text as read
+// (run/seeded_runs.h), not read again. Thread-safe (pure functions).
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
 #include "coordinator/run_store.h"
+#include "coordinator/study_sweep_spec.h"
 #include "run/run_directory.h"
 
 namespace dcs::coordinator {
@@ -21,6 +24,8 @@ struct ExpandedSweep {
   // One per submission.runs entry, in the same order: the run's spec and config, to write its
   // directory once it has an id.
   std::vector<run::RunRequest> requests;
+  // A study sweep's spec as read, for the study's driver (coordinator/study_sweep_driver.h).
+  std::optional<StudySweepSpec> study;
 };
 
 // The sweep of `spec_text` (named `spec_name` in errors), named by the spec or else
@@ -29,7 +34,7 @@ struct ExpandedSweep {
 // trial's second, so early results cover the whole grid. A study sweep's submission holds its
 // study (its request id the sweep's) and no trials or runs (coordinator/study_sweep.h adds them).
 // INVALID_ARGUMENT as ParseSweepSpecYaml (ParseStudySweepYaml for a study sweep), or as
-// CheckSubmittedRun naming the trial.
+// CheckPlannable naming the trial.
 absl::StatusOr<ExpandedSweep> ExpandSweep(const std::string& spec_text,
                                           const std::string& spec_name,
                                           const std::string& default_name,

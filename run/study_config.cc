@@ -51,9 +51,9 @@ absl::Status ValidateStudyKeyPaths(const SearchSpace& space) {
   return absl::OkStatus();
 }
 
-absl::StatusOr<std::string> TrialRunConfig(absl::string_view base, absl::string_view where,
-                                           const SearchSpace& space,
-                                           const ParameterValues& values) {
+absl::StatusOr<SeededRuns> TrialRunConfig(absl::string_view base, absl::string_view where,
+                                          const SearchSpace& space,
+                                          const ParameterValues& values) {
   DCS_RETURN_IF_ERROR(ValidateStudyKeyPaths(space));
   YamlReader reader{std::string(where)};
   DCS_ASSIGN_OR_RETURN(const YAML::Node root, reader.Load(base));
@@ -90,9 +90,9 @@ absl::StatusOr<std::string> TrialRunConfig(absl::string_view base, absl::string_
   if (written != values.size()) {
     return absl::InvalidArgumentError("the trial has values of parameters the space lacks");
   }
-  const std::string text = YamlText(*config);
-  DCS_RETURN_IF_ERROR(ParseRunSpecYaml(text, where).status());
-  return text;
+  std::string text = YamlText(*config);
+  DCS_ASSIGN_OR_RETURN(RunSpec spec, ParseRunSpecYaml(text, where));
+  return SeededRuns(std::move(spec), std::move(text));
 }
 
 }  // namespace dcs::run

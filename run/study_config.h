@@ -16,6 +16,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "run/search_space.h"
+#include "run/seeded_runs.h"
 
 namespace dcs::run {
 
@@ -23,15 +24,16 @@ namespace dcs::run {
 // parameters' paths overlap (`schedule` and `schedule.period`).
 absl::Status ValidateStudyKeyPaths(const SearchSpace& space);
 
-// The run config (YAML text) of a trial: `base` (a run config without its seed; `where` names it
-// in errors) with each of the trial's `values` (internal representation, as a sampler gives them)
-// at its parameter's key path: a categorical's choice as a word, an int as an integer, a float
-// with the digits that read back to it. Mappings on a path that the base lacks are created. The
-// result is checked as a run config is (ParseRunSpecYaml), with errors at the paths where the
-// values went. INVALID_ARGUMENT for a path that cannot be taken (a key into a list, an index past
-// its end), a value of no parameter of the space, or a run config that does not validate.
-absl::StatusOr<std::string> TrialRunConfig(absl::string_view base, absl::string_view where,
-                                           const SearchSpace& space, const ParameterValues& values);
+// The run config of a trial, as YAML text and as read (the runs of its seeds): `base` (a run
+// config without its seed; `where` names it in errors) with each of the trial's `values`
+// (internal representation, as a sampler gives them) at its parameter's key path: a
+// categorical's choice as a word, an int as an integer, a float with the digits that read back
+// to it. Mappings on a path that the base lacks are created. The result is read and checked as
+// a run config is (ParseRunSpecYaml), with errors at the paths where the values went.
+// INVALID_ARGUMENT for a path that cannot be taken (a key into a list, an index past its end), a
+// value of no parameter of the space, or a run config that does not validate.
+absl::StatusOr<SeededRuns> TrialRunConfig(absl::string_view base, absl::string_view where,
+                                          const SearchSpace& space, const ParameterValues& values);
 
 }  // namespace dcs::run
 

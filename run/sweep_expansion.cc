@@ -180,7 +180,8 @@ void SweepExpansion::AddCondition(const SpecCondition& condition, const YAML::No
     trials_.push_back({.condition = name,
                        .family = FamilyOf(*run),
                        .observe = mode.mode,
-                       .config = YamlText(document)});
+                       .config = YamlText(document),
+                       .spec = *std::move(run)});
   }
 }
 

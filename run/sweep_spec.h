@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "env/observe_mode.h"
+#include "run/run_spec.h"
 
 namespace dcs::run {
 
@@ -24,9 +25,11 @@ struct SweepTrial {
   std::string family;
   env::ObserveMode observe = env::ObserveMode::kNone;
   // The trial's run config as YAML text without a `seed` key (a run adds its own,
-  // run::ConfigWithSeed): ParseRunSpecYaml accepts it and reads the RunSpec the sweep's
-  // validation read.
+  // run::ConfigWithSeed): ParseRunSpecYaml accepts it and reads `spec`.
   std::string config;
+  // The run config as the sweep's validation read it (its seed the default): the trial's runs
+  // are made from it and `config` (run/seeded_runs.h), not read again.
+  RunSpec spec;
 };
 
 struct SweepSpec {

@@ -72,9 +72,9 @@ struct Condition {
 // Reads one sweep spec, collecting its problems rather than stopping at the first.
 class SweepParser {
  public:
-  explicit SweepParser(absl::string_view where) : where_(where), reader_(std::string(where)) {}
+  explicit SweepParser(const YamlReader& reader) : where_(reader.where()), reader_(reader) {}
 
-  absl::StatusOr<SweepSpec> Parse(absl::string_view text);
+  absl::StatusOr<SweepSpec> ReadSpec(const YAML::Node& root);
 
  private:
   // Calls `read(key, key_node, value, key_path)` for each entry of the mapping `node` at `path`;
@@ -100,7 +100,7 @@ class SweepParser {
   void CheckRuns();
 
   std::string where_;
-  YamlReader reader_;
+  const YamlReader& reader_;
   std::optional<YamlArena> arena_;  // of the spec's document
   ConfigProblems problems_;
 
@@ -427,17 +427,15 @@ void SweepParser::CheckRuns() {
                        " runs; a sweep may make at most ", kMaxRuns));
 }
 
-absl::StatusOr<SweepSpec> SweepParser::Parse(absl::string_view text) {
-  absl::StatusOr<YAML::Node> root = reader_.Load(text);
-  if (!root.ok()) return root.status();
-  if (!root->IsMap()) {
-    return reader_.Error("", *root, "the document must be a sweep spec: a mapping with seeds, "
-                                    "conditions and the runs' base keys");
+absl::StatusOr<SweepSpec> SweepParser::ReadSpec(const YAML::Node& root) {
+  if (!root.IsMap()) {
+    return reader_.Error("", root, "the document must be a sweep spec: a mapping with seeds, "
+                                   "conditions and the runs' base keys");
   }
-  arena_.emplace(*root);
+  arena_.emplace(root);
   SweepSpec spec;
   try {
-    TopLevel(*root);
+    TopLevel(root);
     if (!has_seeds_) {
       Problem(reader_.errors().At(
           "seeds", "missing: give the number of seeds N (seeds 0..N-1) or a list of seeds"));
@@ -496,7 +494,14 @@ absl::StatusOr<SweepSpec> SweepParser::Parse(absl::string_view text) {
 }  // namespace
 
 absl::StatusOr<SweepSpec> ParseSweepSpecYaml(absl::string_view text, absl::string_view where) {
-  return SweepParser(where).Parse(text);
+  const YamlReader reader{std::string(where)};
+  absl::StatusOr<YAML::Node> root = reader.Load(text);
+  if (!root.ok()) return root.status();
+  return ReadSweepSpec(reader, *root);
+}
+
+absl::StatusOr<SweepSpec> ReadSweepSpec(const YamlReader& reader, const YAML::Node& root) {
+  return SweepParser(reader).ReadSpec(root);
 }
 
 }  // namespace dcs::run

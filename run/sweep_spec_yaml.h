@@ -78,15 +78,24 @@
 //
 // Thread-safe (pure functions).
 
+#include <yaml-cpp/yaml.h>
+
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "run/sweep_spec.h"
+#include "run/yaml_reader.h"
 
 namespace dcs::run {
 
 // The sweep spec in `text`, expanded and validated; `where` names it in errors (its file path).
 // INVALID_ARGUMENT for every problem listed above, and as ParseRunSpecYaml for each trial.
 absl::StatusOr<SweepSpec> ParseSweepSpecYaml(absl::string_view text, absl::string_view where);
+
+// The sweep spec `root`, a document `reader` loaded (which names it in errors), read as
+// ParseSweepSpecYaml reads its text, with the same errors: for a caller that reads more of the
+// document (a study sweep's `study:` block, coordinator/study_sweep_spec.h) without loading it
+// again. `root` is left as it was.
+absl::StatusOr<SweepSpec> ReadSweepSpec(const YamlReader& reader, const YAML::Node& root);
 
 }  // namespace dcs::run
 

@@ -2,20 +2,21 @@
 //
 // dcs-coordinator: knows the cluster's workers, keeps runs in its data directory (a SQLite
 // store and each run's files), leases runs to learners and env slots to actors, and takes back
-// the leases whose holders went silent.
+// the leases whose holders went silent. The main builds and starts: what the coordinator does on
+// its clock is coordinator/'s (the lease reaper, the study sweeps' driver), ticked here.
 
 #include <filesystem>
 #include <memory>
 #include <thread>
 
-#include "absl/container/flat_hash_map.h"
 #include "absl/strings/str_cat.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
+#include "coordinator/lease_reaper.h"
 #include "coordinator/library_versions.h"
 #include "coordinator/run_store.h"
-#include "coordinator/study_sweep.h"
+#include "coordinator/study_sweep_driver.h"
 #include "coordinator/sweep_results.h"
 #include "coordinator/worker_registry.h"
 #include "services/command_line.h"
@@ -66,7 +67,11 @@ class CoordinatorRole final : public ServiceRole {
                                          .string(),
                                      {.lease_duration = runs_.lease_duration}, absl::Now()));
     runs_.store = store_.get();
+    reaper_ = std::make_unique<coordinator::LeaseReaper>(*store_);
     study_logs_ = std::make_unique<coordinator::CompletedRunLogs>(runs_.data_dir);
+    study_sweeps_ = std::make_unique<coordinator::StudySweepDriver>(*store_, runs_.data_dir,
+                                                                    *study_logs_);
+    runs_.study_sweeps = study_sweeps_.get();
     metrics.AddCollectable(std::make_shared<WorkerCollector>(*registry_));
     metrics.AddCollectable(std::make_shared<RunCollector>(*store_));
     expired_ = &prometheus::BuildCounter()
@@ -85,7 +90,7 @@ class CoordinatorRole final : public ServiceRole {
   }
 
   absl::Status Start(Server& server, const std::string& /*listen_address*/) override {
-    reaper_ = std::thread([this] { ReapLapsedLeases(); });
+    ticker_ = std::thread([this] { TickUntilStopped(); });
     server.SetServing(true);
     return absl::OkStatus();
   }
@@ -93,66 +98,48 @@ class CoordinatorRole final : public ServiceRole {
   void Stop() override {
     if (stopping_.HasBeenNotified()) return;
     stopping_.Notify();
-    if (reaper_.joinable()) reaper_.join();
+    if (ticker_.joinable()) ticker_.join();
   }
 
  private:
-  // Returns lapsed leases to the queue as they lapse (every Acquire does too, but queue depths
-  // and run states should not wait for one), and steps the open study sweeps.
-  // Counts and logs every lapse, including those an Acquire expired first: under load the
-  // workers' Acquire calls find nearly all of them.
-  void ReapLapsedLeases() {
+  // Ticks the lease reaper and the study sweeps' driver, at least four times a lease, until
+  // Stop: lapsed leases go back to the queue without waiting for an Acquire, and study sweeps
+  // ask for trials as others finish. Errors are logged; the next tick tries again.
+  void TickUntilStopped() {
     const absl::Duration period = std::min(absl::Seconds(1), runs_.lease_duration / 4);
-    int64_t reported = store_->LeasesLapsed();
     while (!stopping_.WaitForNotificationWithTimeout(period)) {
-      absl::StatusOr<int> expired = store_->ExpireLeases(absl::Now());
-      if (!expired.ok()) {
-        Log(LogLevel::kError, "cannot expire leases", {{"error", expired.status().ToString()}});
+      const absl::Time now = absl::Now();
+      const coordinator::LeaseReaper::Reaped reaped = reaper_->Tick(now);
+      if (!reaped.status.ok()) {
+        Log(LogLevel::kError, "cannot expire leases", {{"error", reaped.status.ToString()}});
       }
-      const int64_t lapsed = store_->LeasesLapsed();
-      if (lapsed > reported) {
-        expired_->Increment(static_cast<double>(lapsed - reported));
-        Log(LogLevel::kWarning, "leases lapsed", {{"count", std::to_string(lapsed - reported)}});
-        reported = lapsed;
+      if (reaped.lapsed > 0) {
+        expired_->Increment(static_cast<double>(reaped.lapsed));
+        Log(LogLevel::kWarning, "leases lapsed", {{"count", std::to_string(reaped.lapsed)}});
       }
-      AdvanceStudySweeps();
+      LogStudySweeps(study_sweeps_->Tick(now));
     }
   }
 
-  // One step of each open study sweep (coordinator/study_sweep.h). A sweep whose step fails is
-  // logged and tried again at the next.
-  void AdvanceStudySweeps() {
-    absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = store_->ListOpenSweeps();
-    if (!sweeps.ok()) {
-      Log(LogLevel::kError, "cannot list study sweeps", {{"error", sweeps.status().ToString()}});
+  static void LogStudySweeps(
+      const absl::StatusOr<std::vector<coordinator::StudySweepDriver::SweepTick>>& ticks) {
+    if (!ticks.ok()) {
+      Log(LogLevel::kError, "cannot list study sweeps", {{"error", ticks.status().ToString()}});
       return;
     }
-    for (const coordinator::SweepRecord& sweep : *sweeps) {
-      auto spec = study_specs_.find(sweep.id);
-      if (spec == study_specs_.end()) {  // checked when it was submitted
-        absl::StatusOr<coordinator::StudySweepSpec> parsed =
-            coordinator::ParseStudySweepYaml(sweep.spec, sweep.name);
-        if (!parsed.ok()) {
-          Log(LogLevel::kError, "cannot read a study sweep's spec",
-              {{"sweep_id", sweep.id}, {"error", parsed.status().ToString()}});
-          continue;
-        }
-        spec = study_specs_.emplace(sweep.id, *std::move(parsed)).first;
-      }
-      absl::StatusOr<coordinator::StudySweepStep> step = coordinator::AdvanceStudySweep(
-          *store_, runs_.data_dir, *study_logs_, sweep, spec->second, absl::Now());
-      if (!step.ok()) {
+    for (const coordinator::StudySweepDriver::SweepTick& tick : *ticks) {
+      if (!tick.step.ok()) {
         Log(LogLevel::kError, "cannot step a study sweep",
-            {{"sweep_id", sweep.id}, {"error", step.status().ToString()}});
-      } else if (step->asked + step->told + step->retrained > 0 || step->closed) {
+            {{"sweep_id", tick.sweep_id}, {"error", tick.step.status().ToString()}});
+      } else if (tick.step->asked + tick.step->told + tick.step->retrained > 0 ||
+                 tick.step->closed) {
         Log(LogLevel::kInfo, "study sweep stepped",
-            {{"sweep_id", sweep.id},
-             {"asked", std::to_string(step->asked)},
-             {"told", std::to_string(step->told)},
-             {"retrained", std::to_string(step->retrained)},
-             {"closed", step->closed ? "true" : "false"}});
+            {{"sweep_id", tick.sweep_id},
+             {"asked", std::to_string(tick.step->asked)},
+             {"told", std::to_string(tick.step->told)},
+             {"retrained", std::to_string(tick.step->retrained)},
+             {"closed", tick.step->closed ? "true" : "false"}});
       }
-      if (step.ok() && step->closed) study_specs_.erase(spec);
     }
   }
 
@@ -161,12 +148,12 @@ class CoordinatorRole final : public ServiceRole {
   std::unique_ptr<coordinator::WorkerRegistry> registry_;
   std::unique_ptr<coordinator::RunStore> store_;
   prometheus::Counter* expired_ = nullptr;
-  std::unique_ptr<CoordinatorService> service_;
-  // The reaper's: the open study sweeps' specs, parsed once, and their completed runs' logs.
-  absl::flat_hash_map<std::string, coordinator::StudySweepSpec> study_specs_;
+  std::unique_ptr<coordinator::LeaseReaper> reaper_;
   std::unique_ptr<coordinator::CompletedRunLogs> study_logs_;
+  std::unique_ptr<coordinator::StudySweepDriver> study_sweeps_;  // the service's too
+  std::unique_ptr<CoordinatorService> service_;
   absl::Notification stopping_;
-  std::thread reaper_;
+  std::thread ticker_;
 };
 
 }  // namespace

@@ -22,6 +22,7 @@
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
 #include "coordinator/run_store.h"
+#include "coordinator/study_sweep_driver.h"
 #include "coordinator/sweep_results.h"
 #include "coordinator/worker_registry.h"
 #include "dcs/v1/evaluation.pb.h"
@@ -38,6 +39,9 @@ namespace dcs::services {
 // Where the coordinator keeps runs.
 struct RunStorage {
   coordinator::RunStore* store = nullptr;  // borrowed
+  // Borrowed; it keeps each study sweep's spec as SubmitSweep read it. None: no one here steps
+  // study sweeps (they wait in the store).
+  coordinator::StudySweepDriver* study_sweeps = nullptr;
   std::string data_dir;                    // runs' directories: coordinator/run_files.h
   absl::Duration lease_duration = absl::Seconds(10);
   int keep_checkpoints = 3;

@@ -51,6 +51,9 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitSweep(grpc::CallbackServerCo
     }
     DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord record,
                          runs_.store->SubmitSweep(sweep.submission, absl::Now()));
+    if (sweep.study.has_value() && runs_.study_sweeps != nullptr) {
+      runs_.study_sweeps->Adopt(record.id, *std::move(sweep.study));
+    }
     // Each run's directory holds its config, as `dcs train` writes it (again, on a retry).
     DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
                          runs_.store->ListSweepRuns(record.id));

@@ -173,7 +173,7 @@ TEST(StudySweepSpecTest, TheStudiesInConfigsMakeValidRunConfigs) {
           values[schedule + "T_0"] = 250;
         }
       }
-      const absl::StatusOr<std::string> config =
+      const absl::StatusOr<run::SeededRuns> config =
           run::TrialRunConfig(spec->sweep.trials.front().config, "base", spec->space, values);
       EXPECT_TRUE(config.ok()) << "mode " << mode << ": " << config.status();
     }

@@ -42,7 +42,7 @@ constexpr char kStages[] = R"(parameters:
 
 TEST(TrialRunConfigTest, WritesEachValueAtItsKeyPath) {
   const SearchSpace space = *ParseSearchSpaceYaml(kStages, "space.yaml");
-  const absl::StatusOr<std::string> config =
+  const absl::StatusOr<SeededRuns> config =
       TrialRunConfig(kBase, "study.yaml", space,
                      {{"stages[0].schedule.family", 1},
                       {"stages[0].schedule.period", 125},
@@ -51,8 +51,12 @@ TEST(TrialRunConfigTest, WritesEachValueAtItsKeyPath) {
                       {"stages[1].schedule.T_0", 250},
                       {"ppo.learning_rate", 2.5e-4}});
   ASSERT_TRUE(config.ok()) << config.status();
-  const absl::StatusOr<RunSpec> run = ParseRunSpecYaml(*config, "trial");
-  ASSERT_TRUE(run.ok()) << run.status() << "\n" << *config;
+  // The text reads back to the spec the trial carries.
+  const absl::StatusOr<RunSpec> run = ParseRunSpecYaml(config->config_text(), "trial");
+  ASSERT_TRUE(run.ok()) << run.status() << "\n" << config->config_text();
+  ASSERT_EQ(config->spec().stages.size(), 2u);
+  EXPECT_EQ(config->spec().stages[1].schedule.params, run->stages[1].schedule.params);
+  EXPECT_EQ(config->spec().ppo.learning_rate, 2.5e-4);
   ASSERT_EQ(run->stages.size(), 2u);
   EXPECT_EQ(run->stages[0].steps, 60000);
   // Numbers as numbers (a quoted one would be a word to the schedule), floats to the last bit.
@@ -67,12 +71,12 @@ TEST(TrialRunConfigTest, WritesEachValueAtItsKeyPath) {
 
 TEST(TrialRunConfigTest, AConstantStageGetsOnlyItsFamily) {
   const SearchSpace space = *ParseSearchSpaceYaml(kStages, "space.yaml");
-  const absl::StatusOr<std::string> config = TrialRunConfig(kBase, "study.yaml", space,
-                                                            {{"stages[0].schedule.family", 0},
-                                                             {"stages[1].schedule.family", 0},
-                                                             {"ppo.learning_rate", 3e-4}});
+  const absl::StatusOr<SeededRuns> config = TrialRunConfig(kBase, "study.yaml", space,
+                                                           {{"stages[0].schedule.family", 0},
+                                                            {"stages[1].schedule.family", 0},
+                                                            {"ppo.learning_rate", 3e-4}});
   ASSERT_TRUE(config.ok()) << config.status();
-  const RunSpec run = *ParseRunSpecYaml(*config, "trial");
+  const RunSpec& run = config->spec();
   EXPECT_EQ(run.stages[0].schedule.family, "constant");
   EXPECT_TRUE(run.stages[0].schedule.params.empty());
 }
