@@ -7,27 +7,23 @@
 //   BM_ExpandStudySearch    the paper's multi-stage search, a study sweep
 //                           (configs/paper/cartpole_multistage_search.yaml: no runs until asked)
 
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "benchmark/benchmark.h"
+#include "common/atomic_file.h"
 #include "coordinator/sweep_submission.h"
 
 namespace dcs::coordinator {
 namespace {
 
-std::string ReadText(const std::string& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
 void Expand(benchmark::State& state, const std::string& path) {
-  const std::string text = ReadText(path);
+  const absl::StatusOr<std::string> text = ReadFile(path);
+  if (!text.ok()) {
+    state.SkipWithError(std::string(text.status().message()).c_str());
+    return;
+  }
   for (auto _ : state) {
-    absl::StatusOr<ExpandedSweep> sweep = ExpandSweep(text, path, "sweep", "request");
+    absl::StatusOr<ExpandedSweep> sweep = ExpandSweep(*text, path, "sweep", "request");
     if (!sweep.ok()) {
       state.SkipWithError(std::string(sweep.status().message()).c_str());
       return;
