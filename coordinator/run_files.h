@@ -13,7 +13,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
-#include "coordinator/run_store.h"
+#include "coordinator/checkpoint_table.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "run/run_checkpoint.h"
 #include "run/run_directory.h"
@@ -32,7 +32,7 @@ std::string RunDirectory(absl::string_view data_dir, absl::string_view run_id);
 // with `log` as run::WritePackedCheckpoint and run::WriteEvaluationLog do, keeping the newest
 // `keep`. Nothing is stored unless all of it checks. Returns its index entry (the SHA-256 is
 // learner.bin's). A full disk is UNAVAILABLE, not RESOURCE_EXHAUSTED: the learner may send the
-// same checkpoint again once there is room, as after a full store (store_rows::StoreError).
+// same checkpoint again once there is room, as after a full store (coordinator/store.h).
 absl::StatusOr<CheckpointRecord> StoreCheckpoint(const std::string& run_dir,
                                                  const run::PackedCheckpoint& checkpoint,
                                                  const v1::EvaluationLog& log, int keep);

@@ -9,7 +9,7 @@
 
 #include "absl/status/statusor.h"
 #include "coordinator/gnuplot_figure.h"
-#include "coordinator/run_store.h"
+#include "coordinator/study_table.h"
 #include "dcs/v1/report.pb.h"
 
 namespace dcs::coordinator {

@@ -14,7 +14,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "absl/synchronization/mutex.h"
-#include "coordinator/run_store.h"
+#include "coordinator/sweep_table.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "dcs/v1/sweep.pb.h"
 

@@ -19,7 +19,7 @@
 #include "absl/time/clock.h"
 #include "absl/time/time.h"
 #include "absl/types/span.h"
-#include "coordinator/run_store.h"
+#include "coordinator/run_table.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "services/log.h"
 #include "services/unary_call.h"

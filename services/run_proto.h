@@ -2,8 +2,9 @@
 #ifndef DCS_SERVICES_RUN_PROTO_H_
 #define DCS_SERVICES_RUN_PROTO_H_
 
-// Conversions between the coordinator's run and sweep types (coordinator/run_store.h,
-// coordinator/run_files.h) and dcs.v1 messages. Thread-safe (pure functions).
+// Conversions between the coordinator's run, evaluation and sweep types
+// (coordinator/run_table.h, evaluation_table.h, sweep_table.h, run_files.h) and dcs.v1
+// messages. Thread-safe (pure functions).
 
 #include <vector>
 
@@ -11,7 +12,8 @@
 #include "absl/strings/string_view.h"
 #include "coordinator/run_files.h"
 #include "coordinator/run_state.h"
-#include "coordinator/run_store.h"
+#include "coordinator/evaluation_table.h"
+#include "coordinator/sweep_table.h"
 #include "dcs/v1/coordinator_service.pb.h"
 #include "dcs/v1/run.pb.h"
 #include "dcs/v1/sweep.pb.h"

@@ -2,11 +2,11 @@
 #ifndef DCS_SERVICES_STUDY_PROTO_H_
 #define DCS_SERVICES_STUDY_PROTO_H_
 
-// Conversions between the coordinator's studies (coordinator/run_store.h) and dcs.v1 messages,
+// Conversions between the coordinator's studies (coordinator/study_table.h) and dcs.v1 messages,
 // both ways: the coordinator sends what the client reads. Thread-safe (pure functions).
 
 #include "absl/status/statusor.h"
-#include "coordinator/run_store.h"
+#include "coordinator/study_table.h"
 #include "dcs/v1/study.pb.h"
 
 namespace dcs::services {

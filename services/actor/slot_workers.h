@@ -33,7 +33,7 @@
 #include "absl/synchronization/mutex.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/run_table.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 
 namespace dcs::services {

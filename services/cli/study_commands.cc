@@ -16,7 +16,7 @@
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
 #include "common/text_table.h"
-#include "coordinator/run_store.h"
+#include "coordinator/study_table.h"
 #include "coordinator/study_figures.h"
 #include "run/search_space_yaml.h"
 #include "services/cli/cluster_client.h"

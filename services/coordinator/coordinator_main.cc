@@ -14,7 +14,7 @@
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
 #include "coordinator/library_versions.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/study_sweep.h"
 #include "coordinator/sweep_results.h"
 #include "coordinator/worker_registry.h"
@@ -61,10 +61,10 @@ class CoordinatorRole final : public ServiceRole {
           absl::StrCat("cannot create the data directory ", runs_.data_dir, ": ",
                        error.message()));
     }
-    DCS_ASSIGN_OR_RETURN(store_, coordinator::RunStore::Open(
-                                     (std::filesystem::path(runs_.data_dir) / "coordinator.db")
-                                         .string(),
-                                     {.lease_duration = runs_.lease_duration}, absl::Now()));
+    DCS_ASSIGN_OR_RETURN(store_,
+                         coordinator::Store::Open(
+                             (std::filesystem::path(runs_.data_dir) / "coordinator.db").string(),
+                             {.lease_duration = runs_.lease_duration}, absl::Now()));
     runs_.store = store_.get();
     study_logs_ = std::make_unique<coordinator::CompletedRunLogs>(runs_.data_dir);
     metrics.AddCollectable(std::make_shared<WorkerCollector>(*registry_));
@@ -122,7 +122,8 @@ class CoordinatorRole final : public ServiceRole {
   // One step of each open study sweep (coordinator/study_sweep.h). A sweep whose step fails is
   // logged and tried again at the next.
   void AdvanceStudySweeps() {
-    absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = store_->ListOpenSweeps();
+    absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps =
+        store_->sweeps().ListOpenSweeps();
     if (!sweeps.ok()) {
       Log(LogLevel::kError, "cannot list study sweeps", {{"error", sweeps.status().ToString()}});
       return;
@@ -159,7 +160,7 @@ class CoordinatorRole final : public ServiceRole {
   coordinator::WorkerRegistryOptions options_;
   RunStorage runs_{.data_dir = "dcs-coordinator-data"};
   std::unique_ptr<coordinator::WorkerRegistry> registry_;
-  std::unique_ptr<coordinator::RunStore> store_;
+  std::unique_ptr<coordinator::Store> store_;
   prometheus::Counter* expired_ = nullptr;
   std::unique_ptr<CoordinatorService> service_;
   // The reaper's: the open study sweeps' specs, parsed once, and their completed runs' logs.

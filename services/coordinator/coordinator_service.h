@@ -21,7 +21,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/sweep_results.h"
 #include "coordinator/worker_registry.h"
 #include "dcs/v1/evaluation.pb.h"
@@ -37,8 +37,8 @@ namespace dcs::services {
 
 // Where the coordinator keeps runs.
 struct RunStorage {
-  coordinator::RunStore* store = nullptr;  // borrowed
-  std::string data_dir;                    // runs' directories: coordinator/run_files.h
+  coordinator::Store* store = nullptr;  // borrowed
+  std::string data_dir;                 // runs' directories: coordinator/run_files.h
   absl::Duration lease_duration = absl::Seconds(10);
   int keep_checkpoints = 3;
 };

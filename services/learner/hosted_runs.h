@@ -32,7 +32,7 @@
 #include "absl/synchronization/mutex.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/run_state.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "learner/run_host.h"
 #include "run/run_checkpoint.h"

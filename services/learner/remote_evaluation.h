@@ -15,7 +15,7 @@
 #include <memory>
 
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/run_table.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "learner/run_host.h"
 

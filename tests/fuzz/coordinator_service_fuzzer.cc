@@ -27,7 +27,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/worker_registry.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "services/auth.h"
@@ -55,8 +55,8 @@ class Coordinator {
         coordinator::WorkerRegistry::Create({});
     DCS_FUZZ_CHECK(registry.ok(), registry.status());
     registry_ = *std::move(registry);
-    absl::StatusOr<std::unique_ptr<coordinator::RunStore>> store =
-        coordinator::RunStore::Open(data_dir_ + "/coordinator.db", {}, absl::Now());
+    absl::StatusOr<std::unique_ptr<coordinator::Store>> store =
+        coordinator::Store::Open(data_dir_ + "/coordinator.db", {}, absl::Now());
     DCS_FUZZ_CHECK(store.ok(), store.status());
     store_ = *std::move(store);
     service_ = std::make_unique<services::CoordinatorService>(
@@ -86,7 +86,7 @@ class Coordinator {
   std::string data_dir_;
   prometheus::Registry metrics_;
   std::unique_ptr<coordinator::WorkerRegistry> registry_;
-  std::unique_ptr<coordinator::RunStore> store_;
+  std::unique_ptr<coordinator::Store> store_;
   std::unique_ptr<services::CoordinatorService> service_;
   std::unique_ptr<grpc::Server> server_;
   std::shared_ptr<grpc::Channel> channel_;

@@ -1,8 +1,5 @@
 // Copyright 2026 The DCS Authors.
-//
-// RunStore's studies (coordinator/run_store.h): a study's row, its trials, their parameter
-// values and intermediate values. Asking samples inside the transaction that stores the trial,
-// so trials asked at once from several clients see each other (the constant liar needs it).
+#include "coordinator/study_table.h"
 
 #include <SQLiteCpp/Database.h>
 #include <SQLiteCpp/Statement.h>
@@ -18,7 +15,7 @@
 #include "absl/strings/str_cat.h"
 #include "common/enum_names.h"
 #include "common/status_macros.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store_connection.h"
 #include "coordinator/store_rows.h"
 #include "run/search_space_yaml.h"
 
@@ -240,47 +237,49 @@ void FailRunningStudyTrials(SQLite::Database& db, int64_t sweep, absl::Time now)
 
 }  // namespace store_rows
 
-absl::StatusOr<StudyRecord> RunStore::CreateStudy(const StudySubmission& submission,
-                                                  absl::Time now) {
+absl::StatusOr<StudyRecord> StudyTable::CreateStudy(const StudySubmission& submission,
+                                                    absl::Time now) {
   DCS_RETURN_IF_ERROR(CheckStudySubmission(submission));
-  return Transaction([&]() -> absl::StatusOr<StudyRecord> {
-    SQLite::Statement existing(*db_, "SELECT number FROM studies WHERE request_id = ?");
+  return connection_.Transaction([&](SQLite::Database& db) -> absl::StatusOr<StudyRecord> {
+    SQLite::Statement existing(db, "SELECT number FROM studies WHERE request_id = ?");
     existing.bind(1, submission.request_id);
     const int64_t number = existing.executeStep()
                                ? existing.getColumn(0).getInt64()
-                               : InsertStudy(*db_, submission, std::nullopt, now);
-    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, StudyId(number)));
+                               : InsertStudy(db, submission, std::nullopt, now);
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(db, StudyId(number)));
     return row.record;
   });
 }
 
-absl::StatusOr<StudyRecord> RunStore::GetStudy(absl::string_view study_id) {
-  return Transaction([&]() -> absl::StatusOr<StudyRecord> {
-    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, study_id));
+absl::StatusOr<StudyRecord> StudyTable::GetStudy(absl::string_view study_id) {
+  return connection_.Transaction([&](SQLite::Database& db) -> absl::StatusOr<StudyRecord> {
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(db, study_id));
     return row.record;
   });
 }
 
-absl::StatusOr<std::vector<StudyRecord>> RunStore::ListStudies() {
-  return Transaction([&]() -> absl::StatusOr<std::vector<StudyRecord>> {
-    std::vector<StudyRecord> studies;
-    SQLite::Statement numbers(*db_, "SELECT number FROM studies ORDER BY number");
-    while (numbers.executeStep()) {
-      DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, StudyId(numbers.getColumn(0).getInt64())));
-      studies.push_back(std::move(row.record));
-    }
-    return studies;
-  });
+absl::StatusOr<std::vector<StudyRecord>> StudyTable::ListStudies() {
+  return connection_.Transaction(
+      [&](SQLite::Database& db) -> absl::StatusOr<std::vector<StudyRecord>> {
+        std::vector<StudyRecord> studies;
+        SQLite::Statement numbers(db, "SELECT number FROM studies ORDER BY number");
+        while (numbers.executeStep()) {
+          DCS_ASSIGN_OR_RETURN(StudyRow row,
+                               FindStudy(db, StudyId(numbers.getColumn(0).getInt64())));
+          studies.push_back(std::move(row.record));
+        }
+        return studies;
+      });
 }
 
-absl::StatusOr<StudyTrial> RunStore::AskTrial(absl::string_view study_id,
-                                              absl::string_view request_id, absl::Time now) {
+absl::StatusOr<StudyTrial> StudyTable::AskTrial(absl::string_view study_id,
+                                                absl::string_view request_id, absl::Time now) {
   if (request_id.empty()) return absl::InvalidArgumentError("an ask needs a request id");
-  return Transaction([&]() -> absl::StatusOr<StudyTrial> {
-    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, study_id));
+  return connection_.Transaction([&](SQLite::Database& db) -> absl::StatusOr<StudyTrial> {
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(db, study_id));
     const int64_t study = row.number;
     const std::vector<StudyTrial>& trials = row.trials;
-    SQLite::Statement asked(*db_,
+    SQLite::Statement asked(db,
                             "SELECT number FROM study_trials WHERE study = ? AND request_id = ?");
     asked.bind(1, study);
     asked.bind(2, std::string(request_id));
@@ -294,7 +293,7 @@ absl::StatusOr<StudyTrial> RunStore::AskTrial(absl::string_view study_id,
                      .value = kNaN};
     trial.values = MakeSampler(row.record.submission)->Sample(row.space, trials, trial.number);
 
-    SQLite::Statement insert(*db_,
+    SQLite::Statement insert(db,
                              "INSERT INTO study_trials (study, number, request_id, state, "
                              "created_at) VALUES (?, ?, ?, 'running', ?)");
     insert.bind(1, study);
@@ -302,7 +301,7 @@ absl::StatusOr<StudyTrial> RunStore::AskTrial(absl::string_view study_id,
     insert.bind(3, std::string(request_id));
     insert.bind(4, Micros(now));
     insert.exec();
-    SQLite::Statement value(*db_,
+    SQLite::Statement value(db,
                             "INSERT INTO study_trial_values (study, trial, name, value) "
                             "VALUES (?, ?, ?, ?)");
     for (const auto& [name, v] : trial.values) {
@@ -317,13 +316,13 @@ absl::StatusOr<StudyTrial> RunStore::AskTrial(absl::string_view study_id,
   });
 }
 
-absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64_t number,
-                                               TrialState state, double value, absl::Time now) {
+absl::StatusOr<StudyTrial> StudyTable::TellTrial(absl::string_view study_id, int64_t number,
+                                                 TrialState state, double value, absl::Time now) {
   if (state == TrialState::kRunning) {
     return absl::InvalidArgumentError("a trial is told complete, pruned or failed, not running");
   }
-  return Transaction([&]() -> absl::StatusOr<StudyTrial> {
-    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, study_id));
+  return connection_.Transaction([&](SQLite::Database& db) -> absl::StatusOr<StudyTrial> {
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(db, study_id));
     DCS_ASSIGN_OR_RETURN(StudyTrial* const found, FindTrial(row, number));
     StudyTrial& trial = *found;
     const TrialState current = trial.state;
@@ -337,7 +336,7 @@ absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64
                   : trial.state == TrialState::kPruned && !trial.reported.empty()
                       ? trial.reported.rbegin()->second
                       : kNaN;
-    SQLite::Statement update(*db_,
+    SQLite::Statement update(db,
                              "UPDATE study_trials SET state = ?, value = ?, finished_at = ? "
                              "WHERE study = ? AND number = ?");
     update.bind(1, std::string(NameOf(kTrialStateNames, trial.state)));
@@ -350,15 +349,15 @@ absl::StatusOr<StudyTrial> RunStore::TellTrial(absl::string_view study_id, int64
   });
 }
 
-absl::StatusOr<bool> RunStore::ReportTrial(absl::string_view study_id, int64_t number, int64_t step,
-                                           double value) {
-  return Transaction([&]() -> absl::StatusOr<bool> {
-    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, study_id));
+absl::StatusOr<bool> StudyTable::ReportTrial(absl::string_view study_id, int64_t number,
+                                             int64_t step, double value) {
+  return connection_.Transaction([&](SQLite::Database& db) -> absl::StatusOr<bool> {
+    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(db, study_id));
     DCS_ASSIGN_OR_RETURN(StudyTrial* const found, FindTrial(row, number));
     StudyTrial& trial = *found;
     DCS_RETURN_IF_ERROR(RequireRunning(trial.state, study_id, number));
     const int64_t study = row.number;
-    SQLite::Statement insert(*db_,
+    SQLite::Statement insert(db,
                              "INSERT OR IGNORE INTO study_trial_reports (study, trial, step, "
                              "value) VALUES (?, ?, ?, ?)");
     insert.bind(1, study);
@@ -379,7 +378,7 @@ absl::StatusOr<bool> RunStore::ReportTrial(absl::string_view study_id, int64_t n
         break;
     }
     std::map<int64_t, std::map<int, double>> rungs;
-    SQLite::Statement read(*db_,
+    SQLite::Statement read(db,
                            "SELECT trial, rung, value FROM study_trial_rungs WHERE study = ?");
     read.bind(1, study);
     while (read.executeStep()) {
@@ -392,7 +391,7 @@ absl::StatusOr<bool> RunStore::ReportTrial(absl::string_view study_id, int64_t n
     }
     const HalvingDecision decision =
         SuccessiveHalvingPrune(trial, rungs[number], others, trials, s.direction, s.pruner.halving);
-    SQLite::Statement write(*db_,
+    SQLite::Statement write(db,
                             "INSERT OR IGNORE INTO study_trial_rungs (study, trial, rung, value) "
                             "VALUES (?, ?, ?, ?)");
     for (const auto& [rung, recorded] : decision.rungs) {
@@ -407,11 +406,12 @@ absl::StatusOr<bool> RunStore::ReportTrial(absl::string_view study_id, int64_t n
   });
 }
 
-absl::StatusOr<std::vector<StudyTrial>> RunStore::ListStudyTrials(absl::string_view study_id) {
-  return Transaction([&]() -> absl::StatusOr<std::vector<StudyTrial>> {
-    DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(*db_, study_id));
-    return std::move(row.trials);
-  });
+absl::StatusOr<std::vector<StudyTrial>> StudyTable::ListStudyTrials(absl::string_view study_id) {
+  return connection_.Transaction(
+      [&](SQLite::Database& db) -> absl::StatusOr<std::vector<StudyTrial>> {
+        DCS_ASSIGN_OR_RETURN(StudyRow row, FindStudy(db, study_id));
+        return std::move(row.trials);
+      });
 }
 
 }  // namespace dcs::coordinator

@@ -1,7 +1,5 @@
 // Copyright 2026 The DCS Authors.
-//
-// RunStore's sweeps (coordinator/run_store.h): a sweep's row, its trials, and its runs, which
-// are ordinary runs that name their sweep and trial.
+#include "coordinator/sweep_table.h"
 
 #include <SQLiteCpp/Database.h>
 #include <SQLiteCpp/Statement.h>
@@ -14,7 +12,7 @@
 #include "common/enum_names.h"
 #include "common/status_macros.h"
 #include "coordinator/run_state.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store_connection.h"
 #include "coordinator/store_rows.h"
 
 namespace dcs::coordinator {
@@ -114,8 +112,8 @@ absl::Status CheckRunSubmission(const RunSubmission& run, absl::string_view what
 
 }  // namespace
 
-absl::StatusOr<SweepRecord> RunStore::SubmitSweep(const SweepSubmission& submission,
-                                                  absl::Time now) {
+absl::StatusOr<SweepRecord> SweepTable::SubmitSweep(const SweepSubmission& submission,
+                                                    absl::Time now) {
   if (submission.request_id.empty()) {
     return absl::InvalidArgumentError("a sweep submission needs a request id");
   }
@@ -134,14 +132,14 @@ absl::StatusOr<SweepRecord> RunStore::SubmitSweep(const SweepSubmission& submiss
     }
     DCS_RETURN_IF_ERROR(CheckRunSubmission(run.run, absl::StrCat("trial ", run.trial)));
   }
-  return Transaction([&]() -> absl::StatusOr<SweepRecord> {
-    SQLite::Statement existing(*db_, "SELECT number FROM sweeps WHERE request_id = ?");
+  return connection_.Transaction([&](SQLite::Database& db) -> absl::StatusOr<SweepRecord> {
+    SQLite::Statement existing(db, "SELECT number FROM sweeps WHERE request_id = ?");
     existing.bind(1, submission.request_id);
-    if (existing.executeStep()) return FindSweep(*db_, SweepId(existing.getColumn(0).getInt64()));
+    if (existing.executeStep()) return FindSweep(db, SweepId(existing.getColumn(0).getInt64()));
 
-    SQLite::Statement insert(*db_, "INSERT INTO sweeps (request_id, name, spec, seeds, open, "
-                                   "created_at, updated_at) VALUES (?, ?, ?, ?, ?, ?, ?) "
-                                   "RETURNING number");
+    SQLite::Statement insert(db, "INSERT INTO sweeps (request_id, name, spec, seeds, open, "
+                                 "created_at, updated_at) VALUES (?, ?, ?, ?, ?, ?, ?) "
+                                 "RETURNING number");
     insert.bind(1, submission.request_id);
     insert.bind(2, submission.name);
     insert.bind(3, submission.spec);
@@ -154,17 +152,17 @@ absl::StatusOr<SweepRecord> RunStore::SubmitSweep(const SweepSubmission& submiss
     insert.reset();
 
     for (size_t i = 0; i < submission.trials.size(); ++i) {
-      InsertTrial(*db_, number, static_cast<int>(i), submission.trials[i]);
+      InsertTrial(db, number, static_cast<int>(i), submission.trials[i]);
     }
     for (const SweepSubmission::Run& run : submission.runs) {
-      InsertRun(*db_, run.run, number, run.trial, now);
+      InsertRun(db, run.run, number, run.trial, now);
     }
-    if (submission.study.has_value()) InsertStudy(*db_, *submission.study, number, now);
-    return FindSweep(*db_, SweepId(number));
+    if (submission.study.has_value()) InsertStudy(db, *submission.study, number, now);
+    return FindSweep(db, SweepId(number));
   });
 }
 
-absl::StatusOr<std::vector<RunRecord>> RunStore::AddSweepTrial(
+absl::StatusOr<std::vector<RunRecord>> SweepTable::AddSweepTrial(
     absl::string_view sweep_id, const TrialRecord& trial, const std::vector<RunSubmission>& runs,
     absl::Time now) {
   if (!trial.study_trial.has_value() || runs.empty()) {
@@ -174,68 +172,70 @@ absl::StatusOr<std::vector<RunRecord>> RunStore::AddSweepTrial(
   for (const RunSubmission& run : runs) {
     DCS_RETURN_IF_ERROR(CheckRunSubmission(run, trial.condition));
   }
-  return Transaction([&]() -> absl::StatusOr<std::vector<RunRecord>> {
-    DCS_ASSIGN_OR_RETURN(const SweepRecord sweep, FindSweep(*db_, sweep_id));
-    const int64_t number = *SweepNumber(sweep_id);
-    SQLite::Statement existing(*db_, "SELECT trial FROM trials WHERE sweep = ? AND "
-                                     "study_trial = ? AND retrain = ?");
-    existing.bind(1, number);
-    existing.bind(2, *trial.study_trial);
-    existing.bind(3, trial.retrain ? 1 : 0);
-    int index = static_cast<int>(sweep.trials.size());
-    if (existing.executeStep()) {
-      index = existing.getColumn(0).getInt();
-    } else {
-      if (!sweep.open) {
-        return absl::FailedPreconditionError(
-            absl::StrCat(sweep_id, " is closed: it adds no more trials"));
-      }
-      InsertTrial(*db_, number, index, trial);
-      for (const RunSubmission& run : runs) InsertRun(*db_, run, number, index, now);
-      TouchSweep(*db_, number, now);
-    }
-    return FindRuns(*db_, absl::StrCat("sweep = ", number, " AND trial = ?"), index);
-  });
+  return connection_.Transaction(
+      [&](SQLite::Database& db) -> absl::StatusOr<std::vector<RunRecord>> {
+        DCS_ASSIGN_OR_RETURN(const SweepRecord sweep, FindSweep(db, sweep_id));
+        const int64_t number = *SweepNumber(sweep_id);
+        SQLite::Statement existing(db, "SELECT trial FROM trials WHERE sweep = ? AND "
+                                       "study_trial = ? AND retrain = ?");
+        existing.bind(1, number);
+        existing.bind(2, *trial.study_trial);
+        existing.bind(3, trial.retrain ? 1 : 0);
+        int index = static_cast<int>(sweep.trials.size());
+        if (existing.executeStep()) {
+          index = existing.getColumn(0).getInt();
+        } else {
+          if (!sweep.open) {
+            return absl::FailedPreconditionError(
+                absl::StrCat(sweep_id, " is closed: it adds no more trials"));
+          }
+          InsertTrial(db, number, index, trial);
+          for (const RunSubmission& run : runs) InsertRun(db, run, number, index, now);
+          TouchSweep(db, number, now);
+        }
+        return FindRuns(db, absl::StrCat("sweep = ", number, " AND trial = ?"), index);
+      });
 }
 
-absl::Status RunStore::CloseSweep(absl::string_view sweep_id, absl::Time now) {
-  return Transaction([&]() -> absl::Status {
-    DCS_RETURN_IF_ERROR(FindSweep(*db_, sweep_id).status());
+absl::Status SweepTable::CloseSweep(absl::string_view sweep_id, absl::Time now) {
+  return connection_.Transaction([&](SQLite::Database& db) -> absl::Status {
+    DCS_RETURN_IF_ERROR(FindSweep(db, sweep_id).status());
     const int64_t number = *SweepNumber(sweep_id);
-    SQLite::Statement close(*db_, "UPDATE sweeps SET open = 0 WHERE number = ?");
+    SQLite::Statement close(db, "UPDATE sweeps SET open = 0 WHERE number = ?");
     close.bind(1, number);
     close.exec();
-    TouchSweep(*db_, number, now);
+    TouchSweep(db, number, now);
     return absl::OkStatus();
   });
 }
 
-absl::StatusOr<std::vector<SweepRecord>> RunStore::ListOpenSweeps() {
-  return Transaction([&] { return FindSweeps(*db_, "open = 1"); });
+absl::StatusOr<std::vector<SweepRecord>> SweepTable::ListOpenSweeps() {
+  return connection_.Transaction([&](SQLite::Database& db) { return FindSweeps(db, "open = 1"); });
 }
 
-absl::StatusOr<SweepRecord> RunStore::GetSweep(absl::string_view sweep_id) {
-  return Transaction([&] { return FindSweep(*db_, sweep_id); });
+absl::StatusOr<SweepRecord> SweepTable::GetSweep(absl::string_view sweep_id) {
+  return connection_.Transaction([&](SQLite::Database& db) { return FindSweep(db, sweep_id); });
 }
 
-absl::StatusOr<std::vector<SweepRecord>> RunStore::ListSweeps() {
-  return Transaction([&] { return FindSweeps(*db_, "1"); });
+absl::StatusOr<std::vector<SweepRecord>> SweepTable::ListSweeps() {
+  return connection_.Transaction([&](SQLite::Database& db) { return FindSweeps(db, "1"); });
 }
 
-absl::StatusOr<std::vector<RunRecord>> RunStore::ListSweepRuns(absl::string_view sweep_id) {
-  return Transaction([&]() -> absl::StatusOr<std::vector<RunRecord>> {
-    DCS_ASSIGN_OR_RETURN(const int64_t number, SweepNumber(sweep_id));
-    DCS_RETURN_IF_ERROR(FindSweep(*db_, sweep_id).status());
-    return FindRuns(*db_, "sweep = ?", number);
-  });
+absl::StatusOr<std::vector<RunRecord>> SweepTable::ListSweepRuns(absl::string_view sweep_id) {
+  return connection_.Transaction(
+      [&](SQLite::Database& db) -> absl::StatusOr<std::vector<RunRecord>> {
+        DCS_ASSIGN_OR_RETURN(const int64_t number, SweepNumber(sweep_id));
+        DCS_RETURN_IF_ERROR(FindSweep(db, sweep_id).status());
+        return FindRuns(db, "sweep = ?", number);
+      });
 }
 
-absl::StatusOr<SweepRecord> RunStore::CancelSweep(absl::string_view sweep_id, absl::Time now) {
-  return Transaction([&]() -> absl::StatusOr<SweepRecord> {
-    DCS_ASSIGN_OR_RETURN(const SweepRecord sweep, FindSweep(*db_, sweep_id));
+absl::StatusOr<SweepRecord> SweepTable::CancelSweep(absl::string_view sweep_id, absl::Time now) {
+  return connection_.Transaction([&](SQLite::Database& db) -> absl::StatusOr<SweepRecord> {
+    DCS_ASSIGN_OR_RETURN(const SweepRecord sweep, FindSweep(db, sweep_id));
     const int64_t number = *SweepNumber(sweep_id);
-    std::vector<RunRecord> active = SweepRunsIn(*db_, number, RunState::kQueued);
-    for (RunRecord& run : SweepRunsIn(*db_, number, RunState::kRunning)) {
+    std::vector<RunRecord> active = SweepRunsIn(db, number, RunState::kQueued);
+    for (RunRecord& run : SweepRunsIn(db, number, RunState::kRunning)) {
       active.push_back(std::move(run));
     }
     if (active.empty() && !sweep.open) {
@@ -243,38 +243,41 @@ absl::StatusOr<SweepRecord> RunStore::CancelSweep(absl::string_view sweep_id, ab
           sweep_id, " is ", NameOf(kSweepStateNames, sweep.state), ": no run to cancel"));
     }
     for (const RunRecord& run : active) {
-      DCS_RETURN_IF_ERROR(CancelRunRow(*db_, run, "its sweep was cancelled", now));
+      DCS_RETURN_IF_ERROR(CancelRunRow(db, run, "its sweep was cancelled", now));
     }
-    FailRunningStudyTrials(*db_, number, now);
-    SQLite::Statement mark(*db_, "UPDATE sweeps SET cancelled = 1, open = 0 WHERE number = ?");
+    FailRunningStudyTrials(db, number, now);
+    SQLite::Statement mark(db, "UPDATE sweeps SET cancelled = 1, open = 0 WHERE number = ?");
     mark.bind(1, number);
     mark.exec();
-    TouchSweep(*db_, number, now);
-    return FindSweep(*db_, sweep_id);
+    TouchSweep(db, number, now);
+    return FindSweep(db, sweep_id);
   });
 }
 
-absl::StatusOr<std::pair<SweepRecord, int>> RunStore::RetrySweep(absl::string_view sweep_id,
-                                                                 absl::Time now) {
-  return Transaction([&]() -> absl::StatusOr<std::pair<SweepRecord, int>> {
-    DCS_ASSIGN_OR_RETURN(const SweepRecord sweep, FindSweep(*db_, sweep_id));
-    if (!sweep.study_id.empty()) {
-      return absl::FailedPreconditionError(absl::StrCat(
-          sweep_id, " drives ", sweep.study_id, ", which was told its failed trials failed: "
-          "retry is for plain sweeps"));
-    }
-    const int64_t number = *SweepNumber(sweep_id);
-    const std::vector<RunRecord> failed = SweepRunsIn(*db_, number, RunState::kFailed);
-    if (failed.empty()) {
-      return absl::FailedPreconditionError(absl::StrCat(sweep_id, " has no failed run to retry"));
-    }
-    for (const RunRecord& run : failed) {
-      DCS_RETURN_IF_ERROR(SetRunState(*db_, run, RunState::kQueued, "", now));
-    }
-    TouchSweep(*db_, number, now);
-    DCS_ASSIGN_OR_RETURN(SweepRecord retried, FindSweep(*db_, sweep_id));
-    return std::make_pair(std::move(retried), static_cast<int>(failed.size()));
-  });
+absl::StatusOr<std::pair<SweepRecord, int>> SweepTable::RetrySweep(absl::string_view sweep_id,
+                                                                   absl::Time now) {
+  return connection_.Transaction(
+      [&](SQLite::Database& db) -> absl::StatusOr<std::pair<SweepRecord, int>> {
+        DCS_ASSIGN_OR_RETURN(const SweepRecord sweep, FindSweep(db, sweep_id));
+        if (!sweep.study_id.empty()) {
+          return absl::FailedPreconditionError(
+              absl::StrCat(sweep_id, " drives ", sweep.study_id,
+                           ", which was told its failed trials failed: "
+                           "retry is for plain sweeps"));
+        }
+        const int64_t number = *SweepNumber(sweep_id);
+        const std::vector<RunRecord> failed = SweepRunsIn(db, number, RunState::kFailed);
+        if (failed.empty()) {
+          return absl::FailedPreconditionError(
+              absl::StrCat(sweep_id, " has no failed run to retry"));
+        }
+        for (const RunRecord& run : failed) {
+          DCS_RETURN_IF_ERROR(SetRunState(db, run, RunState::kQueued, "", now));
+        }
+        TouchSweep(db, number, now);
+        DCS_ASSIGN_OR_RETURN(SweepRecord retried, FindSweep(db, sweep_id));
+        return std::make_pair(std::move(retried), static_cast<int>(failed.size()));
+      });
 }
 
 }  // namespace dcs::coordinator

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/store_rows.h"
+#include "coordinator/store_connection.h"
 
 #include <SQLiteCpp/Exception.h>
 #include <sqlite3.h>
@@ -8,7 +8,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
-namespace dcs::coordinator::store_rows {
+namespace dcs::coordinator::internal {
 namespace {
 
 using ::testing::HasSubstr;
@@ -42,4 +42,4 @@ TEST(StoreErrorTest, AnythingElseIsInternal) {
 }
 
 }  // namespace
-}  // namespace dcs::coordinator::store_rows
+}  // namespace dcs::coordinator::internal
