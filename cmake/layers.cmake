@@ -8,7 +8,8 @@ dcs_layer(dcs_proto_grpc 1 GRPC)    # gRPC stubs of the wire contract
 dcs_layer(dcs_actor 2)              # policies, rollout collection, evaluation
 dcs_layer(dcs_run 3)                # a run as data: configs, plans, records
 dcs_layer(dcs_learner 4 TORCH)      # PPO in libtorch, training sessions
-dcs_layer(dcs_coordinator 4)        # workers, the run store and leases, summaries, plots
+dcs_layer(dcs_coordinator 4)        # workers, the run store and leases, samplers, study drivers
+dcs_layer(dcs_report 5)             # reports, their statistics and figures, for the client
 dcs_layer(dcs_services 5 GRPC)      # the servers' plumbing, shared with the client
 dcs_layer(dcs_coordinator_service 6 GRPC)  # CoordinatorService over the store
 dcs_layer(dcs_learner_service 6 GRPC TORCH)  # runs hosted for actors, LearnerService

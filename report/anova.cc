@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/anova.h"
+#include "report/anova.h"
 
 #include <cmath>
 #include <exception>
@@ -8,9 +8,9 @@
 #include <boost/math/distributions/fisher_f.hpp>
 
 #include "absl/strings/str_cat.h"
-#include "coordinator/sample_stats.h"
+#include "report/sample_stats.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 absl::Status CheckGroups(const std::vector<std::vector<double>>& groups) {
@@ -78,4 +78,4 @@ absl::StatusOr<AnovaResult> OneWayAnova(const std::vector<std::vector<double>>& 
   return result;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

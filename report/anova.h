@@ -12,7 +12,7 @@
 
 #include "absl/status/statusor.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 struct AnovaResult {
   double f = 0;        // +inf when every group is constant but their means differ
@@ -26,6 +26,6 @@ struct AnovaResult {
 // infinite value, or values all equal (F is 0/0).
 absl::StatusOr<AnovaResult> OneWayAnova(const std::vector<std::vector<double>>& groups);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
 #endif  // DCS_COORDINATOR_ANOVA_H_

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/bar_chart.h"
+#include "report/bar_chart.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "absl/strings/str_join.h"
 #include "common/status_macros.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 constexpr double kGroupGap = 0.6;   // extra space between groups, in category widths
@@ -213,4 +213,4 @@ absl::StatusOr<GnuplotFigure> BarChartFigure(const BarChart& chart) {
       panels);
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

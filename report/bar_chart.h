@@ -1,8 +1,8 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_BAR_CHART_H_
-#define DCS_COORDINATOR_BAR_CHART_H_
+#ifndef DCS_REPORT_BAR_CHART_H_
+#define DCS_REPORT_BAR_CHART_H_
 
-// Grouped bar charts as gnuplot figures (coordinator/gnuplot_figure.h): in each panel a
+// Grouped bar charts as gnuplot figures (report/gnuplot_figure.h): in each panel a
 // cluster of bars per category, one bar per series, with optional error bars; consecutive
 // categories of the same group stand together, apart from the next group, under the group's
 // name (per-context returns: contexts grouped OOD-low / ID / OOD-high, a bar per condition).
@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "coordinator/gnuplot_figure.h"
+#include "report/gnuplot_figure.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 struct BarCategory {
   std::string label;  // under its cluster, e.g. "0.35"
@@ -59,6 +59,6 @@ struct BarChart {
 // of another length), an infinite value, or a NaN error bar under a bar.
 absl::StatusOr<GnuplotFigure> BarChartFigure(const BarChart& chart);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_BAR_CHART_H_
+#endif  // DCS_REPORT_BAR_CHART_H_

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/correlation.h"
+#include "report/correlation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <boost/math/distributions/students_t.hpp>
 
 #include "absl/strings/str_cat.h"
-#include "coordinator/sample_stats.h"
+#include "report/sample_stats.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 absl::StatusOr<Correlation> PearsonCorrelation(std::span<const double> x,
                                                std::span<const double> y) {
@@ -59,4 +59,4 @@ absl::StatusOr<Correlation> PearsonCorrelation(std::span<const double> x,
   return result;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -11,7 +11,7 @@
 
 #include "absl/status/statusor.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 struct Correlation {
   double r = 0;
@@ -24,6 +24,6 @@ struct Correlation {
 absl::StatusOr<Correlation> PearsonCorrelation(std::span<const double> x,
                                                std::span<const double> y);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
 #endif  // DCS_COORDINATOR_CORRELATION_H_

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/coverage_report.h"
+#include "report/coverage_report.h"
 
 #include <span>
 #include <string>
@@ -10,11 +10,11 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "common/status_macros.h"
-#include "coordinator/anova.h"
-#include "coordinator/correlation.h"
-#include "coordinator/sample_stats.h"
+#include "report/anova.h"
+#include "report/correlation.h"
+#include "report/sample_stats.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 const v1::ProjectionCoverage* FindProjection(const v1::EvaluationLog& log,
@@ -156,4 +156,4 @@ absl::Status AddCoverageSections(const v1::SweepResults& results, v1::SweepRepor
   return absl::OkStatus();
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -12,7 +12,7 @@
 #include "dcs/v1/report.pb.h"
 #include "dcs/v1/sweep.pb.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 // Adds the coverage sections of `results` to `report`, which BuildSweepReport made from them
 // (its cells' scores are those of the trials' runs, in order). Runs without coverage are left
@@ -20,6 +20,6 @@ namespace dcs::coordinator {
 // number of cells other runs' do not.
 absl::Status AddCoverageSections(const v1::SweepResults& results, v1::SweepReport& report);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
 #endif  // DCS_COORDINATOR_COVERAGE_REPORT_H_

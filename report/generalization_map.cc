@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/generalization_map.h"
+#include "report/generalization_map.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 
 #include "absl/strings/str_cat.h"
 #include "common/status_macros.h"
-#include "coordinator/line_chart.h"
+#include "report/line_chart.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 constexpr int kPanelWidth = 520;
@@ -183,4 +183,4 @@ absl::StatusOr<GnuplotFigure> GeneralizationMapFigure(const GeneralizationMap& m
   return map.axes.size() == 1 ? LinesFigure(map) : HeatmapsFigure(map);
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

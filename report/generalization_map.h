@@ -1,8 +1,8 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_GENERALIZATION_MAP_H_
-#define DCS_COORDINATOR_GENERALIZATION_MAP_H_
+#ifndef DCS_REPORT_GENERALIZATION_MAP_H_
+#define DCS_REPORT_GENERALIZATION_MAP_H_
 
-// Generalisation maps as gnuplot figures (coordinator/gnuplot_figure.h): trained policies' mean
+// Generalisation maps as gnuplot figures (report/gnuplot_figure.h): trained policies' mean
 // returns over a grid of one or two context features (`dcs eval`). One feature gives a line per
 // policy, with a band of one standard deviation of the episodes' returns; two give a heatmap
 // per policy, on one colour scale (viridis, perceptually uniform and colour-blind safe) so that
@@ -10,7 +10,7 @@
 // training range (dashed) with its pool's values as points; any other feature sits at the
 // run's value of it. Thread-safe (pure functions).
 //
-// Lines: as coordinator/line_chart.h. Heatmaps: the data is `<name>.csv`, a row per cell,
+// Lines: as report/line_chart.h. Heatmaps: the data is `<name>.csv`, a row per cell,
 //   panel,x,y,mean,std
 // the first feature varying fastest; training contexts are drawn from the script itself.
 
@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "coordinator/gnuplot_figure.h"
+#include "report/gnuplot_figure.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 // One grid axis: a feature's values, ascending.
 struct MapAxis {
@@ -55,6 +55,6 @@ struct GeneralizationMap {
 // value that is not finite.
 absl::StatusOr<GnuplotFigure> GeneralizationMapFigure(const GeneralizationMap& map);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_GENERALIZATION_MAP_H_
+#endif  // DCS_REPORT_GENERALIZATION_MAP_H_

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/gnuplot_figure.h"
+#include "report/gnuplot_figure.h"
 
 #include <algorithm>
 #include <optional>
@@ -12,7 +12,7 @@
 #include "absl/strings/str_join.h"
 #include "common/status_macros.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 constexpr const char* kPalette[] = {"#0072B2", "#D55E00", "#009E73", "#E69F00",
@@ -167,4 +167,4 @@ GnuplotFigure MultiplotFigure(absl::string_view name, absl::string_view title, s
   return figure;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -21,7 +21,7 @@
 #include "absl/strings/string_view.h"
 #include "common/enum_names.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 enum class FigureFormat { kSvg, kPng, kPdf };
 
@@ -109,6 +109,6 @@ GnuplotFigure MultiplotFigure(absl::string_view name, absl::string_view title, s
                               absl::string_view setup,
                               const std::vector<std::string>& panel_scripts);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
 #endif  // DCS_COORDINATOR_GNUPLOT_FIGURE_H_

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/heatmap_chart.h"
+#include "report/heatmap_chart.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "absl/strings/str_join.h"
 #include "common/status_macros.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 constexpr char kNegativeColor[] = "#D55E00";  // Okabe-Ito vermillion
@@ -129,4 +129,4 @@ absl::StatusOr<GnuplotFigure> HeatmapFigure(const Heatmap& heatmap) {
   return figure;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

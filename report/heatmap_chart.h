@@ -1,8 +1,8 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_HEATMAP_CHART_H_
-#define DCS_COORDINATOR_HEATMAP_CHART_H_
+#ifndef DCS_REPORT_HEATMAP_CHART_H_
+#define DCS_REPORT_HEATMAP_CHART_H_
 
-// Heatmaps as gnuplot figures (coordinator/gnuplot_figure.h): a grid of cells, each coloured
+// Heatmaps as gnuplot figures (report/gnuplot_figure.h): a grid of cells, each coloured
 // by its value on a diverging palette centred at 0 (vermillion below, white at 0, blue above:
 // Okabe-Ito's, colour-blind safe), with the value printed in the cell; cells without a value
 // are grey and read "n/a" (the per-family heatmap relative to static). Thread-safe (pure
@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "coordinator/gnuplot_figure.h"
+#include "report/gnuplot_figure.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 struct Heatmap {
   std::string name;  // file stem (CheckFigureName)
@@ -41,6 +41,6 @@ struct Heatmap {
 // decimals outside [0, 6].
 absl::StatusOr<GnuplotFigure> HeatmapFigure(const Heatmap& heatmap);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_HEATMAP_CHART_H_
+#endif  // DCS_REPORT_HEATMAP_CHART_H_

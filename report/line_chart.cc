@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/line_chart.h"
+#include "report/line_chart.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "absl/strings/str_join.h"
 #include "common/status_macros.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 constexpr char kMarkerColor[] = "#8c8c8c";
@@ -263,4 +263,4 @@ absl::StatusOr<GnuplotFigure> LineChartFigure(const LineChart& chart) {
       panels);
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,8 +1,8 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_LINE_CHART_H_
-#define DCS_COORDINATOR_LINE_CHART_H_
+#ifndef DCS_REPORT_LINE_CHART_H_
+#define DCS_REPORT_LINE_CHART_H_
 
-// Line charts as gnuplot figures (coordinator/gnuplot_figure.h): a grid of small line plots
+// Line charts as gnuplot figures (report/gnuplot_figure.h): a grid of small line plots
 // (gnuplot's multiplot), each line optionally with a shaded band (learning curves: the IQM with
 // its Q1-Q3 band), dashed (a baseline) or drawn as steps (performance profiles), and reference
 // lines across a panel (episode boundaries). Thread-safe (pure functions).
@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "coordinator/gnuplot_figure.h"
+#include "report/gnuplot_figure.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 // The points (x[i], y[i]) joined in the order given; one point is drawn as a dot. An empty
 // line draws nothing but keeps its colour.
@@ -81,6 +81,6 @@ struct LineChart {
 // marker or tick that is NaN or infinite, or a range with min >= max.
 absl::StatusOr<GnuplotFigure> LineChartFigure(const LineChart& chart);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_LINE_CHART_H_
+#endif  // DCS_REPORT_LINE_CHART_H_

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/probability_of_improvement.h"
+#include "report/probability_of_improvement.h"
 
 #include <algorithm>
 #include <array>
@@ -12,7 +12,7 @@
 #include "common/random.h"
 #include "common/status_macros.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 // Resamples treated together by the fast path: the lanes of one pass.
@@ -73,7 +73,7 @@ double ImprovementOfResample(std::span<const uint32_t> counts, const Ranks& rank
 
 // ImprovementOfResample of every resample of `draws` (at most kMaxLaneValues runs a side),
 // kBlock resamples at a time, one lane each.
-void LaneImprovements(const internal::BootstrapDraws& draws, const Ranks& ranks,
+void LaneImprovements(const coordinator::internal::BootstrapDraws& draws, const Ranks& ranks,
                       std::span<double> estimates) {
   const size_t x_size = ranks.below.size();
   const size_t y_size = ranks.y_order.size();
@@ -117,30 +117,30 @@ absl::StatusOr<double> ProbabilityOfImprovement(std::span<const double> x,
   return FromHalfWins(half_wins, x.size(), y.size());
 }
 
-absl::StatusOr<ConfidenceInterval> BootstrapImprovementInterval(std::span<const double> x,
-                                                                std::span<const double> y,
-                                                                double confidence,
-                                                                int repetitions, uint64_t seed) {
+absl::StatusOr<coordinator::ConfidenceInterval> BootstrapImprovementInterval(
+    std::span<const double> x, std::span<const double> y, double confidence, int repetitions,
+    uint64_t seed) {
   DCS_RETURN_IF_ERROR(CheckSample(x, "X"));
   DCS_RETURN_IF_ERROR(CheckSample(y, "Y"));
-  DCS_RETURN_IF_ERROR(internal::CheckBootstrap(confidence, repetitions));
+  DCS_RETURN_IF_ERROR(coordinator::internal::CheckBootstrap(confidence, repetitions));
   const size_t sizes[] = {x.size(), y.size()};
   const Ranks ranks(x, y);
   std::vector<double> estimates(repetitions);
-  if (std::max(x.size(), y.size()) <= internal::kMaxLaneValues) {
-    LaneImprovements(*internal::BootstrapDraws::Shared(sizes, repetitions, seed, "improvement"),
-                     ranks, estimates);
+  if (std::max(x.size(), y.size()) <= coordinator::internal::kMaxLaneValues) {
+    LaneImprovements(
+        *coordinator::internal::BootstrapDraws::Shared(sizes, repetitions, seed, "improvement"),
+        ranks, estimates);
   } else {  // the same draws, one resample at a time
     Random random(StreamSeed(seed, "improvement"));
     std::vector<uint32_t> counts(x.size() + y.size());
     std::vector<uint64_t> drawn_y(y.size() + 1);
     for (double& estimate : estimates) {
       std::fill(counts.begin(), counts.end(), 0);
-      internal::DrawResample(sizes, random, [&](size_t i) { ++counts[i]; });
+      coordinator::internal::DrawResample(sizes, random, [&](size_t i) { ++counts[i]; });
       estimate = ImprovementOfResample(counts, ranks, drawn_y);
     }
   }
-  return internal::PercentileInterval(estimates, confidence);
+  return coordinator::internal::PercentileInterval(estimates, confidence);
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_PROBABILITY_OF_IMPROVEMENT_H_
-#define DCS_COORDINATOR_PROBABILITY_OF_IMPROVEMENT_H_
+#ifndef DCS_REPORT_PROBABILITY_OF_IMPROVEMENT_H_
+#define DCS_REPORT_PROBABILITY_OF_IMPROVEMENT_H_
 
 // rliable's probability of improvement (Agarwal et al., 2021) of one algorithm X over another Y
 // on one task: P(X > Y) + 0.5 P(X = Y) for a run of each drawn at random, counted over all
@@ -13,7 +13,7 @@
 #include "absl/status/statusor.h"
 #include "coordinator/iqm.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 // (#{x > y} + 0.5 #{x = y}) / (|x| |y|) over all pairs (x, y): 1 when every run of `x` beats
 // every run of `y`, 0.5 for identical samples. INVALID_ARGUMENT if either is empty or holds a
@@ -30,11 +30,10 @@ absl::StatusOr<double> ProbabilityOfImprovement(std::span<const double> x,
 // repetitions and seed share their draws, as there. `confidence` is e.g. 0.95.
 // INVALID_ARGUMENT as ProbabilityOfImprovement, or for confidence outside (0, 1) or
 // repetitions < 1.
-absl::StatusOr<ConfidenceInterval> BootstrapImprovementInterval(std::span<const double> x,
-                                                                std::span<const double> y,
-                                                                double confidence,
-                                                                int repetitions, uint64_t seed);
+absl::StatusOr<coordinator::ConfidenceInterval> BootstrapImprovementInterval(
+    std::span<const double> x, std::span<const double> y, double confidence, int repetitions,
+    uint64_t seed);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_PROBABILITY_OF_IMPROVEMENT_H_
+#endif  // DCS_REPORT_PROBABILITY_OF_IMPROVEMENT_H_

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/report_format.h"
+#include "report/report_format.h"
 
 #include <cctype>
 #include <optional>
@@ -13,7 +13,7 @@
 #include "common/text_table.h"
 #include "dcs/proto_json.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 using Rows = std::vector<std::vector<std::string>>;
@@ -494,4 +494,4 @@ std::string FormatReport(const v1::SweepReport& report, ReportFormat format) {
   return {};  // unreachable: every format has its case
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

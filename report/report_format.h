@@ -1,8 +1,8 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_REPORT_FORMAT_H_
-#define DCS_COORDINATOR_REPORT_FORMAT_H_
+#ifndef DCS_REPORT_REPORT_FORMAT_H_
+#define DCS_REPORT_REPORT_FORMAT_H_
 
-// A sweep's report (coordinator/sweep_report.h) as text: an aligned table for a terminal,
+// A sweep's report (report/sweep_report.h) as text: an aligned table for a terminal,
 // Markdown, CSV, JSON, LaTeX (booktabs) and HTML. The human formats (all but csv and json)
 // state the score read in a header, mark the best IQM of each mode, and say how the statistics
 // were computed (quartile rule, bootstrap resamples and seed) in a footer; LaTeX says both in
@@ -15,7 +15,7 @@
 #include "common/enum_names.h"
 #include "dcs/v1/report.pb.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 enum class ReportFormat { kTable, kMarkdown, kCsv, kJson, kLatex, kHtml };
 
@@ -36,13 +36,13 @@ static_assert(InEnumOrder(kReportFormatNames));
 //   with IQM [Q1, Q3] cells, the best in \textbf, "$^\dagger$" on cells with fewer runs than
 //   seeds, and a caption stating the checkpoint, split, seeds and bootstrap settings.
 // - html: a <table> with a <caption> and a <tfoot>; the best IQM in <strong>.
-// With coverage sections (coordinator/coverage_report.h), table, md and html follow the scores
+// With coverage sections (report/coverage_report.h), table, md and html follow the scores
 // with one more table per projection (per condition and mode: runs, run coverage mean +- SEM,
 // each window's mean) and a sentence per mode with its ANOVA and correlation; json holds them
 // too; csv and latex are the score table only.
 // Text from the report (condition names, ...) is escaped for each format.
 std::string FormatReport(const v1::SweepReport& report, ReportFormat format);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_REPORT_FORMAT_H_
+#endif  // DCS_REPORT_REPORT_FORMAT_H_

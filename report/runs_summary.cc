@@ -1,22 +1,22 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/runs_summary.h"
+#include "report/runs_summary.h"
 
 #include "absl/strings/str_cat.h"
 #include "common/status_macros.h"
 #include "coordinator/iqm.h"
 #include "run/evaluation_log.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 constexpr int kBootstrapRepetitions = 10'000;
 constexpr uint64_t kBootstrapSeed = 0;
 
 absl::StatusOr<v1::ScoreSummary> SummarizeScore(const std::vector<double>& values) {
-  DCS_ASSIGN_OR_RETURN(const IqmSummary iqm, SummarizeIqm(values));
-  DCS_ASSIGN_OR_RETURN(const ConfidenceInterval interval,
-                       BootstrapIqmInterval({values}, 0.95, kBootstrapRepetitions,
-                                            kBootstrapSeed));
+  DCS_ASSIGN_OR_RETURN(const coordinator::IqmSummary iqm, coordinator::SummarizeIqm(values));
+  DCS_ASSIGN_OR_RETURN(
+      const coordinator::ConfidenceInterval interval,
+      coordinator::BootstrapIqmInterval({values}, 0.95, kBootstrapRepetitions, kBootstrapSeed));
   v1::ScoreSummary summary;
   summary.set_iqm(iqm.iqm);
   summary.set_q1(iqm.q1);
@@ -57,4 +57,4 @@ absl::StatusOr<v1::RunsSummary> SummarizeRuns(const std::vector<std::string>& di
   return summary;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_RUNS_SUMMARY_H_
-#define DCS_COORDINATOR_RUNS_SUMMARY_H_
+#ifndef DCS_REPORT_RUNS_SUMMARY_H_
+#define DCS_REPORT_RUNS_SUMMARY_H_
 
 // One row of the paper's tables from finished runs of one condition (`dcs summarize`): each
 // run's two scores, last and best-anytime avg_combined (spec/schedules.md §9.3), read from its
@@ -14,7 +14,7 @@
 #include "absl/status/statusor.h"
 #include "dcs/v1/evaluation.pb.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 // The scores of the finished run in `dir`. NOT_FOUND without an evaluation log, DATA_LOSS for
 // an unreadable one, FAILED_PRECONDITION for a run that has not finished.
@@ -23,6 +23,6 @@ absl::StatusOr<v1::RunScore> ReadRunScore(const std::string& dir);
 // Every run's scores and both scores across them. Errors as ReadRunScore, naming the run.
 absl::StatusOr<v1::RunsSummary> SummarizeRuns(const std::vector<std::string>& dirs);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_RUNS_SUMMARY_H_
+#endif  // DCS_REPORT_RUNS_SUMMARY_H_

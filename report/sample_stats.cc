@@ -1,9 +1,9 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/sample_stats.h"
+#include "report/sample_stats.h"
 
 #include <cmath>
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 double Mean(std::span<const double> values) {
   double sum = 0;
@@ -20,4 +20,4 @@ double StandardError(std::span<const double> values) {
   return std::sqrt(squares / static_cast<double>(n - 1) / static_cast<double>(n));
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,14 +1,14 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_SAMPLE_STATS_H_
-#define DCS_COORDINATOR_SAMPLE_STATS_H_
+#ifndef DCS_REPORT_SAMPLE_STATS_H_
+#define DCS_REPORT_SAMPLE_STATS_H_
 
 // The mean of a sample and its standard error, as the tests and reports of this folder use them
-// (coordinator/anova.h, coordinator/correlation.h, coordinator/coverage_report.h). Thread-safe
+// (report/anova.h, report/correlation.h, report/coverage_report.h). Thread-safe
 // (pure functions).
 
 #include <span>
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 // The arithmetic mean, summed in order. REQUIRES: `values` non-empty.
 double Mean(std::span<const double> values);
@@ -17,6 +17,6 @@ double Mean(std::span<const double> values);
 // sqrt(n); 0 for fewer than two values.
 double StandardError(std::span<const double> values);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_SAMPLE_STATS_H_
+#endif  // DCS_REPORT_SAMPLE_STATS_H_

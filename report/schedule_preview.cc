@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/schedule_preview.h"
+#include "report/schedule_preview.h"
 
 #include <utility>
 
@@ -11,7 +11,7 @@
 #include "env/context_pool.h"
 #include "env/schedule.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 using Params = std::map<std::string, env::ScheduleParam>;
@@ -173,4 +173,4 @@ LineChart PreviewChart(const std::vector<PreviewPanel>& panels,
   return chart;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_SCHEDULE_PREVIEW_H_
-#define DCS_COORDINATOR_SCHEDULE_PREVIEW_H_
+#ifndef DCS_REPORT_SCHEDULE_PREVIEW_H_
+#define DCS_REPORT_SCHEDULE_PREVIEW_H_
 
 // Schedule previews, as the paper's appendix figure shows them (`dcs schedule preview`): each
 // schedule run over a few episodes whose initial values come from a pool, the episodes laid
@@ -13,10 +13,10 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
-#include "coordinator/line_chart.h"
 #include "env/schedule_config.h"
+#include "report/line_chart.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 struct PreviewCurve {
   std::string label;  // e.g. "amplitude_frac 0.5, period 125"
@@ -59,13 +59,13 @@ std::string PreviewCsv(const std::vector<PreviewPanel>& panels,
                        const std::vector<PreviewTrajectory>& trajectories,
                        const PreviewOptions& options);
 
-// The figure, named `name` (its files' stem; coordinator/line_chart.h): a panel per preview
+// The figure, named `name` (its files' stem; report/line_chart.h): a panel per preview
 // panel, a line per curve of normalised values against the step; dashed lines at episode
 // boundaries, dotted at -1, 0 and +1, and room above +1 for the legend.
 LineChart PreviewChart(const std::vector<PreviewPanel>& panels,
                        const std::vector<PreviewTrajectory>& trajectories,
                        const PreviewOptions& options, std::string name);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_SCHEDULE_PREVIEW_H_
+#endif  // DCS_REPORT_SCHEDULE_PREVIEW_H_

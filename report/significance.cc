@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/significance.h"
+#include "report/significance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 
 #include "absl/strings/str_cat.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 absl::StatusOr<MannWhitney> MannWhitneyTest(std::span<const double> x, std::span<const double> y) {
   if (x.empty() || y.empty()) {
@@ -80,4 +80,4 @@ absl::StatusOr<std::vector<double>> HolmAdjusted(std::span<const double> p_value
   return adjusted;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

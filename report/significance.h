@@ -1,9 +1,9 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_SIGNIFICANCE_H_
-#define DCS_COORDINATOR_SIGNIFICANCE_H_
+#ifndef DCS_REPORT_SIGNIFICANCE_H_
+#define DCS_REPORT_SIGNIFICANCE_H_
 
 // Whether a condition's runs differ from the baseline's, beyond seed noise, when many
-// conditions are compared with one baseline. Companion of coordinator/probability_of_improvement.h,
+// conditions are compared with one baseline. Companion of report/probability_of_improvement.h,
 // whose P(X > Y) + 0.5 P(X = Y) is the Mann-Whitney U statistic of X over |X| |Y|: the test here
 // asks whether that probability differs from 0.5.
 //  - MannWhitneyTest: the two-sided Mann-Whitney U test, with the normal approximation, the
@@ -19,7 +19,7 @@
 
 #include "absl/status/statusor.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 struct MannWhitney {
   double u = 0;  // U of x: #{x > y} + 0.5 #{x = y} over all pairs
@@ -36,6 +36,6 @@ absl::StatusOr<MannWhitney> MannWhitneyTest(std::span<const double> x, std::span
 // outside [0, 1] or NaN.
 absl::StatusOr<std::vector<double>> HolmAdjusted(std::span<const double> p_values);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_SIGNIFICANCE_H_
+#endif  // DCS_REPORT_SIGNIFICANCE_H_

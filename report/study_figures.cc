@@ -1,29 +1,29 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/study_figures.h"
+#include "report/study_figures.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "absl/strings/str_cat.h"
-#include "coordinator/heatmap_chart.h"
-#include "coordinator/line_chart.h"
 #include "coordinator/study_sweep.h"
+#include "report/heatmap_chart.h"
+#include "report/line_chart.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
-absl::StatusOr<GnuplotFigure> StudyHistoryFigure(const StudyRecord& study,
-                                                 const std::vector<StudyTrial>& trials) {
-  const bool minimize = study.submission.direction == Direction::kMinimize;
+absl::StatusOr<GnuplotFigure> StudyHistoryFigure(
+    const coordinator::StudyRecord& study, const std::vector<coordinator::StudyTrial>& trials) {
+  const bool minimize = study.submission.direction == coordinator::Direction::kMinimize;
   ChartLine values{.label = "objective", .points = true};
   ChartLine best{.label = "best so far", .steps = true};
-  for (const StudyTrial& trial : trials) {
-    if (trial.state != TrialState::kComplete || !std::isfinite(trial.value)) continue;
+  for (const coordinator::StudyTrial& trial : trials) {
+    if (trial.state != coordinator::TrialState::kComplete || !std::isfinite(trial.value)) continue;
     const double number = static_cast<double>(trial.number);
     values.x.push_back(number);
     values.y.push_back(trial.value);
-    const bool better =
-        best.y.empty() || IsBetter(study.submission.direction, trial.value, best.y.back());
+    const bool better = best.y.empty() || coordinator::IsBetter(study.submission.direction,
+                                                                trial.value, best.y.back());
     best.x.push_back(number);
     best.y.push_back(better ? trial.value : best.y.back());
   }
@@ -80,10 +80,10 @@ absl::StatusOr<GnuplotFigure> StudyRankShiftFigure(const v1::StudyReport& report
   int largest = 1;
   for (const v1::StudyReport::Trial& trial : report.trials()) {
     if (trial.rank() == 0 || trial.retrain_rank() == 0) continue;
-    panel.lines.push_back({.label = StudyTrialCondition(trial.trial(), /*retrain=*/false),
-                           .x = {0, 1},
-                           .y = {-static_cast<double>(trial.rank()),
-                                 -static_cast<double>(trial.retrain_rank())}});
+    panel.lines.push_back(
+        {.label = coordinator::StudyTrialCondition(trial.trial(), /*retrain=*/false),
+         .x = {0, 1},
+         .y = {-static_cast<double>(trial.rank()), -static_cast<double>(trial.retrain_rank())}});
     largest = std::max({largest, trial.rank(), trial.retrain_rank()});
   }
   if (panel.lines.empty()) {
@@ -103,4 +103,4 @@ absl::StatusOr<GnuplotFigure> StudyRankShiftFigure(const v1::StudyReport& report
                           .panel_height = 520});
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/study_report.h"
+#include "report/study_report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,11 +13,11 @@
 #include "common/enum_names.h"
 #include "common/status_macros.h"
 #include "common/text_table.h"
-#include "coordinator/correlation.h"
 #include "coordinator/study_sweep.h"
 #include "dcs/proto_json.h"
+#include "report/correlation.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 // "stages[<k>].schedule.family": a stage's mode.
@@ -102,20 +102,20 @@ std::string Number(double value) { return absl::StrFormat("%.1f", value); }
 }  // namespace
 
 absl::StatusOr<v1::StudyReport> BuildStudyReport(const v1::SweepResults& results,
-                                                 const std::vector<StudyTrial>& trials, int top,
-                                                 const ReportOptions& options) {
+                                                 const std::vector<coordinator::StudyTrial>& trials,
+                                                 int top, const ReportOptions& options) {
   if (results.study_id().empty()) {
     return absl::InvalidArgumentError(
         absl::StrCat(results.sweep_id(), " is not a study sweep: it has no study to report"));
   }
   if (top < 1) return absl::InvalidArgumentError("a study report's top must be at least 1");
-  DCS_ASSIGN_OR_RETURN(const StudySweepSpec spec,
-                       ParseStudySweepYaml(results.spec(), results.name()));
+  DCS_ASSIGN_OR_RETURN(const coordinator::StudySweepSpec spec,
+                       coordinator::ParseStudySweepYaml(results.spec(), results.name()));
   v1::StudyReport report;
   report.set_sweep_id(results.sweep_id());
   report.set_study_id(results.study_id());
   report.set_name(results.name());
-  report.set_objective(std::string(NameOf(kStudyObjectiveNames, spec.objective)));
+  report.set_objective(std::string(NameOf(coordinator::kStudyObjectiveNames, spec.objective)));
   report.set_seeds(static_cast<int>(spec.sweep.seeds.size()));
   report.set_retrain_seeds(static_cast<int>(spec.retrain_seeds.size()));
 
@@ -128,14 +128,14 @@ absl::StatusOr<v1::StudyReport> BuildStudyReport(const v1::SweepResults& results
   }
 
   std::vector<std::pair<double, v1::StudyReport::Trial*>> complete, retrain_values;
-  for (const StudyTrial& trial : trials) {
+  for (const coordinator::StudyTrial& trial : trials) {
     v1::StudyReport::Trial& row = *report.add_trials();
     row.set_trial(trial.number);
-    row.set_state(std::string(NameOf(kTrialStateNames, trial.state)));
-    if (trial.state == TrialState::kComplete) {
+    row.set_state(std::string(NameOf(coordinator::kTrialStateNames, trial.state)));
+    if (trial.state == coordinator::TrialState::kComplete) {
       row.set_value(trial.value);
       complete.emplace_back(trial.value, &row);
-    } else if (trial.state == TrialState::kPruned && !trial.reported.empty()) {
+    } else if (trial.state == coordinator::TrialState::kPruned && !trial.reported.empty()) {
       row.set_value(trial.reported.rbegin()->second);
     }
     for (const run::SearchParameter& parameter : spec.space.parameters) {
@@ -153,7 +153,7 @@ absl::StatusOr<v1::StudyReport> BuildStudyReport(const v1::SweepResults& results
     if (auto found = retrained.find(trial.number); found != retrained.end()) {
       const v1::TrialResults& runs = *found->second;
       if (runs.runs_size() == report.retrain_seeds()) {
-        const double value = TrialObjective(
+        const double value = coordinator::TrialObjective(
             spec.objective, std::vector<v1::EvaluationLog>(runs.runs().begin(), runs.runs().end()));
         row.set_retrain_value(value);
         retrain_values.emplace_back(value, &row);
@@ -222,7 +222,7 @@ absl::StatusOr<v1::StudyReport> BuildStudyReport(const v1::SweepResults& results
   for (const auto& [number, trial] : retrained) {
     v1::TrialResults& out = *retrain_results.add_trials();
     out = *trial;
-    out.set_condition(StudyTrialCondition(number, /*retrain=*/false));
+    out.set_condition(coordinator::StudyTrialCondition(number, /*retrain=*/false));
   }
   for (auto [checkpoint, out] :
        {std::pair{ReportCheckpoint::kLast, report.mutable_retrain_last()},
@@ -250,7 +250,7 @@ std::string FormatStudyReport(const v1::StudyReport& report, ReportFormat format
                        (trial.rank() > 0 && trial.rank() <= rows);
     if (!shown) continue;
     table.push_back({trial.rank() > 0 ? absl::StrCat(trial.rank()) : "",
-                     StudyTrialCondition(trial.trial(), false), trial.state(),
+                     coordinator::StudyTrialCondition(trial.trial(), false), trial.state(),
                      trial.has_value() ? Number(trial.value()) : "",
                      absl::StrJoin(trial.stage_modes(), format == ReportFormat::kCsv ? ";" : " > "),
                      absl::StrJoin(trial.parameters(), format == ReportFormat::kCsv ? ";" : " "),
@@ -314,4 +314,4 @@ std::string FormatStudyReport(const v1::StudyReport& report, ReportFormat format
   return out;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

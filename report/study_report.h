@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_STUDY_REPORT_H_
-#define DCS_COORDINATOR_STUDY_REPORT_H_
+#ifndef DCS_REPORT_STUDY_REPORT_H_
+#define DCS_REPORT_STUDY_REPORT_H_
 
 // A study sweep's report (dcs/v1/report.proto StudyReport), as the paper reports its multi-stage
 // search (spec/schedules.md §8, Appendix A.2): the trials ranked by the search's objective; the
@@ -14,14 +14,14 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "coordinator/report_format.h"
 #include "coordinator/sampler.h"
 #include "coordinator/study_sweep_spec.h"
-#include "coordinator/sweep_report.h"
 #include "dcs/v1/report.pb.h"
 #include "dcs/v1/sweep.pb.h"
+#include "report/report_format.h"
+#include "report/sweep_report.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 // The report of the study sweep whose results are `results` (its spec, its trials' logs) and
 // whose study's trials are `trials`. `top`: how many of the best complete trials the stage-mode
@@ -29,8 +29,8 @@ namespace dcs::coordinator {
 // results of a plain sweep, a spec that does not parse, top < 1, or options BuildSweepReport
 // refuses.
 absl::StatusOr<v1::StudyReport> BuildStudyReport(const v1::SweepResults& results,
-                                                 const std::vector<StudyTrial>& trials, int top,
-                                                 const ReportOptions& options);
+                                                 const std::vector<coordinator::StudyTrial>& trials,
+                                                 int top, const ReportOptions& options);
 
 // `report` as `format`, ending with a newline. table and md: the ranking (the best `rows`
 // complete trials, and every retrained one), the stage-mode counts and the rank correlations,
@@ -39,6 +39,6 @@ absl::StatusOr<v1::StudyReport> BuildStudyReport(const v1::SweepResults& results
 // or a page shows).
 std::string FormatStudyReport(const v1::StudyReport& report, ReportFormat format, int rows);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_STUDY_REPORT_H_
+#endif  // DCS_REPORT_STUDY_REPORT_H_

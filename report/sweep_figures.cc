@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/sweep_figures.h"
+#include "report/sweep_figures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,12 +11,12 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "common/status_macros.h"
-#include "coordinator/bar_chart.h"
-#include "coordinator/heatmap_chart.h"
 #include "coordinator/iqm.h"
-#include "coordinator/line_chart.h"
+#include "report/bar_chart.h"
+#include "report/heatmap_chart.h"
+#include "report/line_chart.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 constexpr char kStaticFamily[] = "static";
@@ -154,7 +154,7 @@ absl::StatusOr<ChartLine> LearningCurve(const v1::TrialResults& trial, const Tri
   }
   ChartLine line{.label = trial.condition(), .color = style.color, .dashed = style.dashed};
   for (const auto& [step, values] : by_step) {
-    DCS_ASSIGN_OR_RETURN(const IqmSummary summary, SummarizeIqm(values));
+    DCS_ASSIGN_OR_RETURN(const coordinator::IqmSummary summary, coordinator::SummarizeIqm(values));
     line.x.push_back(static_cast<double>(step));
     line.y.push_back(summary.iqm);
     line.y_low.push_back(summary.q1);
@@ -166,7 +166,7 @@ absl::StatusOr<ChartLine> LearningCurve(const v1::TrialResults& trial, const Tri
 absl::StatusOr<double> LastIqm(const v1::TrialResults& trial) {
   std::vector<double> last;
   for (const v1::EvaluationLog& run : trial.runs()) last.push_back(run.last());
-  return InterquartileMean(last);
+  return coordinator::InterquartileMean(last);
 }
 
 // The performance profile of `scores` over [lo, hi]: the fraction of scores > tau.
@@ -275,7 +275,8 @@ absl::StatusOr<GnuplotFigure> ContextReturnsFigure(const v1::SweepResults& resul
                        .y_high = std::vector<double>(categories.size(), kNaN),
                        .color = styles[trials[i]].color};
       for (const auto& [key, values] : means[i]) {
-        DCS_ASSIGN_OR_RETURN(const IqmSummary summary, SummarizeIqm(values));
+        DCS_ASSIGN_OR_RETURN(const coordinator::IqmSummary summary,
+                             coordinator::SummarizeIqm(values));
         const int c = categories[key];
         series.y[c] = summary.iqm;
         series.y_low[c] = summary.q1;
@@ -434,4 +435,4 @@ absl::StatusOr<std::vector<GnuplotFigure>> SweepFigures(const v1::SweepResults& 
   return figures;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,8 +1,8 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_SWEEP_FIGURES_H_
-#define DCS_COORDINATOR_SWEEP_FIGURES_H_
+#ifndef DCS_REPORT_SWEEP_FIGURES_H_
+#define DCS_REPORT_SWEEP_FIGURES_H_
 
-// The figures of a sweep's report (`dcs plot`), as gnuplot figures (coordinator/gnuplot_figure.h)
+// The figures of a sweep's report (`dcs plot`), as gnuplot figures (report/gnuplot_figure.h)
 // from what its completed runs evaluated to (v1::SweepResults). Statistics across seeds are the
 // paper's (coordinator/iqm.h): the IQM with the first and third quartiles. A panel per observe
 // mode, in the order the trials first use them; in each, a line or bar per condition in the
@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "coordinator/gnuplot_figure.h"
 #include "dcs/v1/report.pb.h"
 #include "dcs/v1/sweep.pb.h"
+#include "report/gnuplot_figure.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 // "learning_curves": x the environment step of each evaluation, y the IQM across seeds of
 // avg_combined at that step with its Q1-Q3 band.
@@ -42,7 +42,7 @@ absl::StatusOr<GnuplotFigure> FamilyHeatmapFigure(const v1::SweepResults& result
 absl::StatusOr<GnuplotFigure> PerformanceProfilesFigure(const v1::SweepResults& results);
 
 // "coverage" (the paper's coverage figure, §4.4): from the coverage sections of `report`
-// (coordinator/coverage_report.h), a panel per state projection and observe mode, a bar per
+// (report/coverage_report.h), a panel per state projection and observe mode, a bar per
 // condition: its runs' mean coverage (percent of the projection's cells visited over the run)
 // with error bars of one standard error. FAILED_PRECONDITION if the report has no coverage.
 absl::StatusOr<GnuplotFigure> CoverageFigure(const v1::SweepReport& report);
@@ -57,6 +57,6 @@ absl::StatusOr<std::vector<GnuplotFigure>> SweepFigures(const v1::SweepResults& 
 // DATA_LOSS naming the condition and seed for a run without evaluations or with a context of
 // no known split.
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_SWEEP_FIGURES_H_
+#endif  // DCS_REPORT_SWEEP_FIGURES_H_

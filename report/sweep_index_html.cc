@@ -1,9 +1,9 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/sweep_index_html.h"
+#include "report/sweep_index_html.h"
 
 #include "absl/strings/str_cat.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 constexpr char kStyle[] = R"(
@@ -91,4 +91,4 @@ std::string SweepIndexHtml(absl::string_view title, absl::string_view report_tab
   return out;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_SWEEP_INDEX_HTML_H_
-#define DCS_COORDINATOR_SWEEP_INDEX_HTML_H_
+#ifndef DCS_REPORT_SWEEP_INDEX_HTML_H_
+#define DCS_REPORT_SWEEP_INDEX_HTML_H_
 
 // The `index.html` of a report directory (`dcs plot`): the report's table and every figure,
 // each with links to its data (CSV) and gnuplot script, readable offline in a browser: one file
@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "absl/strings/string_view.h"
-#include "coordinator/gnuplot_figure.h"
+#include "report/gnuplot_figure.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 // The page titled `title` (escaped), showing `report_table_html` as given (trusted HTML, e.g.
 // a <table>; empty: no table section) and then each figure's image `<name>.<format>` by
@@ -21,6 +21,6 @@ namespace dcs::coordinator {
 std::string SweepIndexHtml(absl::string_view title, absl::string_view report_table_html,
                            const std::vector<GnuplotFigure>& figures, FigureFormat format);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_SWEEP_INDEX_HTML_H_
+#endif  // DCS_REPORT_SWEEP_INDEX_HTML_H_

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/sweep_report.h"
+#include "report/sweep_report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,12 +11,12 @@
 #include "absl/container/flat_hash_map.h"
 #include "absl/strings/str_cat.h"
 #include "common/status_macros.h"
-#include "coordinator/coverage_report.h"
 #include "coordinator/iqm.h"
-#include "coordinator/probability_of_improvement.h"
-#include "coordinator/significance.h"
+#include "report/coverage_report.h"
+#include "report/probability_of_improvement.h"
+#include "report/significance.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 // The family of a condition without a schedule (dcs/v1/sweep.proto).
@@ -198,10 +198,11 @@ absl::StatusOr<v1::ReportCell> BuildCell(const v1::TrialResults* trial, const st
     DCS_ASSIGN_OR_RETURN(*cell.add_scores(), ReadRun(*trial, log, options));
     scores.push_back(cell.scores().rbegin()->score());
   }
-  DCS_ASSIGN_OR_RETURN(const IqmSummary iqm, SummarizeIqm(scores));
-  DCS_ASSIGN_OR_RETURN(const ConfidenceInterval interval,
-                       BootstrapIqmInterval({scores}, options.confidence,
-                                            options.bootstrap_resamples, options.bootstrap_seed));
+  DCS_ASSIGN_OR_RETURN(const coordinator::IqmSummary iqm, coordinator::SummarizeIqm(scores));
+  DCS_ASSIGN_OR_RETURN(
+      const coordinator::ConfidenceInterval interval,
+      coordinator::BootstrapIqmInterval({scores}, options.confidence, options.bootstrap_resamples,
+                                        options.bootstrap_seed));
   cell.set_runs(static_cast<int>(scores.size()));
   cell.set_empty(false);
   v1::ScoreSummary* summary = cell.mutable_summary();
@@ -232,10 +233,10 @@ absl::Status AddImprovements(const ReportOptions& options, v1::SweepReport& repo
       const std::vector<double> x = Scores(cell);
       const std::vector<double> y = Scores(baseline.cells(m));
       DCS_ASSIGN_OR_RETURN(const double probability, ProbabilityOfImprovement(x, y));
-      DCS_ASSIGN_OR_RETURN(const ConfidenceInterval interval,
-                           BootstrapImprovementInterval(x, y, options.confidence,
-                                                        options.bootstrap_resamples,
-                                                        options.bootstrap_seed));
+      DCS_ASSIGN_OR_RETURN(
+          const coordinator::ConfidenceInterval interval,
+          BootstrapImprovementInterval(x, y, options.confidence, options.bootstrap_resamples,
+                                       options.bootstrap_seed));
       DCS_ASSIGN_OR_RETURN(const MannWhitney test, MannWhitneyTest(x, y));
       v1::Improvement& improvement = *cell.mutable_improvement();
       improvement.set_probability(probability);
@@ -343,4 +344,4 @@ absl::StatusOr<v1::SweepReport> BuildSweepReport(const v1::SweepResults& results
   return report;
 }
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

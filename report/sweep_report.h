@@ -1,15 +1,15 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_COORDINATOR_SWEEP_REPORT_H_
-#define DCS_COORDINATOR_SWEEP_REPORT_H_
+#ifndef DCS_REPORT_SWEEP_REPORT_H_
+#define DCS_REPORT_SWEEP_REPORT_H_
 
 // A sweep's report (dcs/v1/report.proto): the paper's tables (spec/schedules.md §9.3,
 // Appendix A) from a sweep's finished runs. Each run gives one score, read at one checkpoint
 // (last or best) and one split (avg_combined or a split's mean); per condition and observation
 // mode, IQM [Q1, Q3] of the scores across seeds, a bootstrap interval of the IQM over seeds
 // (coordinator/iqm.h) and rliable's probability of improvement over the static baseline
-// (coordinator/probability_of_improvement.h), tested for a difference with Mann-Whitney's test,
-// Holm-adjusted over the mode's conditions (coordinator/significance.h); and if runs counted
-// coverage, the coverage diagnostic (coordinator/coverage_report.h). Thread-safe (pure
+// (report/probability_of_improvement.h), tested for a difference with Mann-Whitney's test,
+// Holm-adjusted over the mode's conditions (report/significance.h); and if runs counted
+// coverage, the coverage diagnostic (report/coverage_report.h). Thread-safe (pure
 // functions).
 
 #include <cstdint>
@@ -22,7 +22,7 @@
 #include "dcs/v1/report.pb.h"
 #include "dcs/v1/sweep.pb.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 
 // Which evaluation of a run is read: the final one (the paper's primary result), or the one
 // with the highest avg_combined (best-anytime; multi-stage runs: among stage boundaries and the
@@ -69,6 +69,6 @@ struct ReportOptions {
 absl::StatusOr<v1::SweepReport> BuildSweepReport(const v1::SweepResults& results,
                                                  const ReportOptions& options);
 
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
 
-#endif  // DCS_COORDINATOR_SWEEP_REPORT_H_
+#endif  // DCS_REPORT_SWEEP_REPORT_H_

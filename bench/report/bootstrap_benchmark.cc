@@ -18,9 +18,9 @@
 #include "benchmark/benchmark.h"
 #include "common/random.h"
 #include "coordinator/iqm.h"
-#include "coordinator/probability_of_improvement.h"
+#include "report/probability_of_improvement.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 constexpr int kCells = 42;
@@ -46,8 +46,8 @@ void BM_IqmInterval(benchmark::State& state) {
   const std::vector<std::vector<double>> cells = Cells();
   uint64_t cell = 0;
   for (auto _ : state) {
-    const auto interval =
-        BootstrapIqmInterval({cells[cell % kCells]}, kConfidence, kResamples, SeedOf(state, cell));
+    const auto interval = coordinator::BootstrapIqmInterval({cells[cell % kCells]}, kConfidence,
+                                                            kResamples, SeedOf(state, cell));
     benchmark::DoNotOptimize(interval);
     ++cell;
   }
@@ -77,10 +77,10 @@ void BM_PercentileInterval(benchmark::State& state) {
   std::vector<double> work;
   for (auto _ : state) {
     work = estimates;  // PercentileInterval may reorder them
-    benchmark::DoNotOptimize(internal::PercentileInterval(work, kConfidence));
+    benchmark::DoNotOptimize(coordinator::internal::PercentileInterval(work, kConfidence));
   }
 }
 BENCHMARK(BM_PercentileInterval)->ArgName("ties")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

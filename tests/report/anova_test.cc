@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/anova.h"
+#include "report/anova.h"
 
 #include <cmath>
 #include <limits>
@@ -8,7 +8,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 TEST(AnovaTest, MatchesScipyFOnewayDocumentationExample) {
@@ -85,4 +85,4 @@ TEST(AnovaTest, RefusesWhatHasNoAnswer) {
 }
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/correlation.h"
+#include "report/correlation.h"
 
 #include <limits>
 #include <vector>
@@ -7,7 +7,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 using ::testing::HasSubstr;
@@ -56,4 +56,4 @@ TEST(CorrelationTest, RefusesWhatHasNoCorrelation) {
 }
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,11 +1,11 @@
 // Copyright 2026 The DCS Authors.
 //
-// Generalisation maps (coordinator/generalization_map.h): one feature gives lines with bands and
+// Generalisation maps (report/generalization_map.h): one feature gives lines with bands and
 // the training range marked; two give a heatmap panel per policy on one colour scale, with the
 // training contexts drawn; malformed maps are refused. (Rendered by gnuplot and looked at in
 // Chromium in tests/integration/eval_cli_test.cc.)
 
-#include "coordinator/generalization_map.h"
+#include "report/generalization_map.h"
 
 #include <cmath>
 #include <string>
@@ -15,7 +15,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 using ::testing::HasSubstr;
@@ -97,4 +97,4 @@ TEST(GeneralizationMapTest, AMalformedMapIsRefused) {
 }
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/line_chart.h"
+#include "report/line_chart.h"
 
 #include <cmath>
 #include <limits>
@@ -11,7 +11,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 using ::testing::ElementsAre;
@@ -238,4 +238,4 @@ TEST(LineChartFigureTest, RefusesBadCharts) {
 }
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

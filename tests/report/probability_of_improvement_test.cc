@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/probability_of_improvement.h"
+#include "report/probability_of_improvement.h"
 
 #include <cmath>
 #include <utility>
@@ -9,7 +9,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 TEST(ProbabilityOfImprovementTest, CountsWinsAndHalfTiesOverAllPairs) {
@@ -54,7 +54,7 @@ TEST(BootstrapImprovementTest, OneRepetitionIsTheImprovementOfOneResampleOfEachS
   for (size_t i = 0; i < x.size(); ++i) x_sample.push_back(x[random.Integers(0, 4)]);
   for (size_t i = 0; i < y.size(); ++i) y_sample.push_back(y[random.Integers(0, 3)]);
   const double expected = *ProbabilityOfImprovement(x_sample, y_sample);
-  const ConfidenceInterval interval = *BootstrapImprovementInterval(x, y, 0.95, 1, 11);
+  const coordinator::ConfidenceInterval interval = *BootstrapImprovementInterval(x, y, 0.95, 1, 11);
   EXPECT_EQ(interval.lo, expected);
   EXPECT_EQ(interval.hi, expected);
 }
@@ -63,18 +63,19 @@ TEST(BootstrapImprovementTest, IntervalHoldsTheEstimateAndIsDeterministic) {
   const std::vector<double> x = {3, 6, 9, 2, 5, 8, 1, 4, 7, 10};
   const std::vector<double> y = {5, 1, 4, 2, 8, 9, 3, 7, 6, 0};
   const double estimate = *ProbabilityOfImprovement(x, y);
-  const ConfidenceInterval interval = *BootstrapImprovementInterval(x, y, 0.95, 2000, 0);
+  const coordinator::ConfidenceInterval interval =
+      *BootstrapImprovementInterval(x, y, 0.95, 2000, 0);
   EXPECT_LT(interval.lo, estimate);
   EXPECT_GT(interval.hi, estimate);
   EXPECT_GE(interval.lo, 0);
   EXPECT_LE(interval.hi, 1);
-  const ConfidenceInterval again = *BootstrapImprovementInterval(x, y, 0.95, 2000, 0);
+  const coordinator::ConfidenceInterval again = *BootstrapImprovementInterval(x, y, 0.95, 2000, 0);
   EXPECT_EQ(again.lo, interval.lo);
   EXPECT_EQ(again.hi, interval.hi);
-  const ConfidenceInterval other = *BootstrapImprovementInterval(x, y, 0.95, 2000, 1);
+  const coordinator::ConfidenceInterval other = *BootstrapImprovementInterval(x, y, 0.95, 2000, 1);
   EXPECT_TRUE(other.lo != interval.lo || other.hi != interval.hi);
   // A narrower confidence gives a narrower interval from the same resamples.
-  const ConfidenceInterval narrow = *BootstrapImprovementInterval(x, y, 0.5, 2000, 0);
+  const coordinator::ConfidenceInterval narrow = *BootstrapImprovementInterval(x, y, 0.5, 2000, 0);
   EXPECT_GE(narrow.lo, interval.lo);
   EXPECT_LE(narrow.hi, interval.hi);
   EXPECT_LT(narrow.hi - narrow.lo, interval.hi - interval.lo);
@@ -83,7 +84,8 @@ TEST(BootstrapImprovementTest, IntervalHoldsTheEstimateAndIsDeterministic) {
 TEST(BootstrapImprovementTest, SeparatedSamplesGiveAPointInterval) {
   const std::vector<double> high = {10, 11, 12};
   const std::vector<double> low = {1, 2, 3};
-  const ConfidenceInterval interval = *BootstrapImprovementInterval(high, low, 0.95, 100, 0);
+  const coordinator::ConfidenceInterval interval =
+      *BootstrapImprovementInterval(high, low, 0.95, 100, 0);
   EXPECT_EQ(interval.lo, 1);
   EXPECT_EQ(interval.hi, 1);
 }
@@ -91,9 +93,10 @@ TEST(BootstrapImprovementTest, SeparatedSamplesGiveAPointInterval) {
 // The definition, computed the slow way: each repetition draws X's runs and then Y's, value by
 // value, from StreamSeed(seed, "improvement") and counts all pairs of the resamples (the
 // O(|x| |y|) ProbabilityOfImprovement); the estimates sorted, their quantiles by numpy's rule.
-ConfidenceInterval DefinitionImprovementInterval(const std::vector<double>& x,
-                                                 const std::vector<double>& y, double confidence,
-                                                 int repetitions, uint64_t seed) {
+coordinator::ConfidenceInterval DefinitionImprovementInterval(const std::vector<double>& x,
+                                                              const std::vector<double>& y,
+                                                              double confidence, int repetitions,
+                                                              uint64_t seed) {
   Random random(StreamSeed(seed, "improvement"));
   std::vector<double> estimates;
   for (int r = 0; r < repetitions; ++r) {
@@ -106,7 +109,8 @@ ConfidenceInterval DefinitionImprovementInterval(const std::vector<double>& x,
     estimates.push_back(*ProbabilityOfImprovement(x_sample, y_sample));
   }
   const double tail = (1 - confidence) / 2;
-  return {.lo = *Quantile(estimates, tail), .hi = *Quantile(estimates, 1 - tail)};
+  return {.lo = *coordinator::Quantile(estimates, tail),
+          .hi = *coordinator::Quantile(estimates, 1 - tail)};
 }
 
 // `size` runs; with `ties`, whole numbers below 6, so that runs of X and Y tie often.
@@ -135,9 +139,9 @@ TEST(BootstrapImprovementTest, FastResamplesCountWhatAllPairsCount) {
         SCOPED_TRACE(testing::Message()
                      << x_size << " x " << y_size << " runs" << (ties ? " with ties" : "")
                      << ", confidence " << confidence);
-        const ConfidenceInterval fast =
+        const coordinator::ConfidenceInterval fast =
             *BootstrapImprovementInterval(x, y, confidence, repetitions, 3);
-        const ConfidenceInterval definition =
+        const coordinator::ConfidenceInterval definition =
             DefinitionImprovementInterval(x, y, confidence, repetitions, 3);
         EXPECT_EQ(fast.lo, definition.lo);
         EXPECT_EQ(fast.hi, definition.hi);
@@ -151,11 +155,12 @@ TEST(BootstrapImprovementTest, TheReportsDefaultsGiveTheDefinitionsBits) {
   Random random(19);
   const std::vector<double> x = RandomRuns(random, 10, false);
   const std::vector<double> y = RandomRuns(random, 10, false);
-  const ConfidenceInterval fast = *BootstrapImprovementInterval(x, y, 0.95, 10'000, 0);
-  const ConfidenceInterval definition = DefinitionImprovementInterval(x, y, 0.95, 10'000, 0);
+  const coordinator::ConfidenceInterval fast = *BootstrapImprovementInterval(x, y, 0.95, 10'000, 0);
+  const coordinator::ConfidenceInterval definition =
+      DefinitionImprovementInterval(x, y, 0.95, 10'000, 0);
   EXPECT_EQ(fast.lo, definition.lo);
   EXPECT_EQ(fast.hi, definition.hi);
 }
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

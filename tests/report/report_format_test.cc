@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/report_format.h"
+#include "report/report_format.h"
 
 #include <string>
 #include <vector>
@@ -10,11 +10,11 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
-#include "coordinator/sweep_report.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "report/sweep_report.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 using ::testing::HasSubstr;
@@ -272,4 +272,4 @@ TEST(ReportFormatTest, CoverageFollowsTheScoresInTableMarkdownAndHtml) {
 }
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

@@ -1,14 +1,14 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/significance.h"
+#include "report/significance.h"
 
 #include <limits>
 #include <vector>
 
-#include "coordinator/probability_of_improvement.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "report/probability_of_improvement.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 using ::testing::DoubleNear;
@@ -91,4 +91,4 @@ TEST(SignificanceTest, HolmStepsDownAndKeepsTheOrder) {
 }
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

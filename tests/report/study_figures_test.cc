@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/study_figures.h"
+#include "report/study_figures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,26 +9,27 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 using ::testing::HasSubstr;
 
-StudyTrial Trial(int64_t number, TrialState state, double value) {
+coordinator::StudyTrial Trial(int64_t number, coordinator::TrialState state, double value) {
   return {.number = number, .state = state, .value = value};
 }
 
 // Complete trials' values as dots (line 0), the best so far as steps (line 1); the rest left
-// out. The CSV's rows are panel,line,x,y,panel_title,label (coordinator/line_chart.h).
+// out. The CSV's rows are panel,line,x,y,panel_title,label (report/line_chart.h).
 TEST(StudyHistoryFigureTest, DrawsEachValueAndTheBestSoFar) {
-  const StudyRecord study{.id = "study-3", .submission = {.direction = Direction::kMinimize}};
-  const std::vector<StudyTrial> trials = {
-      Trial(0, TrialState::kComplete, 5),
-      Trial(1, TrialState::kFailed, std::nan("")),
-      Trial(2, TrialState::kComplete, 7),
-      Trial(3, TrialState::kComplete, 2),
-      Trial(4, TrialState::kRunning, std::nan("")),
-      Trial(5, TrialState::kComplete, std::numeric_limits<double>::infinity())};
+  const coordinator::StudyRecord study{
+      .id = "study-3", .submission = {.direction = coordinator::Direction::kMinimize}};
+  const std::vector<coordinator::StudyTrial> trials = {
+      Trial(0, coordinator::TrialState::kComplete, 5),
+      Trial(1, coordinator::TrialState::kFailed, std::nan("")),
+      Trial(2, coordinator::TrialState::kComplete, 7),
+      Trial(3, coordinator::TrialState::kComplete, 2),
+      Trial(4, coordinator::TrialState::kRunning, std::nan("")),
+      Trial(5, coordinator::TrialState::kComplete, std::numeric_limits<double>::infinity())};
   const absl::StatusOr<GnuplotFigure> figure = StudyHistoryFigure(study, trials);
   ASSERT_TRUE(figure.ok()) << figure.status();
   EXPECT_EQ(figure->name, "study-3_history");
@@ -47,15 +48,18 @@ TEST(StudyHistoryFigureTest, DrawsEachValueAndTheBestSoFar) {
 }
 
 TEST(StudyHistoryFigureTest, MaximisingKeepsTheHighestAndNothingToDrawIsAnError) {
-  const StudyRecord study{.id = "study-1", .submission = {.direction = Direction::kMaximize}};
-  const absl::StatusOr<GnuplotFigure> figure = StudyHistoryFigure(
-      study, {Trial(0, TrialState::kComplete, 5), Trial(1, TrialState::kComplete, 7)});
+  const coordinator::StudyRecord study{
+      .id = "study-1", .submission = {.direction = coordinator::Direction::kMaximize}};
+  const absl::StatusOr<GnuplotFigure> figure =
+      StudyHistoryFigure(study, {Trial(0, coordinator::TrialState::kComplete, 5),
+                                 Trial(1, coordinator::TrialState::kComplete, 7)});
   ASSERT_TRUE(figure.ok()) << figure.status();
   EXPECT_THAT(figure->data[0].csv, HasSubstr("0,1,1,7,"));
-  EXPECT_EQ(
-      StudyHistoryFigure(study, {Trial(0, TrialState::kRunning, std::nan(""))}).status().code(),
-      absl::StatusCode::kFailedPrecondition);
+  EXPECT_EQ(StudyHistoryFigure(study, {Trial(0, coordinator::TrialState::kRunning, std::nan(""))})
+                .status()
+                .code(),
+            absl::StatusCode::kFailedPrecondition);
 }
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

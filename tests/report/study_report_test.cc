@@ -1,20 +1,20 @@
 // Copyright 2026 The DCS Authors.
 //
-// A study sweep's report (coordinator/study_report.h) from hand-made results: the ranking, the
+// A study sweep's report (report/study_report.h) from hand-made results: the ranking, the
 // best trials' stage modes, the rank correlations between search and retrain, and the retrain
-// tables; and its figures (coordinator/study_figures.h).
+// tables; and its figures (report/study_figures.h).
 
-#include "coordinator/study_report.h"
+#include "report/study_report.h"
 
 #include <string>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "coordinator/study_figures.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "report/study_figures.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 using ::testing::ElementsAre;
@@ -66,7 +66,7 @@ v1::EvaluationLog Log(uint64_t seed, double best, double last) {
 // The five are retrained with objectives that rank them 1, 3, 2, 5, 4.
 struct Study {
   v1::SweepResults results;
-  std::vector<StudyTrial> trials;
+  std::vector<coordinator::StudyTrial> trials;
 };
 
 Study MakeStudy() {
@@ -78,9 +78,10 @@ Study MakeStudy() {
   study.results.set_study_id("study-1");
   const double retrain[] = {45, 25, 35, 5, 15};
   for (int n = 0; n < 6; ++n) {
-    StudyTrial trial{.number = n,
-                     .state = n < 5 ? TrialState::kComplete : TrialState::kPruned,
-                     .value = 50.0 - 10 * n};
+    coordinator::StudyTrial trial{
+        .number = n,
+        .state = n < 5 ? coordinator::TrialState::kComplete : coordinator::TrialState::kPruned,
+        .value = 50.0 - 10 * n};
     trial.values["stages[0].schedule.family"] = n % 2 == 0 ? 1 : 0;
     if (n % 2 == 0) trial.values["stages[0].schedule.period"] = 100 + n;
     trial.values["stages[1].schedule.family"] = n < 2 ? 1 : 0;
@@ -189,4 +190,4 @@ TEST(StudyReportTest, FiguresDrawTheModesAndTheRankShift) {
 }
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report

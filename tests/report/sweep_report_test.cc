@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "coordinator/sweep_report.h"
+#include "report/sweep_report.h"
 
 #include <cmath>
 #include <string>
@@ -8,11 +8,11 @@
 #include <google/protobuf/util/message_differencer.h>
 
 #include "coordinator/iqm.h"
-#include "coordinator/significance.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "report/significance.h"
 
-namespace dcs::coordinator {
+namespace dcs::report {
 namespace {
 
 using ::testing::HasSubstr;
@@ -93,7 +93,8 @@ TEST(SweepReportTest, IqmAndQuartilesOfHandCheckedScores) {
   EXPECT_DOUBLE_EQ(cell.summary().q1(), 2.75);
   EXPECT_DOUBLE_EQ(cell.summary().q3(), 6.25);
   // The documented defaults: 10,000 resamples from seed 0 at 95%, over the seeds' scores.
-  const ConfidenceInterval expected = *BootstrapIqmInterval({scores}, 0.95, 10'000, 0);
+  const coordinator::ConfidenceInterval expected =
+      *coordinator::BootstrapIqmInterval({scores}, 0.95, 10'000, 0);
   EXPECT_EQ(cell.summary().ci_low(), expected.lo);
   EXPECT_EQ(cell.summary().ci_high(), expected.hi);
   EXPECT_LT(cell.summary().ci_low(), 4.5);
@@ -491,4 +492,4 @@ TEST(SweepReportTest, RefusesBadRunsAndBadSweeps) {
 }
 
 }  // namespace
-}  // namespace dcs::coordinator
+}  // namespace dcs::report
