@@ -43,6 +43,8 @@
 #include "coordinator/run_state.h"
 #include "coordinator/sampler.h"
 #include "coordinator/tpe_sampler.h"
+#include "run/lease_key.h"
+#include "run/worker_reports.h"
 
 namespace SQLite {
 class Database;
@@ -50,8 +52,11 @@ class Database;
 
 namespace dcs::coordinator {
 
-// The slot number of a run's learner lease.
-inline constexpr int kLearnerSlot = -1;
+// Leases and what workers report of runs, in the words the workers use too.
+using run::ContextReturns;
+using run::kLearnerSlot;
+using run::LeaseKey;
+using run::RunProgress;
 
 // A run as submitted.
 struct RunSubmission {
@@ -61,16 +66,6 @@ struct RunSubmission {
   std::string env;
   int n_envs = 1;
   int64_t total_timesteps = 0;
-};
-
-// What a run's learner reports after each update.
-struct RunProgress {
-  int64_t timesteps = 0;
-  int64_t policy_version = 0;
-  double steps_per_second = 0;
-  double recent_return = 0;                  // NaN before the first episode
-  std::optional<double> avg_combined;        // of the latest evaluation
-  std::optional<int64_t> evaluation_step;    // its step
 };
 
 struct RunRecord {
@@ -86,13 +81,6 @@ struct RunRecord {
   absl::Time updated_at;
   std::string sweep_id;      // the sweep it belongs to ("sweep-<n>"); empty for a run alone
   std::optional<int> trial;  // its trial's index in that sweep
-};
-
-// Names a lease as its holder was granted it.
-struct LeaseKey {
-  std::string run_id;
-  int slot = kLearnerSlot;
-  int64_t epoch = 0;
 };
 
 // A run leased to a learner.
@@ -153,12 +141,6 @@ struct EvaluationGrant {
   // For cells of a grid evaluation, its grid (GridEvaluationRequest::grid: the jobs' contexts
   // are its cells); empty for a run's own evaluation.
   std::string grid;
-};
-
-// One context's episodes as an actor evaluated them.
-struct ContextReturns {
-  std::vector<double> returns;  // one per episode, in episode order
-  double seconds = 0;
 };
 
 // A job's result as its holder delivers it.

@@ -11,7 +11,7 @@
 #include "common/status_macros.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "services/channel.h"
-#include "services/study_proto.h"
+#include "services/coordinator/study_proto.h"
 #include "services/unary_call.h"
 
 namespace dcs::services::cli {

@@ -1,5 +1,5 @@
 // Copyright 2026 The DCS Authors.
-#include "services/study_proto.h"
+#include "services/coordinator/study_proto.h"
 
 #include <cmath>
 #include <string>

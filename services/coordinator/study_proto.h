@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-#ifndef DCS_SERVICES_STUDY_PROTO_H_
-#define DCS_SERVICES_STUDY_PROTO_H_
+#ifndef DCS_SERVICES_COORDINATOR_STUDY_PROTO_H_
+#define DCS_SERVICES_COORDINATOR_STUDY_PROTO_H_
 
 // Conversions between the coordinator's studies (coordinator/run_store.h) and dcs.v1 messages,
 // both ways: the coordinator sends what the client reads. Thread-safe (pure functions).
@@ -21,4 +21,4 @@ absl::StatusOr<coordinator::StudyRecord> StudyFromProto(const v1::Study& proto);
 
 }  // namespace dcs::services
 
-#endif  // DCS_SERVICES_STUDY_PROTO_H_
+#endif  // DCS_SERVICES_COORDINATOR_STUDY_PROTO_H_
