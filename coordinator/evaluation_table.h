@@ -26,8 +26,12 @@
 #include "absl/time/time.h"
 #include "absl/types/span.h"
 #include "coordinator/run_table.h"
+#include "run/worker_reports.h"
 
 namespace dcs::coordinator {
+
+// An actor's returns in one evaluation context, in the words the actors use too.
+using run::ContextReturns;
 
 // An evaluation a run's learner hands over: the policy of `policy_version`, evaluated at
 // training step `step` on each of the run's `contexts` evaluation contexts, with `episodes`
@@ -68,12 +72,6 @@ struct EvaluationGrant {
   // For cells of a grid evaluation, its grid (GridEvaluationRequest::grid: the jobs' contexts
   // are its cells); empty for a run's own evaluation.
   std::string grid;
-};
-
-// One context's episodes as an actor evaluated them.
-struct ContextReturns {
-  std::vector<double> returns;  // one per episode, in episode order
-  double seconds = 0;
 };
 
 // A job's result as its holder delivers it.

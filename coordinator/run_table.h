@@ -30,6 +30,8 @@
 #include "absl/time/time.h"
 #include "absl/types/span.h"
 #include "coordinator/run_state.h"
+#include "run/lease_key.h"
+#include "run/worker_reports.h"
 
 namespace dcs::coordinator {
 
@@ -37,15 +39,10 @@ namespace internal {
 class StoreConnection;
 }  // namespace internal
 
-// The slot number of a run's learner lease.
-inline constexpr int kLearnerSlot = -1;
-
-// Names a lease as its holder was granted it.
-struct LeaseKey {
-  std::string run_id;
-  int slot = kLearnerSlot;
-  int64_t epoch = 0;
-};
+// Leases and what learners report of runs, in the words the workers use too.
+using run::kLearnerSlot;
+using run::LeaseKey;
+using run::RunProgress;
 
 // A run as submitted.
 struct RunSubmission {
@@ -55,16 +52,6 @@ struct RunSubmission {
   std::string env;
   int n_envs = 1;
   int64_t total_timesteps = 0;
-};
-
-// What a run's learner reports after each update.
-struct RunProgress {
-  int64_t timesteps = 0;
-  int64_t policy_version = 0;
-  double steps_per_second = 0;
-  double recent_return = 0;                  // NaN before the first episode
-  std::optional<double> avg_combined;        // of the latest evaluation
-  std::optional<int64_t> evaluation_step;    // its step
 };
 
 struct RunRecord {

@@ -12,7 +12,7 @@
 #include "coordinator/store.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "services/channel.h"
-#include "services/study_proto.h"
+#include "services/coordinator/study_proto.h"
 #include "services/unary_call.h"
 
 namespace dcs::services::cli {

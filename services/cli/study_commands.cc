@@ -13,10 +13,10 @@
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
 #include "common/text_table.h"
-#include "coordinator/study_figures.h"
 #include "coordinator/study_table.h"
 #include "dcs/proto_json.h"
 #include "dcs/v1/study.pb.h"
+#include "report/study_figures.h"
 #include "run/search_space_yaml.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/figure_render.h"
@@ -186,15 +186,15 @@ absl::Status Trials(const std::string& study_id, const GlobalFlags& flags, Study
 struct PlotFlags {
   std::string study;
   std::string out;
-  coordinator::FigureFormat format = coordinator::FigureFormat::kSvg;
+  report::FigureFormat format = report::FigureFormat::kSvg;
 };
 
 // The study's optimisation history drawn by gnuplot into --out, beside its data and script.
 absl::Status Plot(const PlotFlags& flags, StudyClient& studies) {
   DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study, studies.Get(flags.study));
   DCS_ASSIGN_OR_RETURN(const std::vector<StudyTrial> trials, studies.Trials(flags.study));
-  DCS_ASSIGN_OR_RETURN(const coordinator::GnuplotFigure figure,
-                       coordinator::StudyHistoryFigure(study, trials));
+  DCS_ASSIGN_OR_RETURN(const report::GnuplotFigure figure,
+                       report::StudyHistoryFigure(study, trials));
   DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
                        RenderFigure(figure, flags.format, flags.out));
   if (!rendered.gnuplot_output.empty()) std::cerr << rendered.gnuplot_output << std::endl;
@@ -288,8 +288,8 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
       "plot", "Draw the study's optimisation history with gnuplot; print the image's path");
   plot->add_option("study", plot_flags->study, "the study's id")->required();
   plot->add_option("--out", plot_flags->out, "the directory to write")->required();
-  AddChoiceOption(*plot, "--format", &plot_flags->format,
-                  ChoicesOf(coordinator::kFigureFormatNames), "svg, png or pdf");
+  AddChoiceOption(*plot, "--format", &plot_flags->format, ChoicesOf(report::kFigureFormatNames),
+                  "svg, png or pdf");
   add_store(plot);
 
   CLI::App* best = study->add_subcommand("best", "Print the best complete trial (JSON)");

@@ -21,6 +21,7 @@
 #include "coordinator/run_submission.h"
 #include "dcs/v1/trajectory.pb.h"
 #include "services/coordinator/coordinator_service.h"
+#include "services/coordinator/record_proto.h"
 #include "services/evaluation_grid_proto.h"
 #include "services/grpc_status.h"
 #include "services/log.h"

@@ -9,8 +9,8 @@
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
 #include "services/coordinator/coordinator_service.h"
+#include "services/coordinator/study_proto.h"
 #include "services/log.h"
-#include "services/study_proto.h"
 
 namespace dcs::services {
 

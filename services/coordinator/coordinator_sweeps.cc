@@ -15,8 +15,8 @@
 #include "coordinator/sweep_results.h"
 #include "coordinator/sweep_submission.h"
 #include "services/coordinator/coordinator_service.h"
+#include "services/coordinator/record_proto.h"
 #include "services/log.h"
-#include "services/run_proto.h"
 
 namespace dcs::services {
 namespace {

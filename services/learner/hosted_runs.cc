@@ -30,7 +30,7 @@
 namespace dcs::services {
 
 struct HostedRuns::Run {
-  coordinator::LeaseKey lease;
+  run::LeaseKey lease;
   std::string config;
   prometheus::Labels metric_labels;  // run_id, sweep_id, condition, observe
   absl::Time renewed_at;                     // the manager thread's
@@ -166,7 +166,7 @@ bool HostedRuns::AcquireRun() {
     return false;
   }
   if (!response.has_lease()) return false;
-  absl::StatusOr<coordinator::LeaseKey> lease = LeaseFromProto(response.lease());
+  absl::StatusOr<run::LeaseKey> lease = LeaseFromProto(response.lease());
   if (!lease.ok()) return false;
   auto run = std::make_shared<Run>();
   run->lease = *lease;
@@ -247,10 +247,10 @@ absl::Status HostedRuns::PutCheckpoint(Run& run, const run::Checkpoint& checkpoi
   });
 }
 
-void HostedRuns::Finish(Run& run, coordinator::RunState state, const std::string& error) {
+void HostedRuns::Finish(Run& run, v1::RunState state, const std::string& error) {
   v1::FinishRunRequest request;
   *request.mutable_lease() = LeaseToProto(run.lease);
-  request.set_state(RunStateToProto(state));
+  request.set_state(state);
   request.set_error(error);
   const absl::Status status = Retry(run, [&] {
     v1::FinishRunResponse response;
@@ -287,7 +287,7 @@ void HostedRuns::Train(Run& run) {
   if (!loaded.ok()) {
     Log(LogLevel::kError, "cannot load a run",
         {{"run_id", run.lease.run_id}, {"error", loaded.status().ToString()}});
-    if (!run.lost) Finish(run, coordinator::RunState::kFailed, loaded.status().ToString());
+    if (!run.lost) Finish(run, v1::RUN_STATE_FAILED, loaded.status().ToString());
     return;
   }
   {
@@ -299,7 +299,7 @@ void HostedRuns::Train(Run& run) {
   if (host.complete()) {
     // Its checkpoint holds its end, final evaluation included (RunHost::Step stores it once
     // every evaluation is in): a learner stopped between storing it and finishing the run.
-    Finish(run, coordinator::RunState::kCompleted, "");
+    Finish(run, v1::RUN_STATE_COMPLETED, "");
     Log(LogLevel::kInfo, "run complete: its checkpoint holds its end",
         {{"run_id", run.lease.run_id}});
     return;
@@ -312,7 +312,7 @@ void HostedRuns::Train(Run& run) {
       if (run.lost || absl::IsCancelled(step.status())) return;
       Log(LogLevel::kError, "a run failed",
           {{"run_id", run.lease.run_id}, {"error", step.status().ToString()}});
-      Finish(run, coordinator::RunState::kFailed, step.status().ToString());
+      Finish(run, v1::RUN_STATE_FAILED, step.status().ToString());
       return;
     }
     const learner::TrainingProgress& progress = step->progress;
@@ -344,12 +344,12 @@ void HostedRuns::Train(Run& run) {
       const absl::Status stored = PutCheckpoint(run, *step->checkpoint, step->evaluation_log);
       if (!stored.ok()) {
         if (run.lost || stopping_.HasBeenNotified()) return;
-        Finish(run, coordinator::RunState::kFailed, stored.ToString());
+        Finish(run, v1::RUN_STATE_FAILED, stored.ToString());
         return;
       }
     }
     if (step->complete) {
-      Finish(run, coordinator::RunState::kCompleted, "");
+      Finish(run, v1::RUN_STATE_COMPLETED, "");
       Log(LogLevel::kInfo, "run complete", {{"run_id", run.lease.run_id}});
       return;
     }

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "coordinator/run_files.h"
-#include "coordinator/sweep_report.h"
+#include "report/sweep_report.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "run/evaluation_log.h"

@@ -55,17 +55,5 @@ TEST(RunProtoTest, AStreamedCheckpointMustNameItselfFirstAndOnlyItself) {
             absl::StatusCode::kInvalidArgument);
 }
 
-TEST(RunProtoTest, FilesGoInPiecesInOrderAndAnEmptyFileIsOnePiece) {
-  const std::vector<v1::RunFile> pieces =
-      RunFilesToPieces({{.path = "a", .contents = Bytes(kPieceBytes + 1)},
-                        {.path = "b", .contents = ""}});
-  ASSERT_EQ(pieces.size(), 3u);
-  EXPECT_EQ(pieces[0].path(), "a");
-  EXPECT_EQ(pieces[1].path(), "a");
-  EXPECT_EQ(pieces[0].contents() + pieces[1].contents(), Bytes(kPieceBytes + 1));
-  EXPECT_EQ(pieces[2].path(), "b");
-  EXPECT_TRUE(pieces[2].contents().empty());
-}
-
 }  // namespace
 }  // namespace dcs::services
