@@ -10,7 +10,8 @@
 #        4000/400)
 #   (BUILD_DIR: build; WARMUP: 20; SECONDS_PER_SIZE: 60; CONFIG:
 #    configs/cartpole_length_pool7_static_blind.yaml; COORDINATOR_CPU: 0; SIMULATOR_CPU: 1;
-#    COORDINATOR_FLAGS: more flags for the coordinator; FLEET_FLAGS: for fleet_benchmark)
+#    COORDINATOR: the dcs-coordinator to measure, default BUILD_DIR's; COORDINATOR_FLAGS: more
+#    flags for it; FLEET_FLAGS: for fleet_benchmark)
 set -euo pipefail
 build="${BUILD_DIR:-build}"
 warmup="${WARMUP:-20}"
@@ -40,14 +41,14 @@ for size in "${sizes[@]}"; do
   # Enough runs for the whole measurement: a run ends after about 150k / (n_envs x 1,400) s.
   {
     echo "name: fleet"
-    echo "seeds: $((runs_at_once * 8))"
+    echo "seeds: $((runs_at_once * 5))"
     echo "observe: [none]"
     sed -e '/^seed:/d' -e '/^observe:/d' -e '/^schedule:/d' -e "s/^n_envs:.*/n_envs: $n_envs/" \
       "$config"
     echo "conditions:"
     echo "  - name: static"
   } > "$out/sweep.yaml"
-  taskset -c "${COORDINATOR_CPU:-0}" "$build/services/dcs-coordinator" \
+  taskset -c "${COORDINATOR_CPU:-0}" "${COORDINATOR:-$build/services/dcs-coordinator}" \
     --data-dir "$out/coordinator" --listen 127.0.0.1:0 --metrics-listen 127.0.0.1:0 \
     --port-file "$out/coordinator.ports" ${COORDINATOR_FLAGS:-} > "$out/coordinator.log" 2>&1 &
   coordinator_pid=$!

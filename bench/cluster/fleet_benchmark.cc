@@ -904,7 +904,8 @@ int Main(int argc, char** argv) {
   {
     auto stub = CoordinatorService::NewStub(WorkerChannel(options.coordinator));
     grpc::ClientContext context;
-    context.set_deadline(absl::ToChronoTime(absl::Now() + absl::Seconds(60)));
+    // A sweep of thousands of runs takes a while: each run's directory is written and synced.
+    context.set_deadline(absl::ToChronoTime(absl::Now() + absl::Minutes(10)));
     v1::SubmitSweepRequest request;
     request.set_request_id("fleet");
     request.set_spec(*spec);
