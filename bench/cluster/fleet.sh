@@ -56,7 +56,8 @@ for size in "${sizes[@]}"; do
   port=$(sed -n 's/^grpc_port: *//p' "$out/coordinator.ports")
   taskset -c "${SIMULATOR_CPU:-1}" "$build/bench/cluster/fleet_benchmark" \
     --coordinator "127.0.0.1:$port" --pid "$coordinator_pid" --sweep-spec "$out/sweep.yaml" \
-    --actors "$actors" --learners "$learners" --warmup "$warmup" --seconds "$seconds" ${FLEET_FLAGS:-} | tee "$out/fleet.txt"
+    --actors "$actors" --learners "$learners" --warmup "$warmup" --seconds "$seconds" \
+    ${FLEET_FLAGS:-} | tee "$out/fleet.txt"
   rows+=("$(head -1 "$out/fleet.txt")")
   kill -TERM "$coordinator_pid"
   wait "$coordinator_pid" || true
@@ -65,8 +66,9 @@ for size in "${sizes[@]}"; do
 done
 
 echo
-echo "| actors / learners | calls/s | RenewLease p50 ms | p99 ms | lease calls p99 ms |" \
-     "long polls' overrun p99 ms | failed calls | coordinator cores | RSS MiB | peak MiB |" \
+echo "| actors / learners | calls/s | RenewLease p50 ms | p99 ms |" \
+     "lease calls p99 ms (renew, release) | long polls' lag p99 ms | failed calls |" \
+     "coordinator cores | RSS MiB | peak MiB |" \
      "simulator cores |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
 printf '%s\n' "${rows[@]}"

@@ -48,7 +48,6 @@
 #include <optional>
 #include <queue>
 #include <random>
-#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -59,7 +58,6 @@
 #include "absl/base/thread_annotations.h"
 #include "absl/container/flat_hash_set.h"
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_format.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/clock.h"
 #include "absl/time/time.h"
