@@ -14,6 +14,9 @@ namespace dcs {
 
 std::string ProtoToJson(const google::protobuf::Message& message);
 
+// The same JSON on one line (no newline in it, none after it): a line of a JSON Lines file.
+std::string ProtoToJsonLine(const google::protobuf::Message& message);
+
 }  // namespace dcs
 
 #endif  // DCS_PROTO_JSON_H_
