@@ -129,7 +129,9 @@ absl::Status AppendEvaluationLog(const std::string& dir, int64_t first,
   if (error) return FileError(error.value(), "cannot create", dir);
   DCS_ASSIGN_OR_RETURN(const v1::AppendedEvaluationLog summary, SummaryToAppendTo(dir));
   if (first > summary.evaluations()) {
-    return absl::FailedPreconditionError(absl::StrCat(
+    // Not FAILED_PRECONDITION: learners take that for a lost lease, and the run would go from
+    // one to the next for ever.
+    return absl::DataLossError(absl::StrCat(
         "the evaluation log in ", dir, " holds ", summary.evaluations(),
         " evaluations; evaluations from number ", first + 1, " on cannot follow them"));
   }

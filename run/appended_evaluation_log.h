@@ -35,8 +35,9 @@ v1::EvaluationLog EvaluationLogSince(const v1::EvaluationLog& log, int64_t first
 // log, or sending a checkpoint again, makes the same evaluations (runs are deterministic). A
 // log that already holds more than `first` + all of `since` is left as it is. A log of
 // WriteEvaluationLog's (a directory of an older coordinator) is first turned into this form.
-// FAILED_PRECONDITION if the log holds fewer than `first` evaluations (some would be missing);
-// DATA_LOSS as ReadEvaluationLog for a log that does not read; errors of writing name the file
+// DATA_LOSS if the log holds fewer than `first` evaluations (some would be missing), or naming
+// its summary (or the older log) if that does not read; its lines are not read (so a damaged
+// line is found by readers, not here). Errors of writing name the file
 // (RESOURCE_EXHAUSTED for a full disk), and the log is then as before.
 absl::Status AppendEvaluationLog(const std::string& dir, int64_t first,
                                  const v1::EvaluationLog& since);

@@ -114,7 +114,7 @@ TEST_F(AppendedEvaluationLogTest, EvaluationsSentAgainAreNotAppendedAgain) {
 TEST_F(AppendedEvaluationLogTest, AGapIsRefusedAndTheLogKept) {
   AppendUpTo(0, 1);
   const absl::Status gap = AppendEvaluationLog(Dir(), 2, EvaluationLogSince(LogOf(3), 2));
-  EXPECT_EQ(gap.code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_EQ(gap.code(), absl::StatusCode::kDataLoss);
   EXPECT_THAT(gap.message(), HasSubstr("holds 1 evaluations; evaluations from number 3 on"));
   ExpectSameLog(ReadEvaluationLog(Dir()), LogOf(1));
 }
