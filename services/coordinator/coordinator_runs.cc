@@ -114,12 +114,13 @@ class JoiningReader final : public grpc::ServerReadReactor<Request> {
   Request request_;
 };
 
-// PutCheckpoint's stream: the pieces of one checkpoint and its evaluation log, stored once the
-// learner has sent them all. Owned by gRPC from construction until OnDone.
+// PutCheckpoint's stream: the pieces of one checkpoint and of its evaluation log's new part,
+// stored once the learner has sent them all. Owned by gRPC from construction until OnDone.
 class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointRequest> {
  public:
+  // The lease, the checkpoint, and its evaluation log from evaluation `first` on.
   using Store = std::function<absl::Status(const coordinator::LeaseKey&,
-                                           const run::PackedCheckpoint&,
+                                           const run::PackedCheckpoint&, int64_t first,
                                            const v1::EvaluationLog&)>;
   using Count = std::function<void(const absl::Status&)>;
 
@@ -145,6 +146,7 @@ class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointR
     const bool first = !key_.has_value();
     if (first) {
       DCS_ASSIGN_OR_RETURN(key_, LeaseFromProto(request_.lease()));
+      first_evaluation_ = request_.evaluations_before();
     }
     DCS_RETURN_IF_ERROR(AddCheckpointPiece(request_.checkpoint(), first, checkpoint_));
     if (log_.size() + request_.evaluation_log().size() > kMaxStreamedBytes) {
@@ -163,13 +165,14 @@ class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointR
       return absl::InvalidArgumentError(
           absl::StrCat("the evaluation log of checkpoint ", checkpoint_.name, " does not parse"));
     }
-    return store_(*key_, checkpoint_, log);
+    return store_(*key_, checkpoint_, first_evaluation_, log);
   }
 
   const Store store_;
   const Count count_;
   v1::PutCheckpointRequest request_;
   std::optional<coordinator::LeaseKey> key_;  // from the first piece
+  int64_t first_evaluation_ = 0;               // from the first piece
   run::PackedCheckpoint checkpoint_;
   std::string log_;
 };
@@ -396,13 +399,14 @@ grpc::ServerUnaryReactor* CoordinatorService::ReportProgress(
 
 absl::Status CoordinatorService::StoreCheckpoint(const coordinator::LeaseKey& key,
                                                  const run::PackedCheckpoint& checkpoint,
-                                                 const v1::EvaluationLog& log) {
+                                                 int64_t first_evaluation,
+                                                 const v1::EvaluationLog& log_since) {
   // Only the lease's holder writes the run's directory; checked again when indexing.
   DCS_RETURN_IF_ERROR(runs_.store->runs().RenewLease(key, absl::Now()));
   DCS_ASSIGN_OR_RETURN(const coordinator::CheckpointRecord stored,
                        coordinator::StoreCheckpoint(
                            coordinator::RunDirectory(runs_.data_dir, key.run_id), checkpoint,
-                           log, runs_.keep_checkpoints));
+                           first_evaluation, log_since, runs_.keep_checkpoints));
   return runs_.store->checkpoints().RecordCheckpoint(key, stored, absl::Now());
 }
 
@@ -413,7 +417,9 @@ grpc::ServerReadReactor<v1::PutCheckpointRequest>* CoordinatorService::PutCheckp
   }
   return new CheckpointReader(
       [this](const coordinator::LeaseKey& key, const run::PackedCheckpoint& checkpoint,
-             const v1::EvaluationLog& log) { return StoreCheckpoint(key, checkpoint, log); },
+             int64_t first, const v1::EvaluationLog& log_since) {
+        return StoreCheckpoint(key, checkpoint, first, log_since);
+      },
       [this](const absl::Status& status) { rejected_.Count(status); });
 }
 

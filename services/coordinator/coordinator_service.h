@@ -184,10 +184,11 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
                                          std::function<absl::StatusOr<bool>()> attempt);
   // The actors heartbeating now, who share each evaluation's jobs.
   int AliveActors() const;
-  // Stores a checkpoint a learner streamed (PutCheckpoint), with the evaluation log as of it.
+  // Stores a checkpoint a learner streamed (PutCheckpoint), with the evaluation log as of it
+  // from evaluation `first_evaluation` on (coordinator::StoreCheckpoint).
   absl::Status StoreCheckpoint(const coordinator::LeaseKey& key,
-                               const run::PackedCheckpoint& checkpoint,
-                               const v1::EvaluationLog& log);
+                               const run::PackedCheckpoint& checkpoint, int64_t first_evaluation,
+                               const v1::EvaluationLog& log_since);
 
   coordinator::WorkerRegistry& registry_;
   const RunStorage runs_;

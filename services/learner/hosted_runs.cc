@@ -14,6 +14,7 @@
 #include "common/status_macros.h"
 #include "common/status_util.h"
 #include "env/env_registry.h"
+#include "run/appended_evaluation_log.h"
 #include "run/run_checkpoint.h"
 #include "run/run_spec_yaml.h"
 #include "services/backoff.h"
@@ -34,6 +35,9 @@ struct HostedRuns::Run {
   std::string config;
   prometheus::Labels metric_labels;  // run_id, sweep_id, condition, observe
   absl::Time renewed_at;                     // the manager thread's
+  // The run's first so many evaluations are in the coordinator's log: those of the checkpoint
+  // the run was loaded from, then of each checkpoint stored. The run's thread's.
+  int64_t evaluations_stored = 0;
 
   absl::Mutex mu;
   std::shared_ptr<learner::RunHost> host ABSL_GUARDED_BY(mu);  // null while loading
@@ -232,19 +236,23 @@ absl::Status HostedRuns::PutCheckpoint(Run& run, const run::Checkpoint& checkpoi
                                        const v1::EvaluationLog& log) {
   const std::vector<v1::CheckpointPiece> pieces =
       CheckpointToPieces(run::PackCheckpoint(checkpoint));
-  const std::string log_bytes = log.SerializeAsString();
+  const std::string log_bytes =
+      run::EvaluationLogSince(log, run.evaluations_stored).SerializeAsString();
   const std::vector<absl::string_view> log_pieces = SplitIntoPieces(log_bytes);
   std::vector<v1::PutCheckpointRequest> requests(std::max(pieces.size(), log_pieces.size()));
   *requests.front().mutable_lease() = LeaseToProto(run.lease);
+  requests.front().set_evaluations_before(run.evaluations_stored);
   for (size_t i = 0; i < pieces.size(); ++i) *requests[i].mutable_checkpoint() = pieces[i];
   for (size_t i = 0; i < log_pieces.size(); ++i) {
     requests[i].set_evaluation_log(log_pieces[i].data(), log_pieces[i].size());
   }
-  return Retry(run, [&] {
+  DCS_RETURN_IF_ERROR(Retry(run, [&] {
     v1::PutCheckpointResponse response;
     return CallClientStream(*coordinator_, &v1::CoordinatorService::Stub::PutCheckpoint, requests,
                             response, options_.transfer_timeout, "coordinator");
-  });
+  }));
+  run.evaluations_stored = log.evaluations_size();
+  return absl::OkStatus();
 }
 
 void HostedRuns::Finish(Run& run, v1::RunState state, const std::string& error) {
@@ -266,6 +274,8 @@ void HostedRuns::Finish(Run& run, v1::RunState state, const std::string& error) 
 absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Load(Run& run) {
   DCS_ASSIGN_OR_RETURN(run::RunSpec spec, run::ParseRunSpecYaml(run.config, run.lease.run_id));
   DCS_ASSIGN_OR_RETURN(const std::optional<run::Checkpoint> checkpoint, FetchCheckpoint(run));
+  // The coordinator's log holds at least its evaluations (coordinator/run_files.h).
+  if (checkpoint.has_value()) run.evaluations_stored = checkpoint->state.evaluations.size();
   Log(LogLevel::kInfo, "hosting a run",
       {{"run_id", run.lease.run_id}, {"epoch", std::to_string(run.lease.epoch)},
        {"checkpoint", checkpoint.has_value() ? checkpoint->name : "none"}});

@@ -87,7 +87,8 @@ class HostedRuns {
   absl::Status Retry(Run& run, Attempt attempt);
   // The run's latest checkpoint from the coordinator; nullopt if it has none yet.
   absl::StatusOr<std::optional<run::Checkpoint>> FetchCheckpoint(Run& run);
-  // Sends `checkpoint` with `log` to the coordinator, which stores it before answering.
+  // Sends `checkpoint` with the part of `log`, the run's evaluation log as of it, that the
+  // coordinator has not stored yet; the coordinator stores both before answering.
   absl::Status PutCheckpoint(Run& run, const run::Checkpoint& checkpoint,
                              const v1::EvaluationLog& log);
   // Tells the coordinator the run ended in `state`: completed, or failed with `error`.
