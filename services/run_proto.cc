@@ -67,6 +67,16 @@ coordinator::RunProgress ProgressFromProto(const v1::RunProgress& proto) {
   return progress;
 }
 
+bool RunEnded(v1::RunState state) {
+  return state == v1::RUN_STATE_COMPLETED || state == v1::RUN_STATE_FAILED ||
+         state == v1::RUN_STATE_CANCELLED;
+}
+
+bool SweepEnded(v1::SweepState state) {
+  return state == v1::SWEEP_STATE_COMPLETED || state == v1::SWEEP_STATE_FAILED ||
+         state == v1::SWEEP_STATE_CANCELLED;
+}
+
 v1::Run RunToProto(const coordinator::RunRecord& run) {
   v1::Run proto;
   proto.set_run_id(run.id);

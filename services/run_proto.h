@@ -26,6 +26,10 @@ v1::RunState RunStateToProto(coordinator::RunState state);
 // INVALID_ARGUMENT for RUN_STATE_UNSPECIFIED or an unknown value.
 absl::StatusOr<coordinator::RunState> RunStateFromProto(v1::RunState state);
 
+// True once nothing moves the run (the sweep) any more: completed, failed or cancelled.
+bool RunEnded(v1::RunState state);
+bool SweepEnded(v1::SweepState state);
+
 v1::Run RunToProto(const coordinator::RunRecord& run);
 v1::Sweep SweepToProto(const coordinator::SweepRecord& sweep);
 

@@ -3,8 +3,9 @@
 #define DCS_SERVICES_CLI_RUN_CLIENT_H_
 
 // The coordinator's runs and sweeps, as the `dcs` client uses them: submit, follow, list,
-// cancel, download; a sweep's results; a backup of the coordinator's store. Every call has a
-// deadline (`timeout`); errors are annotated with the coordinator's address. Thread-safe.
+// cancel, download; a sweep's results; a backup of the coordinator's store. Every call but a
+// watch has a deadline (`timeout`); errors are annotated with the coordinator's address.
+// Thread-safe.
 
 #include <cstdint>
 #include <functional>
@@ -38,14 +39,33 @@ absl::StatusOr<std::vector<v1::Run>> ListRuns(const std::string& address,
 absl::StatusOr<v1::Run> CancelRun(const std::string& address, const std::string& run_id,
                                   absl::Duration timeout);
 
-// Follows run `run_id` until it ends: `on_change` gets the run whenever its progress or state
-// changed (asked every `poll`). Returns the ended run; CANCELLED once `interrupted` says so
-// (the run goes on). A coordinator that does not answer is asked again until it does.
+// What a watch (WatchRun, WatchSweep) tells its caller, and asks it. A watch is one stream
+// from the coordinator, which sends only changes; it asks nothing in between.
+template <typename Update>
+struct WatchCallbacks {
+  // The state now, then each change (the state again after the watch reconnected).
+  std::function<void(const Update&)> on_update;
+  // Checked every 100 ms: once true, the watch stops with CANCELLED (the work goes on).
+  std::function<bool()> interrupted = [] { return false; };
+  // The stream broke with a transient error (the coordinator restarts): said once per outage,
+  // as the watch begins to reconnect (with backoff, until the coordinator is back).
+  std::function<void(const absl::Status&)> on_lost = [](const absl::Status&) {};
+};
+
+// Follows run `run_id` until it ends: `on_update` gets the run whenever its progress or state
+// changed. Returns the ended run; CANCELLED once interrupted; other errors (NOT_FOUND for an
+// unknown run) as the coordinator gave them.
 absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& run_id,
-                                 absl::Duration timeout,
-                                 const std::function<void(const v1::Run&)>& on_change,
-                                 const std::function<bool()>& interrupted,
-                                 absl::Duration poll = absl::Milliseconds(250));
+                                 const WatchCallbacks<v1::Run>& callbacks);
+
+// Follows sweep `sweep_id` (with its runs) until it ends, as WatchRun follows a run: returns
+// the ended sweep.
+absl::StatusOr<v1::GetSweepResponse> WatchSweep(
+    const std::string& address, const std::string& sweep_id,
+    const WatchCallbacks<v1::GetSweepResponse>& callbacks);
+
+// What `dcs` says on stderr when a watch lost the coordinator (WatchCallbacks::on_lost).
+std::string WatchLostMessage(const absl::Status& status);
 
 // Writes run `run_id`'s files (config, checkpoints, evaluation log) into `dir`, as `dcs train
 // --out dir` lays them out. INVALID_ARGUMENT for a file path that would leave `dir`.
