@@ -89,7 +89,7 @@ TEST(WatchTest, DcsWatchFollowsASweepToItsEndOnOneStreamAndPollsNothing) {
   EXPECT_THAT(watched.output, Not(HasSubstr("lost the coordinator")));
 
   const std::string metrics = CoordinatorMetrics(cluster);
-  EXPECT_EQ(CallsStarted(metrics, "WatchSweep"), 1) << metrics;
+  EXPECT_EQ(CallsStarted(metrics, "WatchSweep"), 1);
   for (const char* polled : {"GetSweep", "GetRun", "ListRuns", "ListSweeps"}) {
     EXPECT_EQ(CallsStarted(metrics, polled), 0) << polled;
   }
@@ -133,7 +133,7 @@ TEST(WatchTest, AWatchOutlivesARestartOfTheCoordinatorSayingSoOnce) {
   EXPECT_THAT(lost[1], HasSubstr("UNAVAILABLE: coordinator"));
 
   const std::string metrics = CoordinatorMetrics(cluster);
-  EXPECT_EQ(CallsStarted(metrics, "WatchSweep"), 1) << metrics;  // since the last start
+  EXPECT_EQ(CallsStarted(metrics, "WatchSweep"), 1);  // since the last start
   EXPECT_EQ(CallsStarted(metrics, "GetSweep"), 0);
 }
 
@@ -163,7 +163,7 @@ TEST(WatchTest, AWatcherThatGoesIsReleased) {
   EXPECT_TRUE(Eventually([&] { return Watchers(cluster, "run") == 0; }));
 
   const std::string metrics = CoordinatorMetrics(cluster);
-  EXPECT_EQ(CallsStarted(metrics, "WatchRun"), 2) << metrics;
+  EXPECT_EQ(CallsStarted(metrics, "WatchRun"), 2);
   EXPECT_EQ(CallsStarted(metrics, "GetRun"), 0);
 }
 
