@@ -66,6 +66,13 @@ class CoordinatorWatchTest : public ::testing::Test {
     return response.lease();
   }
 
+  std::unique_ptr<grpc::ClientReader<v1::GetRunResponse>> Watch(grpc::ClientContext& context,
+                                                                 const std::string& run_id) {
+    v1::WatchRunRequest request;
+    request.set_run_id(run_id);
+    return stub_->WatchRun(&context, request);
+  }
+
   double RunWatchers() {
     for (const prometheus::MetricFamily& family : coordinator_->metrics()->Collect()) {
       if (family.name != "dcs_watchers") continue;
@@ -86,10 +93,7 @@ TEST_F(CoordinatorWatchTest, AWatchSendsTheRunThenEachChangeOfItsLearnerAndEndsW
   const std::string run_id = SubmitRun();
   grpc::ClientContext context;
   SetTimeout(context, kRpcTimeout);
-  v1::WatchRunRequest request;
-  request.set_run_id(run_id);
-  std::unique_ptr<grpc::ClientReader<v1::GetRunResponse>> watch =
-      stub_->WatchRun(&context, request);
+  std::unique_ptr<grpc::ClientReader<v1::GetRunResponse>> watch = Watch(context, run_id);
   v1::GetRunResponse update;
   ASSERT_TRUE(watch->Read(&update));
   EXPECT_EQ(update.run().run_id(), run_id);
@@ -133,10 +137,7 @@ TEST_F(CoordinatorWatchTest, AWatchSendsTheRunThenEachChangeOfItsLearnerAndEndsW
 TEST_F(CoordinatorWatchTest, AWatchOfAnUnknownRunIsNotFound) {
   grpc::ClientContext context;
   SetTimeout(context, kRpcTimeout);
-  v1::WatchRunRequest request;
-  request.set_run_id("run-404");
-  std::unique_ptr<grpc::ClientReader<v1::GetRunResponse>> watch =
-      stub_->WatchRun(&context, request);
+  std::unique_ptr<grpc::ClientReader<v1::GetRunResponse>> watch = Watch(context, "run-404");
   v1::GetRunResponse update;
   EXPECT_FALSE(watch->Read(&update));
   EXPECT_EQ(watch->Finish().error_code(), grpc::StatusCode::NOT_FOUND);
@@ -145,10 +146,7 @@ TEST_F(CoordinatorWatchTest, AWatchOfAnUnknownRunIsNotFound) {
 TEST_F(CoordinatorWatchTest, AWatcherThatCancelsIsReleased) {
   const std::string run_id = SubmitRun();
   grpc::ClientContext context;
-  v1::WatchRunRequest request;
-  request.set_run_id(run_id);
-  std::unique_ptr<grpc::ClientReader<v1::GetRunResponse>> watch =
-      stub_->WatchRun(&context, request);
+  std::unique_ptr<grpc::ClientReader<v1::GetRunResponse>> watch = Watch(context, run_id);
   v1::GetRunResponse update;
   ASSERT_TRUE(watch->Read(&update));
   EXPECT_EQ(RunWatchers(), 1);
