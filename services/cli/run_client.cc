@@ -3,12 +3,10 @@
 
 #include <grpcpp/grpcpp.h>
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <memory>
-#include <utility>
 
 #include "absl/random/random.h"
 #include "absl/strings/ascii.h"
@@ -20,7 +18,6 @@
 #include "common/status_macros.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "google/protobuf/util/message_differencer.h"
-#include "services/backoff.h"
 #include "run/run_checkpoint.h"
 #include "services/channel.h"
 #include "services/pieces.h"
@@ -52,115 +49,6 @@ std::string EnumValueName(absl::string_view name, absl::string_view prefix) {
 }
 
 std::string Peer(const std::string& address) { return absl::StrCat("coordinator ", address); }
-
-// How often a watch checks whether its caller wants to stop.
-constexpr absl::Duration kInterruptCheck = absl::Milliseconds(100);
-// Between a watch's attempts to reach a coordinator that went away.
-constexpr BackoffPolicy kWatchBackoff{.initial = absl::Milliseconds(250),
-                                      .max = absl::Seconds(2)};
-
-// Waits for the one operation in flight on `queue` and returns whether it succeeded; once
-// `interrupted` says so, cancels the call (its operations then fail) and sets `cancelled`.
-bool AwaitOperation(grpc::CompletionQueue& queue, grpc::ClientContext& context,
-                    const std::function<bool()>& interrupted, bool& cancelled) {
-  while (true) {
-    void* tag = nullptr;
-    bool ok = false;
-    switch (queue.AsyncNext(&tag, &ok, absl::ToChronoTime(absl::Now() + kInterruptCheck))) {
-      case grpc::CompletionQueue::GOT_EVENT:
-        return ok;
-      case grpc::CompletionQueue::SHUTDOWN:
-        return false;
-      case grpc::CompletionQueue::TIMEOUT:
-        if (!cancelled && interrupted()) {
-          cancelled = true;
-          context.TryCancel();
-        }
-        break;
-    }
-  }
-}
-
-// Sleeps for `delay`; returns false at once if `interrupted` says so.
-bool SleepUnlessInterrupted(absl::Duration delay, const std::function<bool()>& interrupted) {
-  for (const absl::Time end = absl::Now() + delay; absl::Now() < end;) {
-    if (interrupted()) return false;
-    absl::SleepFor(std::min(kInterruptCheck, end - absl::Now()));
-  }
-  return !interrupted();
-}
-
-// One watch call, `start`ed on `stub`, read to its end (or cancelled once interrupted): each
-// message to `on_update`. Returns the call's status.
-template <typename Update, typename Start>
-absl::Status ReadWatch(v1::CoordinatorService::Stub& stub, const Start& start,
-                       const WatchCallbacks<Update>& callbacks, const std::string& peer) {
-  grpc::ClientContext context;
-  grpc::CompletionQueue queue;
-  bool cancelled = false;
-  auto await = [&] { return AwaitOperation(queue, context, callbacks.interrupted, cancelled); };
-  void* const tag = &queue;  // one operation in flight at a time: the tag says nothing
-  std::unique_ptr<grpc::ClientAsyncReader<Update>> reader = start(stub, &context, &queue);
-  reader->StartCall(tag);
-  if (await()) {
-    Update update;
-    while (true) {
-      reader->Read(&update, tag);
-      if (!await()) break;
-      callbacks.on_update(update);
-    }
-  }
-  grpc::Status status;
-  reader->Finish(&status, tag);
-  await();
-  queue.Shutdown();
-  void* drained = nullptr;
-  bool ok = false;
-  while (queue.Next(&drained, &ok)) {
-  }
-  if (status.ok()) return absl::OkStatus();
-  return Annotate(FromGrpcStatus(status), peer);
-}
-
-// Watches with the call `start` makes until the stream ends with its last update (returned),
-// watching again after a transient failure (said once per outage), with backoff. A coordinator
-// that stops cancels the calls it still holds: CANCELLED not of the caller's asking is lost
-// too.
-template <typename Update, typename Start>
-absl::StatusOr<Update> FollowWatch(const std::string& address, const Start& start,
-                                   const WatchCallbacks<Update>& callbacks,
-                                   const std::string& interrupted_message) {
-  auto stub = Coordinator(address);
-  std::optional<Update> last;
-  bool heard = false;  // an update came since the last failure
-  const WatchCallbacks<Update> recorded{.on_update =
-                                            [&](const Update& update) {
-                                              last = update;
-                                              heard = true;
-                                              callbacks.on_update(update);
-                                            },
-                                        .interrupted = callbacks.interrupted,
-                                        .on_lost = callbacks.on_lost};
-  absl::BitGen random;
-  int failures = 0;
-  while (true) {
-    const absl::Status status = ReadWatch(*stub, start, recorded, Peer(address));
-    if (status.ok()) {
-      if (!last.has_value()) {
-        return absl::InternalError(absl::StrCat(Peer(address), " ended a watch without an update"));
-      }
-      return *std::move(last);
-    }
-    if (callbacks.interrupted()) return absl::CancelledError(interrupted_message);
-    if (!IsTransient(status) && !absl::IsCancelled(status)) return status;
-    if (std::exchange(heard, false)) failures = 0;
-    if (failures++ == 0) callbacks.on_lost(status);
-    if (!SleepUnlessInterrupted(BackoffDelay(kWatchBackoff, failures, random),
-                                callbacks.interrupted)) {
-      return absl::CancelledError(interrupted_message);
-    }
-  }
-}
 
 }  // namespace
 
@@ -295,7 +183,7 @@ absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& 
   DCS_ASSIGN_OR_RETURN(
       const v1::GetRunResponse ended,
       FollowWatch<v1::GetRunResponse>(
-          address,
+          *Coordinator(address),
           [&](v1::CoordinatorService::Stub& stub, grpc::ClientContext* context,
               grpc::CompletionQueue* queue) {
             return stub.PrepareAsyncWatchRun(context, request, queue);
@@ -313,7 +201,7 @@ absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& 
                },
            .interrupted = callbacks.interrupted,
            .on_lost = callbacks.on_lost},
-          absl::StrCat("stopped following ", run_id)));
+          Peer(address), absl::StrCat("stopped following ", run_id)));
   return ended.run();
 }
 
@@ -323,12 +211,12 @@ absl::StatusOr<v1::GetSweepResponse> WatchSweep(
   v1::WatchSweepRequest request;
   request.set_sweep_id(sweep_id);
   return FollowWatch<v1::GetSweepResponse>(
-      address,
+      *Coordinator(address),
       [&](v1::CoordinatorService::Stub& stub, grpc::ClientContext* context,
           grpc::CompletionQueue* queue) {
         return stub.PrepareAsyncWatchSweep(context, request, queue);
       },
-      callbacks, absl::StrCat("stopped following ", sweep_id));
+      callbacks, Peer(address), absl::StrCat("stopped following ", sweep_id));
 }
 
 std::string WatchLostMessage(const absl::Status& status) {

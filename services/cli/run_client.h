@@ -19,6 +19,7 @@
 #include "dcs/v1/run.pb.h"
 #include "dcs/v1/sweep.pb.h"
 #include "services/cli/training_report.h"
+#include "services/cli/watch_call.h"
 
 namespace dcs::services::cli {
 
@@ -39,20 +40,8 @@ absl::StatusOr<std::vector<v1::Run>> ListRuns(const std::string& address,
 absl::StatusOr<v1::Run> CancelRun(const std::string& address, const std::string& run_id,
                                   absl::Duration timeout);
 
-// What a watch (WatchRun, WatchSweep) tells its caller, and asks it. A watch is one stream
-// from the coordinator, which sends only changes; it asks nothing in between.
-template <typename Update>
-struct WatchCallbacks {
-  // The state now, then each change (the state again after the watch reconnected).
-  std::function<void(const Update&)> on_update;
-  // Checked every 100 ms: once true, the watch stops with CANCELLED (the work goes on).
-  std::function<bool()> interrupted = [] { return false; };
-  // The stream broke with a transient error (the coordinator restarts): said once per outage,
-  // as the watch begins to reconnect (with backoff, until the coordinator is back).
-  std::function<void(const absl::Status&)> on_lost = [](const absl::Status&) {};
-};
-
-// Follows run `run_id` until it ends: `on_update` gets the run whenever its progress or state
+// Follows run `run_id` until it ends, on one stream from the coordinator, which sends only
+// changes (services/cli/watch_call.h): `on_update` gets the run whenever its progress or state
 // changed. Returns the ended run; CANCELLED once interrupted; other errors (NOT_FOUND for an
 // unknown run) as the coordinator gave them.
 absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& run_id,

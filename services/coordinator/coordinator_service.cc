@@ -57,8 +57,7 @@ CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, Ru
       rejected_(metrics, "dcs_requests_rejected_total",
                 "Requests the coordinator refused, by reason (the status code)."),
       run_watchers_(WatchersFamily(metrics).Add({{"kind", "run"}})),
-      sweep_watchers_(WatchersFamily(metrics).Add({{"kind", "sweep"}})),
-      watchers_(kWatchInterval) {}
+      sweep_watchers_(WatchersFamily(metrics).Add({{"kind", "sweep"}})) {}
 
 int CoordinatorService::AliveActors() const {
   const std::vector<coordinator::WorkerRecord> workers = registry_.List(absl::Now());

@@ -185,9 +185,12 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   // What watches follow (Watchers topics): a run, a sweep. A handler that changed a run or a
   // sweep notifies its topic; a sweep's watch follows its runs' too.
   static std::string RunTopic(absl::string_view run_id);
-  // A watch sends at most one message per interval: a burst of changes (a sweep's runs all
-  // reporting progress) reaches it as its latest state.
-  static constexpr absl::Duration kWatchInterval = absl::Milliseconds(100);
+  // A watch sends at most one message per interval, as often as `dcs` asked before it watched
+  // (GetRun every 250 ms, GetSweep every second): a burst of changes (a sweep's runs all
+  // reporting progress) reaches it as its latest state, and a watch costs the store no more
+  // reads than a poll did, however busy its runs are.
+  static constexpr absl::Duration kRunWatchInterval = absl::Milliseconds(250);
+  static constexpr absl::Duration kSweepWatchInterval = absl::Seconds(1);
   static std::string SweepTopic(absl::string_view sweep_id);
   // What GetRun (GetSweep) answers, and each message of a watch of the run (the sweep): all the
   // store reads of one answer.

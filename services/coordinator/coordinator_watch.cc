@@ -30,7 +30,8 @@ template <typename Update>
 class WatchWriter final : public grpc::ServerWriteReactor<Update> {
  public:
   struct Watch {
-    std::vector<std::string> topics;                // what it follows before its first look
+    std::vector<std::string> topics;  // what it follows before its first look
+    absl::Duration min_interval;      // between two looks
     std::function<absl::StatusOr<Update>()> read;
     std::function<std::vector<std::string>(const Update&)> follows;  // after each look
     std::function<bool(const Update&)> ended;
@@ -42,7 +43,7 @@ class WatchWriter final : public grpc::ServerWriteReactor<Update> {
       : watchers_(watchers), watch_(std::move(watch)), open_(open) {
     open_.Increment();
     id_ = watchers_.Add(
-        watch_.topics, [this] { Look(); },
+        watch_.topics, watch_.min_interval, [this] { Look(); },
         [this] {
           End(absl::UnavailableError("the coordinator is stopping: watch again once it is back"));
         });
@@ -165,6 +166,7 @@ grpc::ServerWriteReactor<v1::GetRunResponse>* CoordinatorService::WatchRun(
   return new WatchWriter<v1::GetRunResponse>(
       watchers_,
       {.topics = {topic},
+       .min_interval = kRunWatchInterval,
        .read = [this, run_id = request->run_id()] { return ReadRun(run_id); },
        .follows = [topic](const v1::GetRunResponse&) { return std::vector{topic}; },
        .ended = [](const v1::GetRunResponse& run) { return RunEnded(run.run().state()); },
@@ -181,6 +183,7 @@ grpc::ServerWriteReactor<v1::GetSweepResponse>* CoordinatorService::WatchSweep(
   return new WatchWriter<v1::GetSweepResponse>(
       watchers_,
       {.topics = {topic},
+       .min_interval = kSweepWatchInterval,
        .read = [this, sweep_id = request->sweep_id()] { return ReadSweep(sweep_id); },
        // Its runs change without its writers knowing the sweep (a learner's progress).
        .follows =

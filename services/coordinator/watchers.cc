@@ -7,8 +7,7 @@
 
 namespace dcs::services {
 
-Watchers::Watchers(absl::Duration min_interval)
-    : min_interval_(min_interval), dispatcher_([this] { Dispatch(); }) {}
+Watchers::Watchers() : dispatcher_([this] { Dispatch(); }) {}
 
 Watchers::~Watchers() {
   {
@@ -19,14 +18,18 @@ Watchers::~Watchers() {
   dispatcher_.join();
 }
 
-int64_t Watchers::Add(std::vector<std::string> topics, Look look, Stop stop) {
+int64_t Watchers::Add(std::vector<std::string> topics, absl::Duration min_interval, Look look,
+                      Stop stop) {
   {
     absl::MutexLock lock(&mu_);
     if (!closed_) {
       const int64_t id = next_id_++;
       for (const std::string& topic : topics) followers_[topic].insert(id);
       Watcher& watcher = watchers_[id];
-      watcher = {.topics = std::move(topics), .look = std::move(look), .stop = std::move(stop)};
+      watcher = {.topics = std::move(topics),
+                 .min_interval = min_interval,
+                 .look = std::move(look),
+                 .stop = std::move(stop)};
       return id;
     }
   }
@@ -107,7 +110,7 @@ void Watchers::Dispatch() {
     absl::Time next = absl::InfiniteFuture();
     for (const auto& [id, watcher] : watchers_) {
       if (!watcher.changed) continue;
-      const absl::Time at = watcher.last_look + min_interval_;
+      const absl::Time at = watcher.last_look + watcher.min_interval;
       if (at > now) {
         next = std::min(next, at);
       } else if (due == 0 || watcher.last_look < watchers_.at(due).last_look) {

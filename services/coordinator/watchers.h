@@ -6,7 +6,7 @@
 // (a run's, a sweep's) and looks (reads the store and sends what changed) only after a change
 // of one of them, so an idle watcher costs nothing. Whoever changes the store says what it
 // changed (Notify), or that it cannot say what (NotifyAll); each watcher of a changed topic
-// then looks once, on the watchers' own thread: at once if it last looked at least
+// then looks once, on the watchers' own thread: at once if it last looked at least its
 // `min_interval` ago, else that long after its last look, so that a burst of changes costs one
 // look at the latest state.
 //
@@ -38,14 +38,16 @@ class Watchers {
   // under the watchers' lock: it must not call this class.
   using Stop = std::function<void()>;
 
-  explicit Watchers(absl::Duration min_interval);
+  Watchers();
   ~Watchers();
   Watchers(const Watchers&) = delete;
   Watchers& operator=(const Watchers&) = delete;
 
-  // Adds a watcher of `topics`, to look at its first Touch or change; returns its id. Once
-  // closed, calls `stop` at once instead and returns 0 (which the other methods ignore).
-  int64_t Add(std::vector<std::string> topics, Look look, Stop stop);
+  // Adds a watcher of `topics`, to look at its first Touch or change, and then no sooner than
+  // `min_interval` after its last look; returns its id. Once closed, calls `stop` at once
+  // instead and returns 0 (which the other methods ignore).
+  int64_t Add(std::vector<std::string> topics, absl::Duration min_interval, Look look,
+              Stop stop);
   // The watcher now follows `topics` instead (a sweep's watcher follows its runs).
   void Follow(int64_t id, std::vector<std::string> topics);
   // The watcher looks again (after the interval), as if one of its topics changed: what it
@@ -69,6 +71,7 @@ class Watchers {
  private:
   struct Watcher {
     std::vector<std::string> topics;
+    absl::Duration min_interval;
     Look look;
     Stop stop;
     bool changed = false;  // to look once the interval since its last look has passed
@@ -78,8 +81,6 @@ class Watchers {
   void MarkChanged(Watcher& watcher) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_);
   void Unfollow(int64_t id, const Watcher& watcher) ABSL_EXCLUSIVE_LOCKS_REQUIRED(mu_);
   void Dispatch();
-
-  const absl::Duration min_interval_;
 
   mutable absl::Mutex mu_;
   absl::flat_hash_map<int64_t, Watcher> watchers_ ABSL_GUARDED_BY(mu_);

@@ -29,11 +29,12 @@ struct Record {
 int64_t AddWatcher(Watchers& watchers, std::vector<std::string> topics,
                    std::shared_ptr<Record> record) {
   return watchers.Add(
-      std::move(topics), [record] { ++record->looks; }, [record] { ++record->stops; });
+      std::move(topics), absl::ZeroDuration(), [record] { ++record->looks; },
+      [record] { ++record->stops; });
 }
 
 TEST(WatchersTest, AWatcherLooksAtItsTouchAndAtChangesOfItsTopicsOnly) {
-  Watchers watchers(absl::ZeroDuration());
+  Watchers watchers;
   auto run = std::make_shared<Record>();
   auto sentinel = std::make_shared<Record>();
   const int64_t run_watcher = AddWatcher(watchers, {"run run-1"}, run);
@@ -60,7 +61,7 @@ TEST(WatchersTest, AWatcherLooksAtItsTouchAndAtChangesOfItsTopicsOnly) {
 }
 
 TEST(WatchersTest, AWatcherFollowsItsNewTopicsInsteadOfItsOld) {
-  Watchers watchers(absl::ZeroDuration());
+  Watchers watchers;
   auto sweep = std::make_shared<Record>();
   const int64_t id = AddWatcher(watchers, {"sweep sweep-1"}, sweep);
   watchers.Follow(id, {"sweep sweep-1", "run run-7"});
@@ -80,12 +81,12 @@ TEST(WatchersTest, AWatcherFollowsItsNewTopicsInsteadOfItsOld) {
 }
 
 TEST(WatchersTest, ABurstOfChangesDuringALookCostsOneMoreLook) {
-  Watchers watchers(absl::ZeroDuration());
+  Watchers watchers;
   absl::Notification looking;
   absl::Notification release;
   std::atomic<int> looks = 0;
   const int64_t id = watchers.Add(
-      {"run run-1"},
+      {"run run-1"}, absl::ZeroDuration(),
       [&] {
         if (++looks == 1) {
           looking.Notify();
@@ -104,11 +105,11 @@ TEST(WatchersTest, ABurstOfChangesDuringALookCostsOneMoreLook) {
 
 TEST(WatchersTest, AWatcherLooksAgainNoSoonerThanTheIntervalAfterItsLastLook) {
   constexpr absl::Duration kInterval = absl::Milliseconds(200);
-  Watchers watchers(kInterval);
+  Watchers watchers;
   std::vector<absl::Time> looks;
   absl::Mutex mu;
   const int64_t id = watchers.Add(
-      {"run run-1"},
+      {"run run-1"}, kInterval,
       [&] {
         absl::MutexLock lock(&mu);
         looks.push_back(absl::Now());
@@ -130,11 +131,11 @@ TEST(WatchersTest, AWatcherLooksAgainNoSoonerThanTheIntervalAfterItsLastLook) {
 }
 
 TEST(WatchersTest, RemoveWaitsForTheWatchersRunningLook) {
-  Watchers watchers(absl::ZeroDuration());
+  Watchers watchers;
   absl::Notification looking;
   std::atomic<bool> look_ended = false;
   const int64_t id = watchers.Add(
-      {"run run-1"},
+      {"run run-1"}, absl::ZeroDuration(),
       [&] {
         looking.Notify();
         absl::SleepFor(absl::Milliseconds(100));
@@ -149,7 +150,7 @@ TEST(WatchersTest, RemoveWaitsForTheWatchersRunningLook) {
 }
 
 TEST(WatchersTest, CloseStopsEveryWatcherAndEachAddedLater) {
-  Watchers watchers(absl::ZeroDuration());
+  Watchers watchers;
   auto first = std::make_shared<Record>();
   auto later = std::make_shared<Record>();
   const int64_t id = AddWatcher(watchers, {"run run-1"}, first);
