@@ -32,6 +32,16 @@ run::RunProgress ProgressFromProto(const v1::RunProgress& proto) {
   return progress;
 }
 
+bool RunEnded(v1::RunState state) {
+  return state == v1::RUN_STATE_COMPLETED || state == v1::RUN_STATE_FAILED ||
+         state == v1::RUN_STATE_CANCELLED;
+}
+
+bool SweepEnded(v1::SweepState state) {
+  return state == v1::SWEEP_STATE_COMPLETED || state == v1::SWEEP_STATE_FAILED ||
+         state == v1::SWEEP_STATE_CANCELLED;
+}
+
 v1::Lease LeaseToProto(const run::LeaseKey& key) {
   v1::Lease proto;
   proto.set_run_id(key.run_id);

@@ -20,6 +20,10 @@
 
 namespace dcs::services {
 
+// True once nothing moves the run (the sweep) any more: completed, failed or cancelled.
+bool RunEnded(v1::RunState state);
+bool SweepEnded(v1::SweepState state);
+
 v1::Lease LeaseToProto(const run::LeaseKey& key);
 // INVALID_ARGUMENT for a lease without a run id.
 absl::StatusOr<run::LeaseKey> LeaseFromProto(const v1::Lease& proto);

@@ -62,9 +62,9 @@
 #include "absl/time/clock.h"
 #include "absl/time/time.h"
 #include "common/atomic_file.h"
-#include "coordinator/run_store.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "dcs/v1/trajectory.pb.h"
+#include "run/lease_key.h"
 #include "run/run_checkpoint.h"
 #include "run/run_spec_yaml.h"
 #include "services/actor/evaluation_worker.h"
@@ -225,7 +225,7 @@ struct Fleet {
   absl::flat_hash_set<std::string> complete ABSL_GUARDED_BY(complete_mu);
 };
 
-std::string LeaseName(const coordinator::LeaseKey& key) {
+std::string LeaseName(const run::LeaseKey& key) {
   return absl::StrCat(key.run_id, "/", key.slot, "@", key.epoch);
 }
 
@@ -445,7 +445,7 @@ class Worker {
   // Renews the leases of `held` that fall due (services/lease_renewals.h RenewDueLeases): a
   // third of a lease after their last renewal; `lost` for one the coordinator refuses.
   struct Held {
-    coordinator::LeaseKey key;
+    run::LeaseKey key;
     absl::Time renewed_at;
     bool renewing = false;
   };
@@ -525,11 +525,11 @@ class Actor final : public Worker {
         &CoordinatorService::Stub::async::AcquireSlot,
         [this, next](const grpc::Status& status, const v1::AcquireSlotResponse& response) {
           if (status.ok() && response.has_lease()) {
-            absl::StatusOr<coordinator::LeaseKey> key = services::LeaseFromProto(response.lease());
+            absl::StatusOr<run::LeaseKey> key = services::LeaseFromProto(response.lease());
             if (key.ok()) {
               slots_[LeaseName(*key)] = {.key = *key, .renewed_at = absl::Now()};
               learner_of_[LeaseName(*key)] = {.run_id = key->run_id,
-                                              .slot = coordinator::kLearnerSlot,
+                                              .slot = run::kLearnerSlot,
                                               .epoch = response.learner_epoch()};
               lease_duration_ = DurationFromProto(response.lease_duration());
             }
@@ -550,7 +550,7 @@ class Actor final : public Worker {
       }
     }
     for (const std::string& name : complete) {
-      const coordinator::LeaseKey learner = learner_of_.at(name);
+      const run::LeaseKey learner = learner_of_.at(name);
       complete_learners_[LeaseName(learner)] = absl::Now() + 60 * lease_duration_;
       complete_keys_[LeaseName(learner)] = learner;
       v1::ReleaseLeaseRequest request;
@@ -615,9 +615,9 @@ class Actor final : public Worker {
   const services::SlotWorkersOptions slot_options_{};
   const services::EvaluationWorkerOptions evaluation_options_{};
   std::map<std::string, Held> slots_;
-  std::map<std::string, coordinator::LeaseKey> learner_of_;  // by slot lease
+  std::map<std::string, run::LeaseKey> learner_of_;  // by slot lease
   std::map<std::string, absl::Time> complete_learners_;      // until when
-  std::map<std::string, coordinator::LeaseKey> complete_keys_;
+  std::map<std::string, run::LeaseKey> complete_keys_;
   int jobs_wanted_ = 1;
 };
 
@@ -635,7 +635,7 @@ class Learner final : public Worker {
 
  private:
   struct Run {
-    coordinator::LeaseKey key;
+    run::LeaseKey key;
     int64_t n_steps_per_update = 0;  // n_steps x n_envs
     int64_t eval_freq = 0;
     int64_t total_timesteps = 0;
@@ -677,7 +677,7 @@ class Learner final : public Worker {
   }
 
   void Host(const v1::AcquireRunResponse& response) {
-    absl::StatusOr<coordinator::LeaseKey> key = services::LeaseFromProto(response.lease());
+    absl::StatusOr<run::LeaseKey> key = services::LeaseFromProto(response.lease());
     absl::StatusOr<run::RunSpec> spec = run::ParseRunSpecYaml(response.config(), "run.yaml");
     if (!key.ok() || !spec.ok()) return;
     lease_duration_ = DurationFromProto(response.lease_duration());
@@ -819,7 +819,7 @@ class Learner final : public Worker {
   }
 
   void Finish(const std::string& name) {
-    const coordinator::LeaseKey key = runs_.at(name).key;
+    const run::LeaseKey key = runs_.at(name).key;
     runs_.erase(name);
     leases_.erase(name);
     v1::FinishRunRequest request;

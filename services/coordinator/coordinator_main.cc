@@ -92,6 +92,7 @@ class CoordinatorRole final : public ServiceRole {
 
   void Stop() override {
     if (stopping_.HasBeenNotified()) return;
+    service_->StopWatches();
     stopping_.Notify();
     if (reaper_.joinable()) reaper_.join();
   }
@@ -100,7 +101,7 @@ class CoordinatorRole final : public ServiceRole {
   // Returns lapsed leases to the queue as they lapse (every Acquire does too, but queue depths
   // and run states should not wait for one), and steps the open study sweeps.
   // Counts and logs every lapse, including those an Acquire expired first: under load the
-  // workers' Acquire calls find nearly all of them.
+  // workers' Acquire calls find nearly all of them. Either changes runs that watches follow.
   void ReapLapsedLeases() {
     const absl::Duration period = std::min(absl::Seconds(1), runs_.lease_duration / 4);
     int64_t reported = store_->LeasesLapsed();
@@ -114,6 +115,7 @@ class CoordinatorRole final : public ServiceRole {
         expired_->Increment(static_cast<double>(lapsed - reported));
         Log(LogLevel::kWarning, "leases lapsed", {{"count", std::to_string(lapsed - reported)}});
         reported = lapsed;
+        service_->RunsChanged();
       }
       AdvanceStudySweeps();
     }
@@ -146,6 +148,7 @@ class CoordinatorRole final : public ServiceRole {
         Log(LogLevel::kError, "cannot step a study sweep",
             {{"sweep_id", sweep.id}, {"error", step.status().ToString()}});
       } else if (step->asked + step->told + step->retrained > 0 || step->closed) {
+        service_->RunsChanged();
         Log(LogLevel::kInfo, "study sweep stepped",
             {{"sweep_id", sweep.id},
              {"asked", std::to_string(step->asked)},

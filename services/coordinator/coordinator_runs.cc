@@ -223,8 +223,8 @@ grpc::ServerUnaryReactor* CoordinatorService::GetRun(grpc::CallbackServerContext
   if (absl::Status refused = Authenticate(*context); !refused.ok()) {
     return Finish(context, refused);
   }
-  absl::StatusOr<coordinator::RunRecord> run = runs_.store->runs().GetRun(request->run_id());
-  if (run.ok()) *response->mutable_run() = RunToProto(*run);
+  absl::StatusOr<v1::GetRunResponse> run = ReadRun(request->run_id());
+  if (run.ok()) *response = *std::move(run);
   return Finish(context, run.status());
 }
 
@@ -252,6 +252,7 @@ grpc::ServerUnaryReactor* CoordinatorService::CancelRun(grpc::CallbackServerCont
   if (run.ok()) {
     Log(LogLevel::kInfo, "run cancelled", {{"run_id", run->id}});
     *response->mutable_run() = RunToProto(*run);
+    watchers_.Notify(RunTopic(run->id));
   }
   return Finish(context, run.status());
 }
@@ -316,6 +317,7 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerCon
                                                         request->numerics(), absl::Now()));
     if (!lease.has_value()) return false;
     learner_leases_.Increment();
+    watchers_.Notify(RunTopic(lease->run.id));
     Log(LogLevel::kInfo, "run leased",
         {{"run_id", lease->run.id}, {"learner", request->holder()},
          {"epoch", std::to_string(lease->key.epoch)},
@@ -351,6 +353,7 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireSlot(grpc::CallbackServerCo
                                                          complete_learners, absl::Now()));
     if (!lease.has_value()) return false;
     slot_leases_.Increment();
+    watchers_.Notify(RunTopic(lease->key.run_id));  // its actors' numerics
     *response->mutable_lease() = LeaseToProto(lease->key);
     response->set_learner_address(lease->learner_address);
     response->set_learner_epoch(lease->learner_epoch);
@@ -382,7 +385,9 @@ grpc::ServerUnaryReactor* CoordinatorService::ReleaseLease(grpc::CallbackServerC
   }
   absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
   if (!key.ok()) return Finish(context, key.status());
-  return Finish(context, runs_.store->runs().ReleaseLease(*key, absl::Now()));
+  const absl::Status released = runs_.store->runs().ReleaseLease(*key, absl::Now());
+  if (released.ok()) watchers_.Notify(RunTopic(key->run_id));
+  return Finish(context, released);
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ReportProgress(
@@ -393,8 +398,10 @@ grpc::ServerUnaryReactor* CoordinatorService::ReportProgress(
   }
   absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
   if (!key.ok()) return Finish(context, key.status());
-  return Finish(context, runs_.store->runs().ReportProgress(
-                             *key, ProgressFromProto(request->progress()), absl::Now()));
+  const absl::Status reported =
+      runs_.store->runs().ReportProgress(*key, ProgressFromProto(request->progress()), absl::Now());
+  if (reported.ok()) watchers_.Notify(RunTopic(key->run_id));
+  return Finish(context, reported);
 }
 
 absl::Status CoordinatorService::StoreCheckpoint(const coordinator::LeaseKey& key,
@@ -407,7 +414,9 @@ absl::Status CoordinatorService::StoreCheckpoint(const coordinator::LeaseKey& ke
                        coordinator::StoreCheckpoint(
                            coordinator::RunDirectory(runs_.data_dir, key.run_id), checkpoint,
                            first_evaluation, log_since, runs_.keep_checkpoints));
-  return runs_.store->checkpoints().RecordCheckpoint(key, stored, absl::Now());
+  DCS_RETURN_IF_ERROR(runs_.store->checkpoints().RecordCheckpoint(key, stored, absl::Now()));
+  watchers_.Notify(RunTopic(key.run_id));
+  return absl::OkStatus();
 }
 
 grpc::ServerReadReactor<v1::PutCheckpointRequest>* CoordinatorService::PutCheckpoint(
@@ -458,6 +467,7 @@ grpc::ServerUnaryReactor* CoordinatorService::FinishRun(grpc::CallbackServerCont
     DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
     DCS_ASSIGN_OR_RETURN(const coordinator::RunState state, RunStateFromProto(request->state()));
     DCS_RETURN_IF_ERROR(runs_.store->runs().FinishRun(key, state, request->error(), absl::Now()));
+    watchers_.Notify(RunTopic(key.run_id));
     Log(LogLevel::kInfo, "run finished",
         {{"run_id", key.run_id}, {"state", std::string(NameOf(coordinator::kRunStateNames, state))},
          {"error", request->error()}});

@@ -33,6 +33,13 @@ prometheus::Family<prometheus::Counter>& LeasesFamily(prometheus::Registry& metr
       .Register(metrics);
 }
 
+prometheus::Family<prometheus::Gauge>& WatchersFamily(prometheus::Registry& metrics) {
+  return prometheus::BuildGauge()
+      .Name("dcs_watchers")
+      .Help("WatchRun and WatchSweep streams open now, by kind (run, sweep).")
+      .Register(metrics);
+}
+
 }  // namespace
 
 CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, RunStorage runs,
@@ -49,7 +56,9 @@ CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, Ru
       slot_leases_(LeasesFamily(metrics).Add({{"kind", "slot"}})),
       evaluation_leases_(LeasesFamily(metrics).Add({{"kind", "evaluation"}})),
       rejected_(metrics, "dcs_requests_rejected_total",
-                "Requests the coordinator refused, by reason (the status code).") {}
+                "Requests the coordinator refused, by reason (the status code)."),
+      run_watchers_(WatchersFamily(metrics).Add({{"kind", "run"}})),
+      sweep_watchers_(WatchersFamily(metrics).Add({{"kind", "sweep"}})) {}
 
 int CoordinatorService::AliveActors() const {
   const std::vector<coordinator::WorkerRecord> workers = registry_.List(absl::Now());

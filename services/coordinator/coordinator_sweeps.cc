@@ -75,16 +75,9 @@ grpc::ServerUnaryReactor* CoordinatorService::GetSweep(grpc::CallbackServerConte
   if (absl::Status refused = Authenticate(*context); !refused.ok()) {
     return Finish(context, refused);
   }
-  auto get = [&]() -> absl::Status {
-    DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord sweep,
-                         runs_.store->sweeps().GetSweep(request->sweep_id()));
-    DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
-                         runs_.store->sweeps().ListSweepRuns(request->sweep_id()));
-    *response->mutable_sweep() = SweepToProto(sweep);
-    for (const coordinator::RunRecord& run : runs) *response->add_runs() = RunToProto(run);
-    return absl::OkStatus();
-  };
-  return Finish(context, get());
+  absl::StatusOr<v1::GetSweepResponse> sweep = ReadSweep(request->sweep_id());
+  if (sweep.ok()) *response = *std::move(sweep);
+  return Finish(context, sweep.status());
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ListSweeps(
@@ -113,6 +106,7 @@ grpc::ServerUnaryReactor* CoordinatorService::CancelSweep(grpc::CallbackServerCo
   if (sweep.ok()) {
     Log(LogLevel::kInfo, "sweep cancelled", {{"sweep_id", sweep->id}});
     *response->mutable_sweep() = SweepToProto(*sweep);
+    RunsChanged();  // its runs, which their watches follow too
   }
   return Finish(context, sweep.status());
 }
@@ -130,6 +124,7 @@ grpc::ServerUnaryReactor* CoordinatorService::RetrySweep(grpc::CallbackServerCon
         {{"sweep_id", retried->first.id}, {"runs", std::to_string(retried->second)}});
     *response->mutable_sweep() = SweepToProto(retried->first);
     response->set_retried(retried->second);
+    RunsChanged();  // its runs, which their watches follow too
   }
   return Finish(context, retried.status());
 }

@@ -192,8 +192,9 @@ class Cluster : public ClusterProcesses {
   std::optional<RunOutcome> Finish(const std::string& run_id, const std::string& config = kConfig) {
     const absl::Time deadline = absl::Now() + testing::Patient(absl::Minutes(4));
     absl::StatusOr<v1::Run> run = services::cli::WatchRun(
-        coordinator_address(), run_id, kTimeout, [](const v1::Run&) {},
-        [deadline] { return absl::Now() > deadline; });
+        coordinator_address(), run_id,
+        {.on_update = [](const v1::Run&) {},
+         .interrupted = [deadline] { return absl::Now() > deadline; }});
     EXPECT_TRUE(run.ok()) << run.status() << "; logs in " << dir();
     if (!run.ok()) return std::nullopt;
     EXPECT_EQ(run->state(), v1::RUN_STATE_COMPLETED) << run->error() << "; logs in " << dir();

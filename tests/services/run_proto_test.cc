@@ -19,6 +19,19 @@ std::string Bytes(size_t size) {
   return bytes;
 }
 
+TEST(RunProtoTest, OnlyCompletedFailedAndCancelledRunsAndSweepsHaveEnded) {
+  EXPECT_FALSE(RunEnded(v1::RUN_STATE_QUEUED));
+  EXPECT_FALSE(RunEnded(v1::RUN_STATE_RUNNING));
+  EXPECT_TRUE(RunEnded(v1::RUN_STATE_COMPLETED));
+  EXPECT_TRUE(RunEnded(v1::RUN_STATE_FAILED));
+  EXPECT_TRUE(RunEnded(v1::RUN_STATE_CANCELLED));
+  EXPECT_FALSE(SweepEnded(v1::SWEEP_STATE_QUEUED));
+  EXPECT_FALSE(SweepEnded(v1::SWEEP_STATE_RUNNING));
+  EXPECT_TRUE(SweepEnded(v1::SWEEP_STATE_COMPLETED));
+  EXPECT_TRUE(SweepEnded(v1::SWEEP_STATE_FAILED));
+  EXPECT_TRUE(SweepEnded(v1::SWEEP_STATE_CANCELLED));
+}
+
 TEST(RunProtoTest, ACheckpointLargerThanAPieceGoesInPiecesAndComesBackWhole) {
   const run::PackedCheckpoint checkpoint{.name = "000000000256",
                                          .learner = Bytes(2 * kPieceBytes + 5),
