@@ -3,7 +3,7 @@
 
 namespace dcs::coordinator {
 
-LeaseReaper::LeaseReaper(RunStore& store) : store_(store), counted_(store.LeasesLapsed()) {}
+LeaseReaper::LeaseReaper(Store& store) : store_(store), counted_(store.LeasesLapsed()) {}
 
 LeaseReaper::Reaped LeaseReaper::Tick(absl::Time now) {
   Reaped reaped{.status = store_.ExpireLeases(now).status()};

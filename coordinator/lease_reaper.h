@@ -13,14 +13,14 @@
 
 #include "absl/status/status.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 
 namespace dcs::coordinator {
 
 class LeaseReaper {
  public:
   // Counts lapses from those the store has counted when it is made.
-  explicit LeaseReaper(RunStore& store);
+  explicit LeaseReaper(Store& store);
 
   LeaseReaper(const LeaseReaper&) = delete;
   LeaseReaper& operator=(const LeaseReaper&) = delete;
@@ -32,11 +32,11 @@ class LeaseReaper {
     // Leases that lapsed since the last tick, whoever returned them.
     int64_t lapsed = 0;
   };
-  // Returns the leases lapsed at `now` to the queue (RunStore::ExpireLeases).
+  // Returns the leases lapsed at `now` to the queue (Store::ExpireLeases).
   Reaped Tick(absl::Time now);
 
  private:
-  RunStore& store_;
+  Store& store_;
   int64_t counted_;  // the store's count of lapses at the last tick
 };
 

@@ -7,7 +7,7 @@
 
 namespace dcs::coordinator {
 
-StudySweepDriver::StudySweepDriver(RunStore& store, std::string data_dir, CompletedRunLogs& logs)
+StudySweepDriver::StudySweepDriver(Store& store, std::string data_dir, CompletedRunLogs& logs)
     : store_(store), data_dir_(std::move(data_dir)), logs_(logs) {}
 
 void StudySweepDriver::Adopt(const std::string& sweep_id, StudySweepSpec spec) {
@@ -27,7 +27,7 @@ absl::StatusOr<const StudySweepSpec*> StudySweepDriver::SpecOf(const SweepRecord
 }
 
 absl::StatusOr<std::vector<StudySweepDriver::SweepTick>> StudySweepDriver::Tick(absl::Time now) {
-  DCS_ASSIGN_OR_RETURN(const std::vector<SweepRecord> sweeps, store_.ListOpenSweeps());
+  DCS_ASSIGN_OR_RETURN(const std::vector<SweepRecord> sweeps, store_.sweeps().ListOpenSweeps());
   std::vector<SweepTick> ticks;
   for (const SweepRecord& sweep : sweeps) {
     absl::StatusOr<const StudySweepSpec*> spec = SpecOf(sweep);

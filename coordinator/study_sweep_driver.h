@@ -19,7 +19,7 @@
 #include "absl/status/statusor.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/study_sweep.h"
 #include "coordinator/study_sweep_spec.h"
 #include "coordinator/sweep_results.h"
@@ -30,7 +30,7 @@ class StudySweepDriver {
  public:
   // Steps the study sweeps of `store`, whose runs' directories are in `data_dir` and whose
   // completed runs' logs `logs` reads.
-  StudySweepDriver(RunStore& store, std::string data_dir, CompletedRunLogs& logs);
+  StudySweepDriver(Store& store, std::string data_dir, CompletedRunLogs& logs);
 
   StudySweepDriver(const StudySweepDriver&) = delete;
   StudySweepDriver& operator=(const StudySweepDriver&) = delete;
@@ -52,7 +52,7 @@ class StudySweepDriver {
   // The kept spec of `sweep`, read from its text if none is kept.
   absl::StatusOr<const StudySweepSpec*> SpecOf(const SweepRecord& sweep);
 
-  RunStore& store_;
+  Store& store_;
   const std::string data_dir_;
   CompletedRunLogs& logs_;
   absl::Mutex mu_;

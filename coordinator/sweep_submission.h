@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "coordinator/run_store.h"
 #include "coordinator/study_sweep_spec.h"
+#include "coordinator/sweep_table.h"
 #include "run/run_directory.h"
 
 namespace dcs::coordinator {

@@ -15,7 +15,7 @@
 #include "common/status_macros.h"
 #include "coordinator/lease_reaper.h"
 #include "coordinator/library_versions.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/study_sweep_driver.h"
 #include "coordinator/sweep_results.h"
 #include "coordinator/worker_registry.h"
@@ -62,10 +62,10 @@ class CoordinatorRole final : public ServiceRole {
           absl::StrCat("cannot create the data directory ", runs_.data_dir, ": ",
                        error.message()));
     }
-    DCS_ASSIGN_OR_RETURN(store_, coordinator::RunStore::Open(
-                                     (std::filesystem::path(runs_.data_dir) / "coordinator.db")
-                                         .string(),
-                                     {.lease_duration = runs_.lease_duration}, absl::Now()));
+    DCS_ASSIGN_OR_RETURN(store_,
+                         coordinator::Store::Open(
+                             (std::filesystem::path(runs_.data_dir) / "coordinator.db").string(),
+                             {.lease_duration = runs_.lease_duration}, absl::Now()));
     runs_.store = store_.get();
     reaper_ = std::make_unique<coordinator::LeaseReaper>(*store_);
     study_logs_ = std::make_unique<coordinator::CompletedRunLogs>(runs_.data_dir);
@@ -97,6 +97,7 @@ class CoordinatorRole final : public ServiceRole {
 
   void Stop() override {
     if (stopping_.HasBeenNotified()) return;
+    service_->StopWatches();
     stopping_.Notify();
     if (ticker_.joinable()) ticker_.join();
   }
@@ -104,7 +105,8 @@ class CoordinatorRole final : public ServiceRole {
  private:
   // Ticks the lease reaper and the study sweeps' driver, at least four times a lease, until
   // Stop: lapsed leases go back to the queue without waiting for an Acquire, and study sweeps
-  // ask for trials as others finish. Errors are logged; the next tick tries again.
+  // ask for trials as others finish. Errors are logged; the next tick tries again. Either
+  // changes runs that watches follow, so a tick that changed some wakes them.
   void TickUntilStopped() {
     const absl::Duration period = std::min(absl::Seconds(1), runs_.lease_duration / 4);
     while (!stopping_.WaitForNotificationWithTimeout(period)) {
@@ -116,12 +118,14 @@ class CoordinatorRole final : public ServiceRole {
       if (reaped.lapsed > 0) {
         expired_->Increment(static_cast<double>(reaped.lapsed));
         Log(LogLevel::kWarning, "leases lapsed", {{"count", std::to_string(reaped.lapsed)}});
+        service_->RunsChanged();
       }
       LogStudySweeps(study_sweeps_->Tick(now));
     }
   }
 
-  static void LogStudySweeps(
+  // Logs what a tick of the study sweeps' driver did, and wakes the watches if it changed runs.
+  void LogStudySweeps(
       const absl::StatusOr<std::vector<coordinator::StudySweepDriver::SweepTick>>& ticks) {
     if (!ticks.ok()) {
       Log(LogLevel::kError, "cannot list study sweeps", {{"error", ticks.status().ToString()}});
@@ -133,6 +137,7 @@ class CoordinatorRole final : public ServiceRole {
             {{"sweep_id", tick.sweep_id}, {"error", tick.step.status().ToString()}});
       } else if (tick.step->asked + tick.step->told + tick.step->retrained > 0 ||
                  tick.step->closed) {
+        service_->RunsChanged();
         Log(LogLevel::kInfo, "study sweep stepped",
             {{"sweep_id", tick.sweep_id},
              {"asked", std::to_string(tick.step->asked)},
@@ -146,7 +151,7 @@ class CoordinatorRole final : public ServiceRole {
   coordinator::WorkerRegistryOptions options_;
   RunStorage runs_{.data_dir = "dcs-coordinator-data"};
   std::unique_ptr<coordinator::WorkerRegistry> registry_;
-  std::unique_ptr<coordinator::RunStore> store_;
+  std::unique_ptr<coordinator::Store> store_;
   prometheus::Counter* expired_ = nullptr;
   std::unique_ptr<coordinator::LeaseReaper> reaper_;
   std::unique_ptr<coordinator::CompletedRunLogs> study_logs_;

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
 //
-// CoordinatorService's sweeps: the run store's sweeps (coordinator/run_store.h), their
+// CoordinatorService's sweeps: the store's sweeps (coordinator/sweep_table.h), their
 // expansion from a spec (coordinator/sweep_submission.h) and their results
 // (coordinator/sweep_results.h) on the wire.
 
@@ -15,8 +15,8 @@
 #include "coordinator/sweep_results.h"
 #include "coordinator/sweep_submission.h"
 #include "services/coordinator/coordinator_service.h"
+#include "services/coordinator/record_proto.h"
 #include "services/log.h"
-#include "services/run_proto.h"
 
 namespace dcs::services {
 namespace {
@@ -50,13 +50,13 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitSweep(grpc::CallbackServerCo
       return absl::OkStatus();
     }
     DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord record,
-                         runs_.store->SubmitSweep(sweep.submission, absl::Now()));
+                         runs_.store->sweeps().SubmitSweep(sweep.submission, absl::Now()));
     if (sweep.study.has_value() && runs_.study_sweeps != nullptr) {
       runs_.study_sweeps->Adopt(record.id, *std::move(sweep.study));
     }
     // Each run's directory holds its config, as `dcs train` writes it (again, on a retry).
     DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
-                         runs_.store->ListSweepRuns(record.id));
+                         runs_.store->sweeps().ListSweepRuns(record.id));
     for (size_t i = 0; i < runs.size() && i < sweep.requests.size(); ++i) {
       run::RunRequest& run = sweep.requests[i];
       run.dir = coordinator::RunDirectory(runs_.data_dir, runs[i].id);
@@ -78,16 +78,9 @@ grpc::ServerUnaryReactor* CoordinatorService::GetSweep(grpc::CallbackServerConte
   if (absl::Status refused = Authenticate(*context); !refused.ok()) {
     return Finish(context, refused);
   }
-  auto get = [&]() -> absl::Status {
-    DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord sweep,
-                         runs_.store->GetSweep(request->sweep_id()));
-    DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
-                         runs_.store->ListSweepRuns(request->sweep_id()));
-    *response->mutable_sweep() = SweepToProto(sweep);
-    for (const coordinator::RunRecord& run : runs) *response->add_runs() = RunToProto(run);
-    return absl::OkStatus();
-  };
-  return Finish(context, get());
+  absl::StatusOr<v1::GetSweepResponse> sweep = ReadSweep(request->sweep_id());
+  if (sweep.ok()) *response = *std::move(sweep);
+  return Finish(context, sweep.status());
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ListSweeps(
@@ -96,7 +89,7 @@ grpc::ServerUnaryReactor* CoordinatorService::ListSweeps(
   if (absl::Status refused = Authenticate(*context); !refused.ok()) {
     return Finish(context, refused);
   }
-  absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = runs_.store->ListSweeps();
+  absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = runs_.store->sweeps().ListSweeps();
   if (sweeps.ok()) {
     for (const coordinator::SweepRecord& sweep : *sweeps) {
       *response->add_sweeps() = SweepToProto(sweep);
@@ -112,10 +105,11 @@ grpc::ServerUnaryReactor* CoordinatorService::CancelSweep(grpc::CallbackServerCo
     return Finish(context, refused);
   }
   absl::StatusOr<coordinator::SweepRecord> sweep =
-      runs_.store->CancelSweep(request->sweep_id(), absl::Now());
+      runs_.store->sweeps().CancelSweep(request->sweep_id(), absl::Now());
   if (sweep.ok()) {
     Log(LogLevel::kInfo, "sweep cancelled", {{"sweep_id", sweep->id}});
     *response->mutable_sweep() = SweepToProto(*sweep);
+    RunsChanged();  // its runs, which their watches follow too
   }
   return Finish(context, sweep.status());
 }
@@ -127,12 +121,13 @@ grpc::ServerUnaryReactor* CoordinatorService::RetrySweep(grpc::CallbackServerCon
     return Finish(context, refused);
   }
   absl::StatusOr<std::pair<coordinator::SweepRecord, int>> retried =
-      runs_.store->RetrySweep(request->sweep_id(), absl::Now());
+      runs_.store->sweeps().RetrySweep(request->sweep_id(), absl::Now());
   if (retried.ok()) {
     Log(LogLevel::kInfo, "sweep retried",
         {{"sweep_id", retried->first.id}, {"runs", std::to_string(retried->second)}});
     *response->mutable_sweep() = SweepToProto(retried->first);
     response->set_retried(retried->second);
+    RunsChanged();  // its runs, which their watches follow too
   }
   return Finish(context, retried.status());
 }
@@ -145,9 +140,9 @@ grpc::ServerUnaryReactor* CoordinatorService::GetSweepResults(
   }
   auto get = [&]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord sweep,
-                         runs_.store->GetSweep(request->sweep_id()));
+                         runs_.store->sweeps().GetSweep(request->sweep_id()));
     DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
-                         runs_.store->ListSweepRuns(request->sweep_id()));
+                         runs_.store->sweeps().ListSweepRuns(request->sweep_id()));
     DCS_ASSIGN_OR_RETURN(*response,
                          coordinator::CollectSweepResults(sweep, runs, completed_logs_,
                                                           request->scores_only()));

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "gtest/gtest.h"
 #include "tests/testing/temp_dir.h"
 
@@ -23,8 +23,8 @@ class LeaseReaperTest : public testing::TempDirTest {
  protected:
   void SetUp() override {
     testing::TempDirTest::SetUp();
-    absl::StatusOr<std::unique_ptr<RunStore>> store =
-        RunStore::Open(Path("coordinator.db"), {.lease_duration = kLease}, kStart);
+    absl::StatusOr<std::unique_ptr<Store>> store =
+        Store::Open(Path("coordinator.db"), {.lease_duration = kLease}, kStart);
     ASSERT_TRUE(store.ok()) << store.status();
     store_ = *std::move(store);
   }
@@ -32,27 +32,27 @@ class LeaseReaperTest : public testing::TempDirTest {
   // A run submitted and leased to `learner` at `now`.
   LearnerLease SubmitAndLease(const std::string& request_id, const std::string& learner,
                               absl::Time now) {
-    EXPECT_TRUE(store_
-                    ->SubmitRun({.request_id = request_id,
-                                 .config = "env: cartpole\n",
-                                 .env = "cartpole",
-                                 .n_envs = 1,
-                                 .total_timesteps = 1000},
-                                now)
+    EXPECT_TRUE(store_->runs()
+                    .SubmitRun({.request_id = request_id,
+                                .config = "env: cartpole\n",
+                                .env = "cartpole",
+                                .n_envs = 1,
+                                .total_timesteps = 1000},
+                               now)
                     .ok());
     absl::StatusOr<std::optional<LearnerLease>> lease =
-        store_->AcquireRun(learner, "127.0.0.1:1", "N", now);
+        store_->runs().AcquireRun(learner, "127.0.0.1:1", "N", now);
     EXPECT_TRUE(lease.ok() && lease->has_value()) << lease.status();
     return lease.ok() && lease->has_value() ? **lease : LearnerLease{};
   }
 
   RunState StateOf(const LearnerLease& lease) {
-    absl::StatusOr<RunRecord> run = store_->GetRun(lease.key.run_id);
+    absl::StatusOr<RunRecord> run = store_->runs().GetRun(lease.key.run_id);
     EXPECT_TRUE(run.ok()) << run.status();
     return run.ok() ? run->state : RunState::kFailed;
   }
 
-  std::unique_ptr<RunStore> store_;
+  std::unique_ptr<Store> store_;
 };
 
 TEST_F(LeaseReaperTest, ReturnsALapsedLeaseToTheQueueAndLeavesALiveOne) {
@@ -64,7 +64,7 @@ TEST_F(LeaseReaperTest, ReturnsALapsedLeaseToTheQueueAndLeavesALiveOne) {
   EXPECT_EQ(reaped.lapsed, 0);
 
   const absl::Time later = kStart + kLease + absl::Seconds(1);
-  ASSERT_TRUE(store_->RenewLease(renewing.key, kStart + kLease / 2).ok());
+  ASSERT_TRUE(store_->runs().RenewLease(renewing.key, kStart + kLease / 2).ok());
   reaped = reaper.Tick(later);
   EXPECT_TRUE(reaped.status.ok()) << reaped.status;
   EXPECT_EQ(reaped.lapsed, 1);

@@ -66,7 +66,7 @@ TEST_F(StudySweepDriverTest, StopsWhenTheStudysBudgetIsSpent) {
     Tick(*driver);
   }
   EXPECT_THAT(Trials(sweep), SizeIs(5));
-  absl::StatusOr<SweepRecord> closed = store_->GetSweep(sweep.id);
+  absl::StatusOr<SweepRecord> closed = store_->sweeps().GetSweep(sweep.id);
   ASSERT_TRUE(closed.ok());
   EXPECT_FALSE(closed->open);
   EXPECT_THAT(closed->trials, SizeIs(7));  // and the two best retrained
@@ -111,7 +111,7 @@ TEST_F(StudySweepDriverTest, ASweepWhoseSpecDoesNotReadIsReportedAndTheOthersSte
                         .seeds = 1,
                         .study = spec_.study};
   other.study->request_id = "other";
-  absl::StatusOr<SweepRecord> unreadable = store_->SubmitSweep(other, kNow);
+  absl::StatusOr<SweepRecord> unreadable = store_->sweeps().SubmitSweep(other, kNow);
   ASSERT_TRUE(unreadable.ok()) << unreadable.status();
   absl::StatusOr<std::vector<StudySweepDriver::SweepTick>> ticks = driver->Tick(kNow);
   ASSERT_TRUE(ticks.ok()) << ticks.status();

@@ -16,7 +16,7 @@
 
 #include "absl/time/time.h"
 #include "coordinator/run_files.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/study_sweep.h"
 #include "coordinator/study_sweep_spec.h"
 #include "coordinator/sweep_results.h"
@@ -62,8 +62,7 @@ class StudySweepFixture : public testing::TempDirTest {
  protected:
   void SetUp() override {
     testing::TempDirTest::SetUp();
-    absl::StatusOr<std::unique_ptr<RunStore>> store =
-        RunStore::Open(Path("coordinator.db"), {}, kNow);
+    absl::StatusOr<std::unique_ptr<Store>> store = Store::Open(Path("coordinator.db"), {}, kNow);
     ASSERT_TRUE(store.ok()) << store.status();
     store_ = *std::move(store);
     logs_ = std::make_unique<CompletedRunLogs>(Path("data"));
@@ -74,14 +73,14 @@ class StudySweepFixture : public testing::TempDirTest {
     absl::StatusOr<ExpandedSweep> expanded = ExpandSweep(spec_text, "search.yaml", "", "req");
     EXPECT_TRUE(expanded.ok()) << expanded.status();
     EXPECT_TRUE(expanded->study.has_value());
-    absl::StatusOr<SweepRecord> sweep = store_->SubmitSweep(expanded->submission, kNow);
+    absl::StatusOr<SweepRecord> sweep = store_->sweeps().SubmitSweep(expanded->submission, kNow);
     EXPECT_TRUE(sweep.ok()) << sweep.status();
     spec_ = *std::move(expanded->study);
     return *sweep;
   }
 
   StudySweepStep Advance(const std::string& sweep_id) {
-    absl::StatusOr<SweepRecord> sweep = store_->GetSweep(sweep_id);
+    absl::StatusOr<SweepRecord> sweep = store_->sweeps().GetSweep(sweep_id);
     EXPECT_TRUE(sweep.ok()) << sweep.status();
     absl::StatusOr<StudySweepStep> step =
         AdvanceStudySweep(*store_, Path("data"), *logs_, *sweep, spec_, kNow);
@@ -92,7 +91,7 @@ class StudySweepFixture : public testing::TempDirTest {
   // A learner takes a queued run.
   LeaseKey Lease() {
     absl::StatusOr<std::optional<LearnerLease>> lease =
-        store_->AcquireRun("learner", "127.0.0.1:1", "numerics", kNow);
+        store_->runs().AcquireRun("learner", "127.0.0.1:1", "numerics", kNow);
     EXPECT_TRUE(lease.ok() && lease->has_value()) << lease.status();
     return lease.ok() && lease->has_value() ? (*lease)->key : LeaseKey{};
   }
@@ -115,9 +114,9 @@ class StudySweepFixture : public testing::TempDirTest {
     const RunProgress progress{.timesteps = scores.rbegin()->first,
                                .avg_combined = log.last(),
                                .evaluation_step = scores.rbegin()->first};
-    EXPECT_TRUE(store_->ReportProgress(key, progress, kNow).ok());
+    EXPECT_TRUE(store_->runs().ReportProgress(key, progress, kNow).ok());
     if (finish) {
-      EXPECT_TRUE(store_->FinishRun(key, RunState::kCompleted, "", kNow).ok());
+      EXPECT_TRUE(store_->runs().FinishRun(key, RunState::kCompleted, "", kNow).ok());
     }
   }
 
@@ -129,12 +128,13 @@ class StudySweepFixture : public testing::TempDirTest {
   }
 
   std::vector<StudyTrial> Trials(const SweepRecord& sweep) {
-    absl::StatusOr<std::vector<StudyTrial>> trials = store_->ListStudyTrials(sweep.study_id);
+    absl::StatusOr<std::vector<StudyTrial>> trials =
+        store_->studies().ListStudyTrials(sweep.study_id);
     EXPECT_TRUE(trials.ok()) << trials.status();
     return trials.value_or(std::vector<StudyTrial>{});
   }
 
-  std::unique_ptr<RunStore> store_;
+  std::unique_ptr<Store> store_;
   std::unique_ptr<CompletedRunLogs> logs_;
   StudySweepSpec spec_;
 };

@@ -32,14 +32,14 @@ TEST_F(StudySweepTest, AsksTrainsTellsAndRetrainsTheBest) {
   // Two trials in parallel, each with both seeds; a second step asks nothing more.
   EXPECT_EQ(Advance(submitted.id).asked, 2);
   EXPECT_EQ(Advance(submitted.id).asked, 0);
-  absl::StatusOr<SweepRecord> sweep = store_->GetSweep(submitted.id);
+  absl::StatusOr<SweepRecord> sweep = store_->sweeps().GetSweep(submitted.id);
   ASSERT_TRUE(sweep.ok());
   ASSERT_EQ(sweep->trials.size(), 2u);
   EXPECT_EQ(sweep->trials[0].condition, "T000");
   EXPECT_EQ(sweep->trials[1].study_trial, 1);
   EXPECT_EQ(sweep->trials[0].family, "multi_stage");
   EXPECT_EQ(sweep->trials[0].observe, "live");
-  absl::StatusOr<std::vector<RunRecord>> runs = store_->ListSweepRuns(submitted.id);
+  absl::StatusOr<std::vector<RunRecord>> runs = store_->sweeps().ListSweepRuns(submitted.id);
   ASSERT_TRUE(runs.ok());
   ASSERT_EQ(runs->size(), 4u);
   EXPECT_EQ((*runs)[0].submission.seed, 0u);
@@ -75,14 +75,14 @@ TEST_F(StudySweepTest, AsksTrainsTellsAndRetrainsTheBest) {
 
   // The search ended: the two best (trials 4 and 1) retrain with 3 new seeds, and the sweep
   // closes.
-  sweep = store_->GetSweep(submitted.id);
+  sweep = store_->sweeps().GetSweep(submitted.id);
   ASSERT_TRUE(sweep.ok());
   EXPECT_FALSE(sweep->open);
   ASSERT_EQ(sweep->trials.size(), 7u);
   EXPECT_EQ(sweep->trials[5].condition, "T004 retrain");
   EXPECT_TRUE(sweep->trials[5].retrain);
   EXPECT_EQ(sweep->trials[6].condition, "T001 retrain");
-  runs = store_->ListSweepRuns(submitted.id);
+  runs = store_->sweeps().ListSweepRuns(submitted.id);
   ASSERT_TRUE(runs.ok());
   ASSERT_EQ(runs->size(), 16u);
   std::vector<uint64_t> retrain_seeds;
@@ -96,24 +96,24 @@ TEST_F(StudySweepTest, AsksTrainsTellsAndRetrainsTheBest) {
 TEST_F(StudySweepTest, AStepCutShortIsFinishedByTheNext) {
   const SweepRecord sweep = Submit(kSpec);
   // A step asked for trial 0 and stopped before queueing its runs.
-  ASSERT_TRUE(store_->AskTrial(sweep.study_id, "req/ask/0", kNow).ok());
+  ASSERT_TRUE(store_->studies().AskTrial(sweep.study_id, "req/ask/0", kNow).ok());
   const StudySweepStep step = Advance(sweep.id);
   EXPECT_EQ(step.asked, 1);  // trial 1 only: trial 0 is queued, not asked again
   std::vector<StudyTrial> trials = Trials(sweep);
   EXPECT_EQ(trials.size(), 2u);
-  absl::StatusOr<SweepRecord> stepped = store_->GetSweep(sweep.id);
+  absl::StatusOr<SweepRecord> stepped = store_->sweeps().GetSweep(sweep.id);
   ASSERT_TRUE(stepped.ok());
   ASSERT_EQ(stepped->trials.size(), 2u);
   EXPECT_EQ(stepped->trials[0].study_trial, 0);
 
   // Queueing a trial again adds nothing.
-  absl::StatusOr<std::vector<RunRecord>> before = store_->ListSweepRuns(sweep.id);
+  absl::StatusOr<std::vector<RunRecord>> before = store_->sweeps().ListSweepRuns(sweep.id);
   ASSERT_TRUE(before.ok());
-  absl::StatusOr<std::vector<RunRecord>> again =
-      store_->AddSweepTrial(sweep.id, stepped->trials[0], {before->front().submission}, kNow);
+  absl::StatusOr<std::vector<RunRecord>> again = store_->sweeps().AddSweepTrial(
+      sweep.id, stepped->trials[0], {before->front().submission}, kNow);
   ASSERT_TRUE(again.ok()) << again.status();
   EXPECT_EQ(again->size(), 2u);
-  absl::StatusOr<std::vector<RunRecord>> after = store_->ListSweepRuns(sweep.id);
+  absl::StatusOr<std::vector<RunRecord>> after = store_->sweeps().ListSweepRuns(sweep.id);
   ASSERT_TRUE(after.ok());
   EXPECT_EQ(after->size(), before->size());
 }
@@ -122,7 +122,7 @@ TEST_F(StudySweepTest, AFailedRunFailsItsTrial) {
   const SweepRecord sweep = Submit(kSpec);
   Advance(sweep.id);
   Train({{2000, 10}}, true);
-  ASSERT_TRUE(store_->FinishRun(Lease(), RunState::kFailed, "NaN loss", kNow).ok());
+  ASSERT_TRUE(store_->runs().FinishRun(Lease(), RunState::kFailed, "NaN loss", kNow).ok());
   EXPECT_EQ(Advance(sweep.id).told, 1);
   EXPECT_EQ(Trials(sweep)[0].state, TrialState::kFailed);
 }
@@ -130,15 +130,15 @@ TEST_F(StudySweepTest, AFailedRunFailsItsTrial) {
 TEST_F(StudySweepTest, CancellingTheSweepFailsItsRunningTrialsAndClosesIt) {
   const SweepRecord sweep = Submit(kSpec);
   Advance(sweep.id);
-  absl::StatusOr<SweepRecord> cancelled = store_->CancelSweep(sweep.id, kNow);
+  absl::StatusOr<SweepRecord> cancelled = store_->sweeps().CancelSweep(sweep.id, kNow);
   ASSERT_TRUE(cancelled.ok()) << cancelled.status();
   EXPECT_FALSE(cancelled->open);
   EXPECT_EQ(cancelled->state, SweepState::kCancelled);
   for (const StudyTrial& trial : Trials(sweep)) EXPECT_EQ(trial.state, TrialState::kFailed);
-  absl::StatusOr<std::vector<SweepRecord>> open = store_->ListOpenSweeps();
+  absl::StatusOr<std::vector<SweepRecord>> open = store_->sweeps().ListOpenSweeps();
   ASSERT_TRUE(open.ok());
   EXPECT_TRUE(open->empty());
-  EXPECT_EQ(store_->RetrySweep(sweep.id, kNow).status().code(),
+  EXPECT_EQ(store_->sweeps().RetrySweep(sweep.id, kNow).status().code(),
             absl::StatusCode::kFailedPrecondition);
 
   // A step that read the sweep before the cancel asks for a trial it cannot queue: it fails too,
@@ -174,7 +174,7 @@ TEST_F(StudySweepTest, TheMedianPrunerStopsATrialBehindAtAStageBoundary) {
   const std::vector<StudyTrial> trials = Trials(sweep);
   EXPECT_EQ(trials[1].state, TrialState::kPruned);
   EXPECT_THAT(trials[1].reported, ElementsAre(std::pair<const int64_t, double>(1000, 10)));
-  absl::StatusOr<std::vector<RunRecord>> runs = store_->ListSweepRuns(sweep.id);
+  absl::StatusOr<std::vector<RunRecord>> runs = store_->sweeps().ListSweepRuns(sweep.id);
   ASSERT_TRUE(runs.ok());
   EXPECT_EQ((*runs)[2].state, RunState::kCancelled);
   EXPECT_EQ((*runs)[3].state, RunState::kCancelled);
