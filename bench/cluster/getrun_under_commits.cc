@@ -1,12 +1,12 @@
 // Copyright 2026 The DCS Authors.
 //
 // The latency of a cheap call while the coordinator commits: GetRun of one run, called back to
-// back by one client, first on a quiet coordinator, then while `--writers` clients submit
-// sweeps of `--runs` runs each without pause (each submission is one SQLite transaction with
+// back by one client, first on a quiet coordinator, then while `--writers` clients submit the
+// sweep SPEC again and again without pause (each submission is one SQLite transaction with
 // synchronous=FULL plus a directory and an fsynced config file per run). The number that
 // matters is GetRun's p99 under commits: it measures whether cheap calls wait behind the
 // store's work on gRPC's threads. Prints one line per phase.
-// Usage: getrun_under_commits ADDRESS [--seconds S] [--writers W] [--runs N]
+// Usage: getrun_under_commits ADDRESS SPEC [--seconds S] [--writers W]
 
 #include <algorithm>
 #include <atomic>
@@ -16,27 +16,16 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <grpcpp/grpcpp.h>
 
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "absl/time/time.h"
+#include "common/atomic_file.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "services/channel.h"
 
 namespace {
-
-constexpr char kSpecTemplate[] = R"(name: load
-seeds: %d
-env: cartpole
-total_timesteps: 512
-feature: length
-training_range: [0.35, 0.75]
-pool: {size: 3}
-evaluation: {freq: 256, episodes: 2, contexts: {id: [0.5]}}
-ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
-conditions:
-  - name: static
-)";
 
 struct Latencies {
   std::vector<double> ms;
@@ -93,18 +82,21 @@ int main(int argc, char** argv) {
   std::string address;
   double seconds = 20;
   int writers = 2;
-  int runs = 16;
+  std::string spec_file;
   app.add_option("address", address, "the coordinator's gRPC address")->required();
+  app.add_option("spec", spec_file, "the sweep spec submitted")->required();
   app.add_option("--seconds", seconds, "length of each phase");
   app.add_option("--writers", writers, "clients submitting sweeps");
-  app.add_option("--runs", runs, "runs per sweep");
   CLI11_PARSE(app, argc, argv);
 
   auto stub = dcs::v1::CoordinatorService::NewStub(dcs::services::OpenChannel(address));
-  char spec[1024];
-  std::snprintf(spec, sizeof(spec), kSpecTemplate, runs);
+  const absl::StatusOr<std::string> spec = dcs::ReadFile(spec_file);
+  if (!spec.ok()) {
+    std::fprintf(stderr, "getrun_under_commits: %s\n", spec.status().ToString().c_str());
+    return 1;
+  }
   const std::string tag = absl::StrCat(absl::ToUnixNanos(absl::Now()));
-  if (!SubmitSweep(*stub, spec, absl::StrCat(tag, "-first"))) {
+  if (!SubmitSweep(*stub, *spec, absl::StrCat(tag, "-first"))) {
     std::fprintf(stderr, "getrun_under_commits: cannot submit a sweep to %s\n", address.c_str());
     return 1;
   }
@@ -119,7 +111,7 @@ int main(int argc, char** argv) {
     threads.emplace_back([&, w] {
       auto writer = dcs::v1::CoordinatorService::NewStub(dcs::services::OpenChannel(address));
       for (int i = 0; !stop; ++i) {
-        if (SubmitSweep(*writer, spec, absl::StrCat(tag, "-", w, "-", i))) ++sweeps;
+        if (SubmitSweep(*writer, *spec, absl::StrCat(tag, "-", w, "-", i))) ++sweeps;
       }
     });
   }

@@ -142,8 +142,7 @@ TEST(AuthTest, EveryServiceRefusesCallsWithoutTheClustersTokenAndCountsThem) {
   ASSERT_TRUE(cluster.ok()) << cluster.status();
   const auto& processes = (*cluster)->state().processes;
   ASSERT_EQ(processes.size(), 3u);
-  const services::cli::ClusterProcess& coordinator = processes[0];
-  const services::cli::ClusterProcess& learner = processes[1];
+  const services::cli::ClusterProcess& coordinator = processes[0];  // then the learner
 
   // What the processes serve, as their /metrics say; the DCS services at least.
   std::vector<std::vector<std::string>> served;
