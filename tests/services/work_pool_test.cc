@@ -45,20 +45,20 @@ TEST(WorkPoolTest, AFullQueueRefusesAtOnceWithoutRunningTheTask) {
                     release.WaitForNotification();
                   }).ok());
   running.WaitForNotification();  // the one thread is busy: what follows waits in the queue
-  std::atomic<int> ran = 0;
-  ASSERT_TRUE(pool.Schedule([&] { ++ran; }).ok());
-  ASSERT_TRUE(pool.Schedule([&] { ++ran; }).ok());
+  absl::BlockingCounter queued_ran(2);
+  ASSERT_TRUE(pool.Schedule([&] { queued_ran.DecrementCount(); }).ok());
+  ASSERT_TRUE(pool.Schedule([&] { queued_ran.DecrementCount(); }).ok());
   bool refused_ran = false;
   const absl::Status full = pool.Schedule([&] { refused_ran = true; });
   EXPECT_TRUE(absl::IsResourceExhausted(full)) << full;
   EXPECT_THAT(full.message(), HasSubstr("2 calls wait"));
 
-  // Drained, it takes work again.
+  // Drained, it takes work again; the refused task never ran.
   release.Notify();
+  queued_ran.Wait();
   absl::Notification after;
   ASSERT_TRUE(pool.Schedule([&] { after.Notify(); }).ok());
   after.WaitForNotification();
-  EXPECT_EQ(ran, 2);
   EXPECT_FALSE(refused_ran);
 }
 
