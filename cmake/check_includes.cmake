@@ -1,6 +1,7 @@
 # Holds every #include of every DCS library folder to the layering rule (cmake/layering.cmake):
-# a file includes headers of its own library and of lower layers only, and gRPC's or libtorch's
-# headers only if its layer may link them. The link check sees what a library links; this sees
+# a file includes headers of its own library and of lower layers only, and gRPC's, libtorch's
+# or SQLite's headers (or those of a library that links SQLite: the coordinator's store) only if
+# its layer may link them. The link check sees what a library links; this sees
 # what its code uses, file by file, the moment a line is added (a test, so no reconfigure is
 # needed).
 #
@@ -17,12 +18,13 @@ endif()
 
 # Reads the table written by dcs_check_layers.
 set(libraries)
-function(dcs_layer_for_test library folder rank grpc torch)
+function(dcs_layer_for_test library folder rank grpc torch sqlite)
   set_property(GLOBAL APPEND PROPERTY LIBRARIES ${library})
   set_property(GLOBAL PROPERTY FOLDER_${library} "${folder}")
   set_property(GLOBAL PROPERTY RANK_${library} ${rank})
   set_property(GLOBAL PROPERTY GRPC_${library} ${grpc})
   set_property(GLOBAL PROPERTY TORCH_${library} ${torch})
+  set_property(GLOBAL PROPERTY SQLITE_${library} ${sqlite})
 endfunction()
 include("${LAYERS}")
 get_property(libraries GLOBAL PROPERTY LIBRARIES)
@@ -57,6 +59,7 @@ foreach(library ${libraries})
   get_property(rank GLOBAL PROPERTY RANK_${library})
   get_property(grpc GLOBAL PROPERTY GRPC_${library})
   get_property(torch GLOBAL PROPERTY TORCH_${library})
+  get_property(sqlite GLOBAL PROPERTY SQLITE_${library})
   file(GLOB files "${SOURCE_ROOT}/${folder}/*.h" "${SOURCE_ROOT}/${folder}/*.cc")
   foreach(file ${files})
     file(RELATIVE_PATH name "${SOURCE_ROOT}" "${file}")
@@ -76,6 +79,10 @@ foreach(library ${libraries})
         if(NOT torch)
           set(problem "a libtorch header, and ${library} must not use libtorch")
         endif()
+      elseif(include MATCHES "^(SQLiteCpp/|sqlite3\\.h$)")
+        if(NOT sqlite)
+          set(problem "a SQLite header, and ${library} must not use the store")
+        endif()
       elseif(include MATCHES "^tests/")
         set(problem "a test's header")
       endif()
@@ -83,9 +90,14 @@ foreach(library ${libraries})
       if(problem STREQUAL "" AND NOT "${included}" STREQUAL "" AND
          NOT "${included}" STREQUAL "${library}")
         get_property(included_rank GLOBAL PROPERTY RANK_${included})
+        get_property(included_sqlite GLOBAL PROPERTY SQLITE_${included})
         if(NOT included_rank LESS rank)
           set(problem "of ${included} (layer ${included_rank}), not below ${library} "
                       "(layer ${rank})")
+          string(CONCAT problem ${problem})
+        elseif(included_sqlite AND NOT sqlite)
+          set(problem "of ${included}, which links SQLite (the coordinator's store), and "
+                      "${library} must not use the store")
           string(CONCAT problem ${problem})
         endif()
       endif()

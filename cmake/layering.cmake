@@ -1,6 +1,7 @@
 # The layering rule the build enforces (docs/architecture.md §1). Every DCS library (and
 # program) has a layer, declared once in cmake/layers.cmake with dcs_layer(); it may link DCS
-# libraries of lower layers only, and gRPC or libtorch only where its layer allows them.
+# libraries of lower layers only, and gRPC, libtorch or SQLite (the coordinator's store) only
+# where its layer allows them.
 #
 # dcs_check_layers(), called after every target exists, walks each library's whole link closure
 # (its own libraries, theirs, and so on, third-party ones included) and stops the configure
@@ -8,17 +9,19 @@
 # writes ${PROJECT_BINARY_DIR}/layers_for_test.cmake (each library's folder and layer), which
 # cmake/check_includes.cmake reads to hold every file's #include lines to the same rule.
 
-# dcs_layer(<target> <rank> [GRPC] [TORCH]): the library or program <target> sits at layer
-# <rank> (0 is the bottom) and may link gRPC or libtorch only if marked so.
+# dcs_layer(<target> <rank> [GRPC] [TORCH] [SQLITE]): the library or program <target> sits at
+# layer <rank> (0 is the bottom) and may link gRPC, libtorch or SQLite only if marked so.
 function(dcs_layer library rank)
-  cmake_parse_arguments(ARG "GRPC;TORCH" "" "" ${ARGN})
+  cmake_parse_arguments(ARG "GRPC;TORCH;SQLITE" "" "" ${ARGN})
   set_property(GLOBAL APPEND PROPERTY DCS_LAYERED_LIBRARIES ${library})
   set_property(GLOBAL PROPERTY DCS_LAYER_RANK_${library} ${rank})
   set_property(GLOBAL PROPERTY DCS_LAYER_GRPC_${library} ${ARG_GRPC})
   set_property(GLOBAL PROPERTY DCS_LAYER_TORCH_${library} ${ARG_TORCH})
+  set_property(GLOBAL PROPERTY DCS_LAYER_SQLITE_${library} ${ARG_SQLITE})
 endfunction()
 
-# The third-party family `item` (a target or a file) belongs to: "gRPC", "libtorch" or "".
+# The third-party family `item` (a target or a file) belongs to: "gRPC", "libtorch", "SQLite"
+# or "".
 function(_dcs_family item out)
   set(family "")
   if(item MATCHES "^gRPC::" OR item MATCHES "/libgrpc[^/]*$")
@@ -26,6 +29,9 @@ function(_dcs_family item out)
   elseif(item MATCHES "^(torch|torch_library|torch_cpu|c10)$" OR
          item MATCHES "/lib(torch|c10)[^/]*$")
     set(family "libtorch")
+  elseif(item MATCHES "^(SQLiteCpp|SQLite::SQLite3|sqlite3)$" OR
+         item MATCHES "/lib(sqlite3|SQLiteCpp)[^/]*$")
+    set(family "SQLite")
   endif()
   set(${out} "${family}" PARENT_SCOPE)
 endfunction()
@@ -64,6 +70,7 @@ function(_dcs_check_closure library target chain visited_var)
   get_property(rank GLOBAL PROPERTY DCS_LAYER_RANK_${library})
   get_property(grpc_allowed GLOBAL PROPERTY DCS_LAYER_GRPC_${library})
   get_property(torch_allowed GLOBAL PROPERTY DCS_LAYER_TORCH_${library})
+  get_property(sqlite_allowed GLOBAL PROPERTY DCS_LAYER_SQLITE_${library})
   get_property(layered GLOBAL PROPERTY DCS_LAYERED_LIBRARIES)
   foreach(item ${links})
     if(item IN_LIST visited)
@@ -81,8 +88,13 @@ function(_dcs_check_closure library target chain visited_var)
     endif()
     _dcs_family("${item}" family)
     if((family STREQUAL "gRPC" AND NOT grpc_allowed) OR
-       (family STREQUAL "libtorch" AND NOT torch_allowed))
-      message(FATAL_ERROR "Layering: ${library} must not link ${family}, but does: ${path}. "
+       (family STREQUAL "libtorch" AND NOT torch_allowed) OR
+       (family STREQUAL "SQLite" AND NOT sqlite_allowed))
+      set(what "${family}")
+      if(family STREQUAL "SQLite")  # only the coordinator's store keeps records in it
+        set(what "SQLite (the coordinator's store)")
+      endif()
+      message(FATAL_ERROR "Layering: ${library} must not link ${what}, but does: ${path}. "
                           "Only the layers marked ${family} in cmake/layers.cmake may "
                           "(docs/architecture.md).")
     endif()
@@ -114,6 +126,7 @@ function(dcs_check_layers)
     get_property(rank GLOBAL PROPERTY DCS_LAYER_RANK_${library})
     get_property(grpc GLOBAL PROPERTY DCS_LAYER_GRPC_${library})
     get_property(torch GLOBAL PROPERTY DCS_LAYER_TORCH_${library})
+    get_property(sqlite GLOBAL PROPERTY DCS_LAYER_SQLITE_${library})
     # The folder of a library's hand-written sources (none for generated-only libraries); the
     # include check holds a folder to its library's layer (programs' mains sit in services/).
     get_target_property(type ${library} TYPE)
@@ -131,7 +144,8 @@ function(dcs_check_layers)
       endif()
     endforeach()
     string(APPEND for_test
-           "dcs_layer_for_test(${library} \"${folder}\" ${rank} \"${grpc}\" \"${torch}\")\n")
+           "dcs_layer_for_test(${library} \"${folder}\" ${rank} \"${grpc}\" \"${torch}\" "
+           "\"${sqlite}\")\n")
   endforeach()
   file(WRITE "${PROJECT_BINARY_DIR}/layers_for_test.cmake" "${for_test}")
 endfunction()

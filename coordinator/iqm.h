@@ -60,7 +60,7 @@ absl::StatusOr<ConfidenceInterval> BootstrapIqmInterval(
 namespace internal {
 
 // The building blocks of BootstrapIqmInterval and BootstrapImprovementInterval
-// (coordinator/probability_of_improvement.h).
+// (report/probability_of_improvement.h).
 
 // Draws one resample of strata of the given sizes: stratum after stratum, as many values as the
 // stratum holds, with replacement, one random.Integers(0, size) each (a stratum of one value

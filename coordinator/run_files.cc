@@ -5,9 +5,11 @@
 #include <filesystem>
 
 #include "absl/status/status.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
+#include "run/appended_evaluation_log.h"
 #include "run/evaluation_log.h"
 
 namespace dcs::coordinator {
@@ -29,13 +31,15 @@ std::string RunDirectory(absl::string_view data_dir, absl::string_view run_id) {
 
 absl::StatusOr<CheckpointRecord> StoreCheckpoint(const std::string& run_dir,
                                                  const run::PackedCheckpoint& checkpoint,
-                                                 const v1::EvaluationLog& log, int keep) {
+                                                 int64_t first_evaluation,
+                                                 const v1::EvaluationLog& log_since, int keep) {
   // Stored as it came, checked against its SHA-256s but not decoded: the learner made it with
   // the same run library, and decoding and encoding it again cost a fifth of the coordinator's
   // time. Its learner reads it back whole, falling back to an older one if it cannot.
   DCS_ASSIGN_OR_RETURN(const int64_t timesteps, run::CheckPackedCheckpoint(checkpoint));
+  DCS_RETURN_IF_ERROR(
+      RetryableWhenFull(run::AppendEvaluationLog(run_dir, first_evaluation, log_since)));
   DCS_RETURN_IF_ERROR(RetryableWhenFull(run::WritePackedCheckpoint(run_dir, checkpoint, keep)));
-  DCS_RETURN_IF_ERROR(RetryableWhenFull(run::WriteEvaluationLog(run_dir, log)));
   return CheckpointRecord{
       .name = checkpoint.name, .timesteps = timesteps, .sha256 = checkpoint.learner_sha256};
 }
@@ -50,12 +54,21 @@ absl::StatusOr<std::vector<RunFile>> ReadRunFiles(const std::string& run_dir) {
   if (!fs::is_directory(run_dir, error)) {
     return absl::NotFoundError(absl::StrCat("no run directory ", run_dir));
   }
+  const bool appended = run::HasAppendedEvaluationLog(run_dir);
   std::vector<RunFile> files;
+  if (appended) {
+    DCS_ASSIGN_OR_RETURN(const v1::EvaluationLog log, run::ReadEvaluationLog(run_dir));
+    for (run::EvaluationLogFile& file : run::EvaluationLogFiles(log)) {
+      files.push_back({.path = std::move(file.name), .contents = std::move(file.contents)});
+    }
+  }
   for (const fs::directory_entry& entry : fs::recursive_directory_iterator(run_dir, error)) {
     if (!entry.is_regular_file()) continue;
+    std::string path = fs::relative(entry.path(), run_dir).string();
+    // The appended log's own files, and any left from before it (given above).
+    if (appended && absl::StartsWith(path, "evaluations.")) continue;
     DCS_ASSIGN_OR_RETURN(std::string contents, ReadFile(entry.path()));
-    files.push_back({.path = fs::relative(entry.path(), run_dir).string(),
-                     .contents = std::move(contents)});
+    files.push_back({.path = std::move(path), .contents = std::move(contents)});
   }
   std::sort(files.begin(), files.end(),
             [](const RunFile& a, const RunFile& b) { return a.path < b.path; });

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
-#include "coordinator/run_store.h"
+#include "coordinator/run_table.h"
 #include "run/run_directory.h"
 
 namespace dcs::coordinator {

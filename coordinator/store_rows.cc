@@ -36,6 +36,12 @@ absl::StatusOr<int64_t> RowNumber(absl::string_view id, absl::string_view kind) 
   return number;
 }
 
+std::string LeaseName(const LeaseKey& key) {
+  return key.slot == kLearnerSlot ? absl::StrCat("the learner lease of ", key.run_id)
+                                  : absl::StrCat("the lease of slot ", key.slot, " of ",
+                                                 key.run_id);
+}
+
 constexpr char kRunColumns[] =
     "number, request_id, config, seed, env, n_envs, total_timesteps, state, error, "
     "learner_numerics, actor_numerics, "
@@ -186,32 +192,61 @@ absl::Status CancelRunRow(SQLite::Database& db, const RunRecord& run, absl::stri
   return absl::OkStatus();
 }
 
-absl::Status StoreError(const std::string& path, const SQLite::Exception& error) {
-  switch (error.getErrorCode()) {
-    case SQLITE_FULL:  // the caller may make the same call again once there is room
-      return absl::UnavailableError(absl::StrCat(
-          path, ": the disk is full; nothing of this change was stored (", error.what(), ")"));
-    case SQLITE_CORRUPT:
-    case SQLITE_NOTADB:
-      return CorruptStore(path, error.what());
-    case SQLITE_BUSY:
-    case SQLITE_LOCKED:
-      return absl::UnavailableError(absl::StrCat(path, " is locked: ", error.what()));
-    default:
-      return absl::InternalError(absl::StrCat(path, ": ", error.what()));
-  }
-}
-
 absl::Status CorruptStore(const std::string& path, absl::string_view what) {
   return absl::DataLossError(absl::StrCat(path, " is corrupt: ", what));
 }
 
-void RollBackIfActive(SQLite::Database& db) noexcept {
-  if (sqlite3_get_autocommit(db.getHandle()) != 0) return;  // no transaction is open
-  try {
-    db.exec("ROLLBACK");
-  } catch (const SQLite::Exception&) {  // the first error is the one to report
+absl::Status CheckHeld(SQLite::Database& db, const LeaseKey& key) {
+  DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(db, key.run_id));
+  SQLite::Statement query(db, "SELECT epoch, holder FROM leases WHERE run = ? AND slot = ?");
+  query.bind(1, *RunNumber(key.run_id));
+  query.bind(2, key.slot);
+  if (!query.executeStep()) {
+    return absl::NotFoundError(absl::StrCat(key.run_id, " has no slot ", key.slot));
   }
+  if (IsTerminal(run.state)) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        LeaseName(key), " is void: the run is ", NameOf(kRunStateNames, run.state)));
+  }
+  const int64_t epoch = query.getColumn(0).getInt64();
+  if (epoch != key.epoch) {
+    return absl::FailedPreconditionError(absl::StrCat(LeaseName(key), " moved: epoch ", epoch,
+                                                      " was granted after epoch ", key.epoch));
+  }
+  if (query.getColumn(1).getString().empty()) {
+    return absl::FailedPreconditionError(
+        absl::StrCat(LeaseName(key), " (epoch ", key.epoch, ") lapsed and went back to the queue"));
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<int> ExpireLapsed(SQLite::Database& db, absl::Time now) {
+  // Learner leases first: their runs go back to the queue with every slot lease freed.
+  SQLite::Statement learners(db, "SELECT run FROM leases WHERE slot = -1 AND holder != '' AND "
+                                 "deadline < ?");
+  learners.bind(1, Micros(now));
+  std::vector<int64_t> requeued;
+  while (learners.executeStep()) requeued.push_back(learners.getColumn(0).getInt64());
+  for (int64_t number : requeued) {
+    FreeLeases(db, number, /*learner=*/true);
+    DCS_ASSIGN_OR_RETURN(const RunRecord run, FindRun(db, RunId(number)));
+    DCS_RETURN_IF_ERROR(SetRunState(db, run, RunState::kQueued, "", now));
+  }
+  SQLite::Statement slots(db, "UPDATE leases SET holder = '', address = '', deadline = 0 "
+                              "WHERE slot >= 0 AND holder != '' AND deadline < ?");
+  slots.bind(1, Micros(now));
+  SQLite::Statement jobs(db, "UPDATE evaluation_jobs SET holder = '', deadline = 0 "
+                             "WHERE done = 0 AND holder != '' AND deadline < ?");
+  jobs.bind(1, Micros(now));
+  return static_cast<int>(requeued.size()) + slots.exec() + jobs.exec();
+}
+
+void PinNumerics(SQLite::Database& db, absl::string_view column, int64_t number,
+                 absl::string_view numerics) {
+  SQLite::Statement pin(db, absl::StrCat("UPDATE runs SET ", column, " = ? WHERE number = ?"));
+  pin.bind(1, std::string(numerics));
+  pin.bind(2, number);
+  pin.exec();
 }
 
 }  // namespace dcs::coordinator::store_rows

@@ -2,10 +2,11 @@
 #ifndef DCS_COORDINATOR_STORE_ROWS_H_
 #define DCS_COORDINATOR_STORE_ROWS_H_
 
-// The run store's rows as its implementation files share them (coordinator/run_store.cc for
-// runs and leases, coordinator/sweep_store.cc for sweeps): ids, times, reading and writing a
-// run's row, the one way a run's state changes, and RunStore's transaction. Internal to the
-// store: every function runs inside the caller's transaction, on the connection it is given.
+// The store's rows as its tables' implementation files share them (coordinator/store.h):
+// ids, times, reading and writing a run's row, the one way a run's state changes, a held
+// lease, lapsed leases, a study's row. Internal to the store: only its own .cc files include
+// this header. Every function runs inside the caller's transaction
+// (coordinator/store_connection.h), on the connection it is given.
 
 #include <SQLiteCpp/Database.h>
 #include <SQLiteCpp/Statement.h>
@@ -21,7 +22,9 @@
 #include "absl/strings/string_view.h"
 #include "absl/time/time.h"
 #include "common/enum_names.h"
-#include "coordinator/run_store.h"
+#include "coordinator/run_state.h"
+#include "coordinator/run_table.h"
+#include "coordinator/study_table.h"
 
 namespace dcs::coordinator::store_rows {
 
@@ -72,7 +75,20 @@ void DropEvaluationWeights(SQLite::Database& db, int64_t number);
 absl::Status CancelRunRow(SQLite::Database& db, const RunRecord& run, absl::string_view reason,
                           absl::Time now);
 
-// Studies (coordinator/study_store.cc). INVALID_ARGUMENT if CreateStudy would refuse
+// OK if `key` names the lease as it is held now: same epoch, still held, run not ended.
+// FAILED_PRECONDITION saying which it is not; NOT_FOUND for an unknown run or slot.
+absl::Status CheckHeld(SQLite::Database& db, const LeaseKey& key);
+
+// Frees every lease whose deadline passed at `now` (learner leases, whose runs go back to the
+// queue with their slot leases freed; slot leases; evaluation jobs). Returns how many lapsed.
+absl::StatusOr<int> ExpireLapsed(SQLite::Database& db, absl::Time now);
+
+// Pins run `number`'s numeric fingerprint of one role (`column`: learner_numerics or
+// actor_numerics) to `numerics`: the workers that may take its leases of that role from now on.
+void PinNumerics(SQLite::Database& db, absl::string_view column, int64_t number,
+                 absl::string_view numerics);
+
+// Studies (coordinator/study_table.cc). INVALID_ARGUMENT if CreateStudy would refuse
 // `submission` (checked before its transaction).
 absl::Status CheckStudySubmission(const StudySubmission& submission);
 // Inserts a checked study, driven by sweep `sweep` or by none; returns its row number.
@@ -80,12 +96,6 @@ int64_t InsertStudy(SQLite::Database& db, const StudySubmission& submission,
                     std::optional<int64_t> sweep, absl::Time now);
 // Fails the running trials of the study sweep `sweep` drives (it was cancelled).
 void FailRunningStudyTrials(SQLite::Database& db, int64_t sweep, absl::Time now);
-
-// An SQLite error on the store at `path` as a status naming the file: UNAVAILABLE for a full
-// disk (SQLITE_FULL) or a locked file, since nothing was stored and the same call may succeed
-// later (status.h: "the client may retry just this call"); DATA_LOSS for a corrupt file or one
-// that is not a database; else INTERNAL.
-absl::Status StoreError(const std::string& path, const SQLite::Exception& error);
 
 // DATA_LOSS naming the store at `path`: it holds `what`, which its schema or its writers
 // forbid, so the file was damaged (never the caller's fault, never to be indexed with).
@@ -101,37 +111,6 @@ absl::StatusOr<E> StoredValue(SQLite::Database& db, const EnumName<E> (&names)[N
                                                      "', which is not one of ", ListNames(names)));
 }
 
-// Rolls back the open transaction, if one is still open: after some errors (a full disk among
-// them) SQLite has rolled it back already, and a ROLLBACK would fail and hide the first error.
-// Never throws.
-void RollBackIfActive(SQLite::Database& db) noexcept;
-
 }  // namespace dcs::coordinator::store_rows
-
-namespace dcs::coordinator {
-
-// Runs `body` in one BEGIN IMMEDIATE transaction, committing if it returns OK; SQLite errors
-// (thrown by SQLiteCpp) become statuses naming the database (store_rows::StoreError).
-template <typename Body>
-auto RunStore::Transaction(Body body) -> decltype(body()) {
-  absl::MutexLock lock(&mu_);
-  leases_lapsing_ = 0;
-  try {
-    db_->exec("BEGIN IMMEDIATE");
-    try {
-      auto result = body();
-      db_->exec(result.ok() ? "COMMIT" : "ROLLBACK");
-      if (result.ok()) leases_lapsed_ += leases_lapsing_;
-      return result;
-    } catch (...) {
-      store_rows::RollBackIfActive(*db_);
-      throw;
-    }
-  } catch (const SQLite::Exception& e) {
-    return store_rows::StoreError(db_->getFilename(), e);
-  }
-}
-
-}  // namespace dcs::coordinator
 
 #endif  // DCS_COORDINATOR_STORE_ROWS_H_

@@ -19,7 +19,8 @@ int CurrentSchemaVersion();
 
 // Brings `db` to version `target` (tests build older databases with a lower one), each
 // migration in its own transaction. FAILED_PRECONDITION for a database of a newer version than
-// this build's; DATA_LOSS for a negative version (a damaged file). Throws SQLite::Exception on SQLite errors (the caller, RunStore, maps them).
+// this build's; DATA_LOSS for a negative version (a damaged file). Throws SQLite::Exception on
+// SQLite errors (the caller, Store::Open, maps them).
 absl::Status MigrateSchema(SQLite::Database& db, int target = CurrentSchemaVersion());
 
 }  // namespace dcs::coordinator

@@ -54,13 +54,15 @@ struct QueuedTrial {
 
 class Step {
  public:
-  Step(RunStore& store, const std::string& data_dir, CompletedRunLogs& logs,
+  Step(Store& store, const std::string& data_dir, CompletedRunLogs& logs,
        const SweepRecord& sweep, const StudySweepSpec& spec, absl::Time now)
       : store_(store), data_dir_(data_dir), logs_(logs), sweep_(sweep), spec_(spec), now_(now) {}
 
   absl::StatusOr<StudySweepStep> Run() {
-    DCS_ASSIGN_OR_RETURN(std::vector<StudyTrial> trials, store_.ListStudyTrials(sweep_.study_id));
-    DCS_ASSIGN_OR_RETURN(const std::vector<RunRecord> runs, store_.ListSweepRuns(sweep_.id));
+    DCS_ASSIGN_OR_RETURN(std::vector<StudyTrial> trials,
+                         store_.studies().ListStudyTrials(sweep_.study_id));
+    DCS_ASSIGN_OR_RETURN(const std::vector<RunRecord> runs,
+                         store_.sweeps().ListSweepRuns(sweep_.id));
     std::map<std::pair<int64_t, bool>, QueuedTrial> queued;  // (study trial, retrain) -> runs
     for (size_t i = 0; i < sweep_.trials.size(); ++i) {
       const TrialRecord& trial = sweep_.trials[i];
@@ -89,7 +91,8 @@ class Step {
          number < spec_.trials && running < spec_.parallel && !cancelled_; ++number) {
       DCS_ASSIGN_OR_RETURN(
           StudyTrial trial,
-          store_.AskTrial(sweep_.study_id, absl::StrCat(sweep_.request_id, "/ask/", number), now_));
+          store_.studies().AskTrial(sweep_.study_id,
+                                    absl::StrCat(sweep_.request_id, "/ask/", number), now_));
       DCS_RETURN_IF_ERROR(Queue(trial, /*retrain=*/false));
       ++done_.asked;
       running += trial.state == TrialState::kRunning ? 1 : 0;
@@ -103,7 +106,7 @@ class Step {
       DCS_RETURN_IF_ERROR(Queue(*trial, /*retrain=*/true));
       done_.retrained += queued.contains({trial->number, true}) ? 0 : 1;
     }
-    DCS_RETURN_IF_ERROR(store_.CloseSweep(sweep_.id, now_));
+    DCS_RETURN_IF_ERROR(store_.sweeps().CloseSweep(sweep_.id, now_));
     done_.closed = true;
     return done_;
   }
@@ -146,7 +149,7 @@ class Step {
     if (!config.ok()) return Tell(trial, TrialState::kFailed, kNaN);
     const run::SweepTrial& base = spec_.sweep.trials.front();
     absl::StatusOr<std::vector<RunRecord>> runs =
-        store_.AddSweepTrial(sweep_.id,
+        store_.sweeps().AddSweepTrial(sweep_.id,
                              {.condition = condition,
                               .family = base.family,
                               .observe = std::string(NameOf(env::kObserveModeNames, base.observe)),
@@ -208,7 +211,7 @@ class Step {
     if (!pruned_at.has_value()) return absl::OkStatus();
     for (const RunRecord& run : runs) {
       if (IsTerminal(run.state)) continue;
-      absl::Status cancelled = store_.CancelRun(run.id, now_).status();
+      absl::Status cancelled = store_.runs().CancelRun(run.id, now_).status();
       if (!cancelled.ok() && !absl::IsFailedPrecondition(cancelled)) return cancelled;
     }
     return Tell(trial, TrialState::kPruned, *pruned_at);
@@ -232,8 +235,8 @@ class Step {
       if (trial.reported.contains(boundary)) continue;
       const std::optional<double> value = ObjectiveAt(spec_.objective, logs, boundaries, boundary);
       if (!value.has_value()) break;
-      DCS_ASSIGN_OR_RETURN(const bool prune,
-                           store_.ReportTrial(sweep_.study_id, trial.number, boundary, *value));
+      DCS_ASSIGN_OR_RETURN(const bool prune, store_.studies().ReportTrial(
+                                                 sweep_.study_id, trial.number, boundary, *value));
       trial.reported[boundary] = *value;
       ++done_.reported;
       if (prune && !ended) return value;
@@ -242,13 +245,13 @@ class Step {
   }
 
   absl::Status Tell(StudyTrial& trial, TrialState state, double value) {
-    DCS_ASSIGN_OR_RETURN(trial,
-                         store_.TellTrial(sweep_.study_id, trial.number, state, value, now_));
+    DCS_ASSIGN_OR_RETURN(
+        trial, store_.studies().TellTrial(sweep_.study_id, trial.number, state, value, now_));
     ++done_.told;
     return absl::OkStatus();
   }
 
-  RunStore& store_;
+  Store& store_;
   const std::string& data_dir_;
   CompletedRunLogs& logs_;
   const SweepRecord& sweep_;
@@ -293,7 +296,7 @@ std::optional<double> ObjectiveAt(StudyObjective objective,
   return OverSeeds(objective, values);
 }
 
-absl::StatusOr<StudySweepStep> AdvanceStudySweep(RunStore& store, const std::string& data_dir,
+absl::StatusOr<StudySweepStep> AdvanceStudySweep(Store& store, const std::string& data_dir,
                                                  CompletedRunLogs& logs, const SweepRecord& sweep,
                                                  const StudySweepSpec& spec, absl::Time now) {
   return Step(store, data_dir, logs, sweep, spec, now).Run();

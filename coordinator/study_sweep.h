@@ -19,7 +19,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/study_sweep_spec.h"
 #include "coordinator/sweep_results.h"
 #include "dcs/v1/evaluation.pb.h"
@@ -39,7 +39,7 @@ struct StudySweepStep {
 // ParseStudySweepYaml), whose runs' directories are in `data_dir` (coordinator/run_files.h) and
 // whose completed runs' logs `logs` reads. Errors: the store's, and DATA_LOSS for a completed run
 // whose evaluation log is missing.
-absl::StatusOr<StudySweepStep> AdvanceStudySweep(RunStore& store, const std::string& data_dir,
+absl::StatusOr<StudySweepStep> AdvanceStudySweep(Store& store, const std::string& data_dir,
                                                  CompletedRunLogs& logs, const SweepRecord& sweep,
                                                  const StudySweepSpec& spec, absl::Time now);
 

@@ -60,7 +60,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "common/enum_names.h"
-#include "coordinator/run_store.h"
+#include "coordinator/study_table.h"
 #include "run/search_space.h"
 #include "run/sweep_spec.h"
 

@@ -14,7 +14,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "absl/synchronization/mutex.h"
-#include "coordinator/run_store.h"
+#include "coordinator/sweep_table.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "dcs/v1/sweep.pb.h"
 
@@ -38,7 +38,7 @@ class CompletedRunLogs {
   absl::flat_hash_map<std::string, v1::EvaluationLog> logs_ ABSL_GUARDED_BY(mu_);
 };
 
-// Cuts `log` down to what a report reads (coordinator/sweep_report.h): the last evaluation and
+// Cuts `log` down to what a report reads (report/sweep_report.h): the last evaluation and
 // the best-anytime one (best_anytime_index renumbered), each without its per-context results;
 // the scores, the coverage and the rest of the log as they were. A report built from logs cut so
 // is the one built from the whole logs, and a large sweep's results shrink about tenfold.

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "coordinator/run_store.h"
+#include "coordinator/sweep_table.h"
 #include "run/run_directory.h"
 
 namespace dcs::coordinator {

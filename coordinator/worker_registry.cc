@@ -9,14 +9,6 @@
 
 namespace dcs::coordinator {
 
-absl::string_view WorkerRoleName(WorkerRole role) {
-  switch (role) {
-    case WorkerRole::kLearner: return "learner";
-    case WorkerRole::kActor: return "actor";
-  }
-  return "unknown";
-}
-
 absl::string_view WorkerStateName(WorkerState state) {
   switch (state) {
     case WorkerState::kAlive: return "alive";

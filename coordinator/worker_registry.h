@@ -23,24 +23,9 @@
 #include "absl/status/statusor.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
-#include "common/library_version.h"
+#include "common/worker_info.h"
 
 namespace dcs::coordinator {
-
-enum class WorkerRole { kLearner, kActor };
-
-// "learner" or "actor".
-absl::string_view WorkerRoleName(WorkerRole role);
-
-// What a worker says about itself when it registers.
-struct WorkerInfo {
-  WorkerRole role = WorkerRole::kActor;
-  std::string address;  // host:port of the worker's own gRPC server
-  std::string hostname;
-  int64_t pid = 0;
-  std::string version;  // DCS build, e.g. "0.1.0+3f2a9c1"
-  std::vector<LibraryVersion> libraries;
-};
 
 enum class WorkerState { kAlive, kLost };
 

@@ -13,6 +13,7 @@
 #include "common/round_trip.h"
 #include "common/status_macros.h"
 #include "dcs/proto_json.h"
+#include "run/appended_evaluation_log.h"
 
 namespace dcs::run {
 namespace {
@@ -98,13 +99,21 @@ std::string EvaluationCsvPath(const std::string& dir) {
   return (std::filesystem::path(dir) / kCsvFile).string();
 }
 
+std::vector<EvaluationLogFile> EvaluationLogFiles(const v1::EvaluationLog& log) {
+  return {{.name = kCsvFile, .contents = ToCsv(log)},
+          {.name = kJsonFile, .contents = ProtoToJson(log)}};
+}
+
 absl::Status WriteEvaluationLog(const std::string& dir, const v1::EvaluationLog& log) {
-  const std::filesystem::path root(dir);
-  DCS_RETURN_IF_ERROR(WriteFileAtomically(EvaluationCsvPath(dir), ToCsv(log)));
-  return WriteFileAtomically(root / kJsonFile, ProtoToJson(log));
+  for (const EvaluationLogFile& file : EvaluationLogFiles(log)) {
+    DCS_RETURN_IF_ERROR(
+        WriteFileAtomically((std::filesystem::path(dir) / file.name).string(), file.contents));
+  }
+  return absl::OkStatus();
 }
 
 absl::StatusOr<v1::EvaluationLog> ReadEvaluationLog(const std::string& dir) {
+  if (HasAppendedEvaluationLog(dir)) return ReadAppendedEvaluationLog(dir);
   const std::string path = (std::filesystem::path(dir) / kJsonFile).string();
   absl::StatusOr<std::string> json = ReadFile(path);
   if (!json.ok()) {
@@ -116,14 +125,7 @@ absl::StatusOr<v1::EvaluationLog> ReadEvaluationLog(const std::string& dir) {
         absl::StrCat(path, " is not an evaluation log: ", parsed.message().as_string()));
   }
   for (const v1::Evaluation& evaluation : log.evaluations()) {
-    for (const v1::ContextEvaluation& context : evaluation.contexts()) {
-      if (!SplitFromProto(context.split()).has_value()) {
-        return absl::DataLossError(absl::StrCat(path, ": the evaluation at step ",
-                                                evaluation.step(), " has a context of split ",
-                                                context.split(), ", which is none of ",
-                                                ListNames(actor::kSplitNames)));
-      }
-    }
+    DCS_RETURN_IF_ERROR(internal::CheckSplits(evaluation, path));
   }
   return log;
 }
@@ -136,5 +138,21 @@ std::optional<actor::Split> SplitFromProto(int split) {
   if (split < 1 || split > actor::kNumSplits) return std::nullopt;
   return static_cast<actor::Split>(split - 1);
 }
+
+namespace internal {
+
+absl::Status CheckSplits(const v1::Evaluation& evaluation, const std::string& path) {
+  for (const v1::ContextEvaluation& context : evaluation.contexts()) {
+    if (!SplitFromProto(context.split()).has_value()) {
+      return absl::DataLossError(absl::StrCat(path, ": the evaluation at step ", evaluation.step(),
+                                              " has a context of split ", context.split(),
+                                              ", which is none of ",
+                                              ListNames(actor::kSplitNames)));
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace internal
 
 }  // namespace dcs::run

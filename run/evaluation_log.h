@@ -9,7 +9,8 @@
 //   evaluations.json  a dcs.v1.EvaluationLog (proto/dcs/v1/evaluation.proto) as JSON
 //                     (proto/dcs/proto_json.h)
 // each atomically (common/atomic_file.h), rewritten after every evaluation so a running run can
-// be watched; and read back (ReadEvaluationLog: the one reader of evaluations.json).
+// be watched; and read back (ReadEvaluationLog: the one reader of evaluations.json, and of the
+// log the coordinator appends to, run/appended_evaluation_log.h).
 // Thread-safe (pure functions).
 
 #include <cstdint>
@@ -36,12 +37,23 @@ v1::EvaluationLog MakeEvaluationLog(const RunSpec& spec,
 // evaluations.csv in `dir`, for people to open.
 std::string EvaluationCsvPath(const std::string& dir);
 
+// One file of an evaluation log: its name in the run's directory and its contents.
+struct EvaluationLogFile {
+  std::string name;
+  std::string contents;
+};
+
+// evaluations.csv and evaluations.json of `log`, as WriteEvaluationLog writes them.
+// REQUIRES: as WriteEvaluationLog.
+std::vector<EvaluationLogFile> EvaluationLogFiles(const v1::EvaluationLog& log);
+
 // Writes evaluations.csv and evaluations.json into `dir`. Errors name the file
 // (RESOURCE_EXHAUSTED for a full disk); a file that fails keeps its previous contents.
 // REQUIRES: every context has a split, as logs from MakeEvaluationLog and ReadEvaluationLog do.
 absl::Status WriteEvaluationLog(const std::string& dir, const v1::EvaluationLog& log);
 
-// The evaluation log in `dir`. NOT_FOUND if it has none; DATA_LOSS naming the file if that is
+// The evaluation log in `dir`: the one appended there (run/appended_evaluation_log.h) if there
+// is one, else evaluations.json. NOT_FOUND if it has none; DATA_LOSS naming the file if that is
 // not an evaluation log (not JSON, an unknown field, a context of no known split).
 absl::StatusOr<v1::EvaluationLog> ReadEvaluationLog(const std::string& dir);
 
@@ -49,6 +61,14 @@ absl::StatusOr<v1::EvaluationLog> ReadEvaluationLog(const std::string& dir);
 // has. The numbers are the C++ enumeration's plus one (checked where they are converted).
 v1::Split SplitToProto(actor::Split split);
 std::optional<actor::Split> SplitFromProto(int split);
+
+namespace internal {
+
+// OK if every context of `evaluation`, read from `path`, is of a known split; DATA_LOSS naming
+// the file, the evaluation's step and the split otherwise. For the log's two readers.
+absl::Status CheckSplits(const v1::Evaluation& evaluation, const std::string& path);
+
+}  // namespace internal
 
 }  // namespace dcs::run
 

@@ -24,10 +24,10 @@ v1::BuildInfo BuildInfoToProto(const BuildInfo& build) {
   return proto;
 }
 
-v1::WorkerInfo WorkerInfoToProto(const coordinator::WorkerInfo& info) {
+v1::WorkerInfo WorkerInfoToProto(const WorkerInfo& info) {
   v1::WorkerInfo proto;
-  proto.set_role(info.role == coordinator::WorkerRole::kLearner ? v1::WORKER_ROLE_LEARNER
-                                                                : v1::WORKER_ROLE_ACTOR);
+  proto.set_role(info.role == WorkerRole::kLearner ? v1::WORKER_ROLE_LEARNER
+                                                   : v1::WORKER_ROLE_ACTOR);
   proto.set_address(info.address);
   proto.set_hostname(info.hostname);
   proto.set_pid(info.pid);
@@ -36,11 +36,11 @@ v1::WorkerInfo WorkerInfoToProto(const coordinator::WorkerInfo& info) {
   return proto;
 }
 
-absl::StatusOr<coordinator::WorkerInfo> WorkerInfoFromProto(const v1::WorkerInfo& proto) {
-  coordinator::WorkerInfo info;
+absl::StatusOr<WorkerInfo> WorkerInfoFromProto(const v1::WorkerInfo& proto) {
+  WorkerInfo info;
   switch (proto.role()) {
-    case v1::WORKER_ROLE_LEARNER: info.role = coordinator::WorkerRole::kLearner; break;
-    case v1::WORKER_ROLE_ACTOR: info.role = coordinator::WorkerRole::kActor; break;
+    case v1::WORKER_ROLE_LEARNER: info.role = WorkerRole::kLearner; break;
+    case v1::WORKER_ROLE_ACTOR: info.role = WorkerRole::kActor; break;
     default:
       return absl::InvalidArgumentError(absl::StrCat(
           "worker role must be WORKER_ROLE_LEARNER or WORKER_ROLE_ACTOR, got ",
@@ -55,17 +55,6 @@ absl::StatusOr<coordinator::WorkerInfo> WorkerInfoFromProto(const v1::WorkerInfo
     info.libraries.push_back({library.name(), library.version()});
   }
   return info;
-}
-
-v1::Worker WorkerToProto(const coordinator::WorkerRecord& record) {
-  v1::Worker proto;
-  proto.set_worker_id(record.id);
-  *proto.mutable_info() = WorkerInfoToProto(record.info);
-  proto.set_state(record.state == coordinator::WorkerState::kAlive ? v1::WORKER_STATE_ALIVE
-                                                                   : v1::WORKER_STATE_LOST);
-  *proto.mutable_registered_time() = TimeToProto(record.registered_at);
-  *proto.mutable_last_heartbeat_time() = TimeToProto(record.last_heartbeat_at);
-  return proto;
 }
 
 }  // namespace dcs::services

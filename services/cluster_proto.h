@@ -2,11 +2,11 @@
 #ifndef DCS_SERVICES_CLUSTER_PROTO_H_
 #define DCS_SERVICES_CLUSTER_PROTO_H_
 
-// Conversions between the coordinator's worker types and dcs.v1 cluster messages.
-// Thread-safe (pure functions).
+// Conversions between what a worker says about itself (common/worker_info.h), a build's
+// versions, and dcs.v1 cluster messages. Thread-safe (pure functions).
 
 #include "absl/status/statusor.h"
-#include "coordinator/worker_registry.h"
+#include "common/worker_info.h"
 #include "dcs/v1/cluster.pb.h"
 #include "services/build_info.h"
 
@@ -14,12 +14,10 @@ namespace dcs::services {
 
 v1::BuildInfo BuildInfoToProto(const BuildInfo& build);
 
-v1::WorkerInfo WorkerInfoToProto(const coordinator::WorkerInfo& info);
+v1::WorkerInfo WorkerInfoToProto(const WorkerInfo& info);
 
 // INVALID_ARGUMENT if the role is WORKER_ROLE_UNSPECIFIED or unknown.
-absl::StatusOr<coordinator::WorkerInfo> WorkerInfoFromProto(const v1::WorkerInfo& proto);
-
-v1::Worker WorkerToProto(const coordinator::WorkerRecord& record);
+absl::StatusOr<WorkerInfo> WorkerInfoFromProto(const v1::WorkerInfo& proto);
 
 }  // namespace dcs::services
 

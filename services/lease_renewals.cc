@@ -15,9 +15,9 @@
 
 namespace dcs::services {
 
-std::vector<absl::StatusOr<absl::Duration>> RenewLeases(
-    v1::CoordinatorService::Stub& coordinator, absl::Span<const coordinator::LeaseKey> leases,
-    absl::Duration timeout) {
+std::vector<absl::StatusOr<absl::Duration>> RenewLeases(v1::CoordinatorService::Stub& coordinator,
+                                                        absl::Span<const run::LeaseKey> leases,
+                                                        absl::Duration timeout) {
   struct Call {
     grpc::ClientContext context;
     v1::RenewLeaseRequest request;
@@ -26,7 +26,7 @@ std::vector<absl::StatusOr<absl::Duration>> RenewLeases(
   };
   std::vector<std::unique_ptr<Call>> calls;
   absl::BlockingCounter pending(static_cast<int>(leases.size()));
-  for (const coordinator::LeaseKey& lease : leases) {
+  for (const run::LeaseKey& lease : leases) {
     Call& call = *calls.emplace_back(std::make_unique<Call>());
     *call.request.mutable_lease() = LeaseToProto(lease);
     SetTimeout(call.context, timeout);

@@ -19,8 +19,8 @@
 #include "absl/time/clock.h"
 #include "absl/time/time.h"
 #include "absl/types/span.h"
-#include "coordinator/run_store.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
+#include "run/lease_key.h"
 #include "services/log.h"
 #include "services/unary_call.h"
 
@@ -30,12 +30,12 @@ namespace dcs::services {
 // all of them. Returns, in the order of `leases`, how long the coordinator extended each one
 // for, or why not: IsLeaseLost when it is no longer the caller's, IsTransient when it is worth
 // renewing again.
-std::vector<absl::StatusOr<absl::Duration>> RenewLeases(
-    v1::CoordinatorService::Stub& coordinator, absl::Span<const coordinator::LeaseKey> leases,
-    absl::Duration timeout);
+std::vector<absl::StatusOr<absl::Duration>> RenewLeases(v1::CoordinatorService::Stub& coordinator,
+                                                        absl::Span<const run::LeaseKey> leases,
+                                                        absl::Duration timeout);
 
 // Renews the leases of `items` that fall due: a map, guarded by `mu`, of shared pointers to
-// items with `lease` (a coordinator::LeaseKey), `renewed_at` (an absl::Time only the caller's
+// items with `lease` (a run::LeaseKey), `renewed_at` (an absl::Time only the caller's
 // thread touches), and the atomic flags `lost` and `done` (services/finished_threads.h). Due is
 // a third of `lease_duration` (guarded by `mu`) after the last renewal; a lease renewed counts
 // from before the calls, and `lease_duration` becomes what the coordinator says. Calls
@@ -45,7 +45,7 @@ template <typename Map, typename Lose>
 void RenewDueLeases(v1::CoordinatorService::Stub& coordinator, absl::Duration timeout,
                     absl::Mutex& mu, Map& items, absl::Duration& lease_duration, Lose lose) {
   std::vector<typename Map::mapped_type> due;
-  std::vector<coordinator::LeaseKey> leases;
+  std::vector<run::LeaseKey> leases;
   {
     absl::MutexLock lock(&mu);
     const absl::Duration period = lease_duration / 3;
@@ -69,8 +69,8 @@ void RenewDueLeases(v1::CoordinatorService::Stub& coordinator, absl::Duration ti
     const bool lost = IsLeaseLost(renewed[i].status());
     Log(LogLevel::kWarning, lost ? "lost a lease" : "cannot renew a lease yet",
         {{"run_id", item.lease.run_id},
-         {"slot", item.lease.slot == coordinator::kLearnerSlot ? "learner"
-                                                               : std::to_string(item.lease.slot)},
+         {"slot",
+          item.lease.slot == run::kLearnerSlot ? "learner" : std::to_string(item.lease.slot)},
          {"error", renewed[i].status().ToString()}});
     if (lost) lose(item);
   }

@@ -4,46 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 #include "absl/strings/str_cat.h"
-#include "services/time_proto.h"
 
 namespace dcs::services {
-namespace {
-
-struct StateMapping {
-  coordinator::RunState state;
-  v1::RunState proto;
-};
-
-constexpr StateMapping kStates[] = {
-    {coordinator::RunState::kQueued, v1::RUN_STATE_QUEUED},
-    {coordinator::RunState::kRunning, v1::RUN_STATE_RUNNING},
-    {coordinator::RunState::kCompleted, v1::RUN_STATE_COMPLETED},
-    {coordinator::RunState::kFailed, v1::RUN_STATE_FAILED},
-    {coordinator::RunState::kCancelled, v1::RUN_STATE_CANCELLED}};
-static_assert(std::size(kStates) == std::size(coordinator::kRunStateNames));
-
-}  // namespace
-
-v1::RunState RunStateToProto(coordinator::RunState state) {
-  for (const StateMapping& mapping : kStates) {
-    if (mapping.state == state) return mapping.proto;
-  }
-  return v1::RUN_STATE_UNSPECIFIED;
-}
-
-absl::StatusOr<coordinator::RunState> RunStateFromProto(v1::RunState state) {
-  for (const StateMapping& mapping : kStates) {
-    if (mapping.proto == state) return mapping.state;
-  }
-  return absl::InvalidArgumentError(absl::StrCat("run state ", v1::RunState_Name(state),
-                                                 " is not a state a run can be in"));
-}
-
-v1::RunProgress ProgressToProto(const coordinator::RunProgress& progress,
-                                int64_t total_timesteps) {
+v1::RunProgress ProgressToProto(const run::RunProgress& progress, int64_t total_timesteps) {
   v1::RunProgress proto;
   proto.set_timesteps(progress.timesteps);
   proto.set_total_timesteps(total_timesteps);
@@ -55,8 +20,8 @@ v1::RunProgress ProgressToProto(const coordinator::RunProgress& progress,
   return proto;
 }
 
-coordinator::RunProgress ProgressFromProto(const v1::RunProgress& proto) {
-  coordinator::RunProgress progress{
+run::RunProgress ProgressFromProto(const v1::RunProgress& proto) {
+  run::RunProgress progress{
       .timesteps = proto.timesteps(),
       .policy_version = proto.policy_version(),
       .steps_per_second = proto.steps_per_second(),
@@ -67,67 +32,17 @@ coordinator::RunProgress ProgressFromProto(const v1::RunProgress& proto) {
   return progress;
 }
 
-v1::Run RunToProto(const coordinator::RunRecord& run) {
-  v1::Run proto;
-  proto.set_run_id(run.id);
-  proto.set_env(run.submission.env);
-  proto.set_seed(run.submission.seed);
-  proto.set_state(RunStateToProto(run.state));
-  proto.set_error(run.error);
-  *proto.mutable_progress() = ProgressToProto(run.progress, run.submission.total_timesteps);
-  proto.set_checkpoint(run.checkpoint);
-  proto.set_learner_numerics(run.learner_numerics);
-  proto.set_actor_numerics(run.actor_numerics);
-  *proto.mutable_create_time() = TimeToProto(run.created_at);
-  *proto.mutable_update_time() = TimeToProto(run.updated_at);
-  proto.set_sweep_id(run.sweep_id);
-  if (run.trial.has_value()) proto.set_trial(*run.trial);
-  return proto;
+bool RunEnded(v1::RunState state) {
+  return state == v1::RUN_STATE_COMPLETED || state == v1::RUN_STATE_FAILED ||
+         state == v1::RUN_STATE_CANCELLED;
 }
 
-v1::Sweep SweepToProto(const coordinator::SweepRecord& sweep) {
-  static constexpr std::pair<coordinator::SweepState, v1::SweepState> kSweepStates[] = {
-      {coordinator::SweepState::kQueued, v1::SWEEP_STATE_QUEUED},
-      {coordinator::SweepState::kRunning, v1::SWEEP_STATE_RUNNING},
-      {coordinator::SweepState::kCompleted, v1::SWEEP_STATE_COMPLETED},
-      {coordinator::SweepState::kFailed, v1::SWEEP_STATE_FAILED},
-      {coordinator::SweepState::kCancelled, v1::SWEEP_STATE_CANCELLED}};
-  v1::Sweep proto;
-  proto.set_sweep_id(sweep.id);
-  proto.set_name(sweep.name);
-  for (const auto& [state, wire] : kSweepStates) {
-    if (state == sweep.state) proto.set_state(wire);
-  }
-  proto.set_seeds(sweep.seeds);
-  for (const coordinator::TrialRecord& trial : sweep.trials) {
-    v1::Trial& out = *proto.add_trials();
-    out.set_condition(trial.condition);
-    out.set_family(trial.family);
-    out.set_observe(trial.observe);
-    if (trial.study_trial.has_value()) out.set_study_trial(*trial.study_trial);
-    out.set_retrain(trial.retrain);
-  }
-  proto.set_study_id(sweep.study_id);
-  proto.set_open(sweep.open);
-  int64_t total = 0;
-  for (const auto& [state, runs] : sweep.runs_by_state) {
-    total += runs;
-    const int32_t count = static_cast<int32_t>(runs);
-    switch (state) {
-      case coordinator::RunState::kQueued: proto.set_queued(count); break;
-      case coordinator::RunState::kRunning: proto.set_running(count); break;
-      case coordinator::RunState::kCompleted: proto.set_completed(count); break;
-      case coordinator::RunState::kFailed: proto.set_failed(count); break;
-      case coordinator::RunState::kCancelled: proto.set_cancelled(count); break;
-    }
-  }
-  proto.set_runs(static_cast<int32_t>(total));
-  *proto.mutable_create_time() = TimeToProto(sweep.created_at);
-  *proto.mutable_update_time() = TimeToProto(sweep.updated_at);
-  return proto;
+bool SweepEnded(v1::SweepState state) {
+  return state == v1::SWEEP_STATE_COMPLETED || state == v1::SWEEP_STATE_FAILED ||
+         state == v1::SWEEP_STATE_CANCELLED;
 }
 
-v1::Lease LeaseToProto(const coordinator::LeaseKey& key) {
+v1::Lease LeaseToProto(const run::LeaseKey& key) {
   v1::Lease proto;
   proto.set_run_id(key.run_id);
   proto.set_slot(key.slot);
@@ -135,38 +50,19 @@ v1::Lease LeaseToProto(const coordinator::LeaseKey& key) {
   return proto;
 }
 
-absl::StatusOr<coordinator::LeaseKey> LeaseFromProto(const v1::Lease& proto) {
+absl::StatusOr<run::LeaseKey> LeaseFromProto(const v1::Lease& proto) {
   if (proto.run_id().empty()) return absl::InvalidArgumentError("the lease names no run");
-  return coordinator::LeaseKey{
-      .run_id = proto.run_id(), .slot = proto.slot(), .epoch = proto.epoch()};
+  return run::LeaseKey{.run_id = proto.run_id(), .slot = proto.slot(), .epoch = proto.epoch()};
 }
 
-v1::EvaluationJob EvaluationJobToProto(const coordinator::EvaluationJobKey& key) {
-  v1::EvaluationJob proto;
-  proto.set_run_id(key.run_id);
-  proto.set_policy_version(key.policy_version);
-  proto.set_context(key.context);
-  proto.set_epoch(key.epoch);
-  return proto;
-}
-
-absl::StatusOr<coordinator::EvaluationJobKey> EvaluationJobFromProto(
-    const v1::EvaluationJob& proto) {
-  if (proto.run_id().empty()) return absl::InvalidArgumentError("the job names no run");
-  return coordinator::EvaluationJobKey{.run_id = proto.run_id(),
-                                       .policy_version = proto.policy_version(),
-                                       .context = proto.context(),
-                                       .epoch = proto.epoch()};
-}
-
-v1::ContextReturns ContextReturnsToProto(const coordinator::ContextReturns& returns) {
+v1::ContextReturns ContextReturnsToProto(const run::ContextReturns& returns) {
   v1::ContextReturns proto;
   proto.mutable_returns()->Assign(returns.returns.begin(), returns.returns.end());
   proto.set_seconds(returns.seconds);
   return proto;
 }
 
-coordinator::ContextReturns ContextReturnsFromProto(const v1::ContextReturns& proto) {
+run::ContextReturns ContextReturnsFromProto(const v1::ContextReturns& proto) {
   return {.returns = {proto.returns().begin(), proto.returns().end()},
           .seconds = proto.seconds()};
 }
@@ -207,18 +103,6 @@ absl::Status AddCheckpointPiece(const v1::CheckpointPiece& piece, bool first,
   checkpoint.learner.append(piece.learner());
   checkpoint.run_state.append(piece.run_state());
   return absl::OkStatus();
-}
-
-std::vector<v1::RunFile> RunFilesToPieces(const std::vector<coordinator::RunFile>& files) {
-  std::vector<v1::RunFile> pieces;
-  for (const coordinator::RunFile& file : files) {
-    for (absl::string_view bytes : SplitIntoPieces(file.contents)) {
-      v1::RunFile& piece = pieces.emplace_back();
-      piece.set_path(file.path);
-      piece.set_contents(bytes.data(), bytes.size());
-    }
-  }
-  return pieces;
 }
 
 }  // namespace dcs::services

@@ -41,12 +41,12 @@ absl::Status WorkerServiceRole::Start(Server& server, const std::string& listen_
     if (host == "0.0.0.0" || host == "[::]" || host.empty()) host = HostName();
   }
   advertised_address_ = JoinHostPort(host, server.port());
-  coordinator::WorkerInfo info{.role = role_,
-                               .address = advertised_address_,
-                               .hostname = HostName(),
-                               .pid = ::getpid(),
-                               .version = build_.version,
-                               .libraries = build_.libraries};
+  WorkerInfo info{.role = role_,
+                  .address = advertised_address_,
+                  .hostname = HostName(),
+                  .pid = ::getpid(),
+                  .version = build_.version,
+                  .libraries = build_.libraries};
   WorkerAgentOptions options{
       .coordinator_address = coordinator_address_,
       .worker = WorkerInfoToProto(info),

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "coordinator/worker_registry.h"
+#include "common/worker_info.h"
 #include "services/service_main.h"
 #include "services/worker_agent.h"
 
@@ -19,7 +19,7 @@ namespace dcs::services {
 
 class WorkerServiceRole : public ServiceRole {
  public:
-  explicit WorkerServiceRole(coordinator::WorkerRole role) : role_(role) {}
+  explicit WorkerServiceRole(WorkerRole role) : role_(role) {}
 
   void AddFlags(CLI::App& app) override;
   absl::Status Init(MetricsEndpoint& metrics, const BuildInfo& build) override;
@@ -33,7 +33,7 @@ class WorkerServiceRole : public ServiceRole {
   const std::string& advertised_address() const { return advertised_address_; }
 
  private:
-  const coordinator::WorkerRole role_;
+  const WorkerRole role_;
   std::string advertised_address_;
   std::string coordinator_address_ = "127.0.0.1:50051";
   std::string advertise_host_;

@@ -10,10 +10,10 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
-#include "common/status_macros.h"
-#include "coordinator/worker_registry.h"
-#include "env/library_versions.h"
 #include "absl/synchronization/mutex.h"
+#include "common/status_macros.h"
+#include "common/worker_info.h"
+#include "env/library_versions.h"
 #include "services/actor/evaluation_worker.h"
 #include "services/actor/slot_workers.h"
 #include "services/service_main.h"
@@ -33,7 +33,7 @@ std::string ActorNumerics() {
 
 class ActorRole final : public WorkerServiceRole {
  public:
-  ActorRole() : WorkerServiceRole(coordinator::WorkerRole::kActor) {}
+  ActorRole() : WorkerServiceRole(WorkerRole::kActor) {}
 
   void AddFlags(CLI::App& app) override {
     WorkerServiceRole::AddFlags(app);

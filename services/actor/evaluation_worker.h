@@ -13,7 +13,7 @@
 // while its slots wait for their runs' updates, it evaluates.
 //
 // A grant's jobs are not renewed: a job that outlasts its lease goes to another actor as well,
-// and whichever delivers it first is kept (RunStore::ReportEvaluationJobs). So the worker asks
+// and whichever delivers it first is kept (EvaluationTable::ReportEvaluationJobs). So the worker asks
 // for as many as the last grant's pace fits in half a lease (at most max_jobs; one at first).
 //
 // A job that cannot be run here (a config this build does not know, say) is logged and left

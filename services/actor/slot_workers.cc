@@ -34,7 +34,7 @@
 namespace dcs::services {
 
 struct SlotWorkers::Slot {
-  coordinator::LeaseKey lease;
+  run::LeaseKey lease;
   std::string learner_address;
   int64_t learner_epoch = 0;
   std::string config;
@@ -55,13 +55,13 @@ constexpr BackoffPolicy kRetryBackoff{.initial = absl::Milliseconds(50),
 // that a long sweep's ended runs do not pile up in every AcquireSlot.
 constexpr int kCompleteLearnerLeases = 60;
 
-std::string SlotName(const coordinator::LeaseKey& lease) {
+std::string SlotName(const run::LeaseKey& lease) {
   return absl::StrCat(lease.run_id, "/", lease.slot);
 }
 
 // A slot's key among the held ones: a slot given up may be granted again before its old
 // thread is reaped.
-std::string LeaseName(const coordinator::LeaseKey& lease) {
+std::string LeaseName(const run::LeaseKey& lease) {
   return absl::StrCat(SlotName(lease), "@", lease.epoch);
 }
 
@@ -172,7 +172,7 @@ void SlotWorkers::AcquireSlot() {
     }
     return;
   }
-  absl::StatusOr<coordinator::LeaseKey> lease = LeaseFromProto(response.lease());
+  absl::StatusOr<run::LeaseKey> lease = LeaseFromProto(response.lease());
   if (!lease.ok()) return;
   auto slot = std::make_shared<Slot>();
   slot->lease = *lease;
@@ -255,9 +255,8 @@ void SlotWorkers::Work(Slot& slot) {
     const v1::GetSlotWorkResponse& work = reply.header();
     if (work.run_complete()) {
       {
-        const coordinator::LeaseKey complete{.run_id = slot.lease.run_id,
-                                             .slot = coordinator::kLearnerSlot,
-                                             .epoch = slot.learner_epoch};
+        const run::LeaseKey complete{
+            .run_id = slot.lease.run_id, .slot = run::kLearnerSlot, .epoch = slot.learner_epoch};
         absl::MutexLock lock(&mu_);
         complete_learners_[LeaseName(complete)] = {
             .lease = complete, .until = absl::Now() + kCompleteLearnerLeases * lease_duration_};

@@ -33,8 +33,8 @@
 #include "absl/synchronization/mutex.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
+#include "run/lease_key.h"
 
 namespace dcs::services {
 
@@ -95,7 +95,7 @@ class SlotWorkers {
   // gets its slots. Each is forgotten some leases after it was said (kCompleteLearnerLeases):
   // by then its run has ended or, evaluated at length, is said complete once more.
   struct CompleteLearner {
-    coordinator::LeaseKey lease;
+    run::LeaseKey lease;
     absl::Time until;
   };
   std::map<std::string, CompleteLearner> complete_learners_ ABSL_GUARDED_BY(mu_);

@@ -19,14 +19,13 @@
 
 namespace dcs::services::cli {
 
-// `base` (every feature of Env, by index) with the `assignments` of flag `flag` in place.
-// INVALID_ARGUMENT prefixed with `flag` for a malformed or repeated assignment, an unknown
-// feature, a value outside its feature's range, or a context Env refuses as a whole.
+// `base` (every feature of Env, by index) with `values` (flag `flag`'s assignments, parsed by
+// ParseAssignments) in place. INVALID_ARGUMENT prefixed with `flag` for an unknown feature, a
+// value outside its feature's range, or a context Env refuses as a whole.
 template <typename Env>
 absl::StatusOr<std::vector<double>> ContextWithAssignments(
-    std::vector<double> base, const std::vector<std::string>& assignments,
+    std::vector<double> base, const std::map<std::string, double>& values,
     absl::string_view flag) {
-  DCS_ASSIGN_OR_RETURN(const auto values, ParseAssignments(assignments, flag));
   const env::ContextSpace& space = Env::Features();
   // Names and ranges, one feature at a time, with the messages a config's context gets.
   if (absl::StatusOr<std::vector<double>> checked = space.WithValues(values); !checked.ok()) {

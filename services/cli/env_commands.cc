@@ -60,9 +60,10 @@ struct RenderFlags {
 // A new Env (on the heap: Box2D environments are large) with the flags' context.
 template <typename Env>
 absl::StatusOr<std::unique_ptr<Env>> EnvFromFlags(const std::vector<std::string>& sets) {
+  DCS_ASSIGN_OR_RETURN(const auto values, ParseAssignments(sets, "--set"));
   DCS_ASSIGN_OR_RETURN(
       const std::vector<double> context,
-      ContextWithAssignments<Env>(Env::Features().Defaults(), sets, "--set"));
+      ContextWithAssignments<Env>(Env::Features().Defaults(), values, "--set"));
   auto environment = std::make_unique<Env>();
   for (size_t i = 0; i < context.size(); ++i) {
     environment->SetFeature(static_cast<int>(i), context[i]);

@@ -3,7 +3,7 @@
 // `dcs eval` in `dcs-train`: each RUN's policy evaluated over the grid in this process, on
 // every core (actor/context_grid.h), or with --on-actors by the cluster's actors
 // (grid_evaluation_client.h); a table or JSON on stdout; with --out, the cells as CSV and
-// the generalisation map (coordinator/generalization_map.h) rendered by gnuplot. A RUN that
+// the generalisation map (report/generalization_map.h) rendered by gnuplot. A RUN that
 // names a sweep's condition stands for its completed runs (its seeds): each is evaluated, and
 // the condition's cell is their mean, its spread the standard deviation across them.
 
@@ -23,11 +23,11 @@
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
 #include "common/text_table.h"
-#include "coordinator/generalization_map.h"
 #include "dcs/proto_json.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "env/env_registry.h"
 #include "learner/trained_policy.h"
+#include "report/generalization_map.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/figure_render.h"
 #include "services/cli/grid_evaluation_client.h"
@@ -217,14 +217,13 @@ std::string CellRows(const v1::GeneralizationGrid& grid, bool csv) {
   std::vector<std::vector<std::string>> rows = {header};
   for (const v1::PolicyGrid& policy : grid.policies()) {
     for (const v1::GridCell& cell : policy.cells()) {
-      std::vector<std::string> row = {csv ? coordinator::CsvField(policy.name()) : policy.name(),
-                                      csv ? coordinator::CsvField(StepsOf(policy))
-                                          : StepsOf(policy)};
+      std::vector<std::string> row = {csv ? report::CsvField(policy.name()) : policy.name(),
+                                      csv ? report::CsvField(StepsOf(policy)) : StepsOf(policy)};
       for (const double value : cell.context()) {
-        row.push_back(csv ? coordinator::CsvNumber(value) : absl::StrFormat("%g", value));
+        row.push_back(csv ? report::CsvNumber(value) : absl::StrFormat("%g", value));
       }
       for (const double value : {cell.mean(), cell.std()}) {
-        row.push_back(csv ? coordinator::CsvNumber(value) : absl::StrFormat("%.1f", value));
+        row.push_back(csv ? report::CsvNumber(value) : absl::StrFormat("%.1f", value));
       }
       rows.push_back(std::move(row));
     }
@@ -238,31 +237,31 @@ std::string CellRows(const v1::GeneralizationGrid& grid, bool csv) {
 }
 
 // Where `run` trained along `axis`: its varied feature's range and pool, or its value.
-coordinator::TrainingSpan TrainingSpanOf(const learner::TrainedPolicy& run,
-                                         const actor::GridAxis& axis) {
+report::TrainingSpan TrainingSpanOf(const learner::TrainedPolicy& run,
+                                    const actor::GridAxis& axis) {
   const run::RunPlan& plan = run.plan;
   if (axis.feature != plan.feature) {
     const double value = plan.slot.context[axis.feature];
     return {.low = value, .high = value};
   }
-  coordinator::TrainingSpan span{.low = run.run.spec.range_lo, .high = run.run.spec.range_hi};
+  report::TrainingSpan span{.low = run.run.spec.range_lo, .high = run.run.spec.range_hi};
   for (const env::FeaturePool& pool : plan.slot.pools) {
     if (pool.feature == plan.feature) span.pool = pool.pool.values();
   }
   return span;
 }
 
-coordinator::GeneralizationMap MapOf(const std::vector<EvaluatedPolicy>& policies,
-                                     const v1::GeneralizationGrid& grid,
-                                     const std::vector<actor::GridAxis>& axes) {
-  coordinator::GeneralizationMap map{.name = "generalization"};
+report::GeneralizationMap MapOf(const std::vector<EvaluatedPolicy>& policies,
+                                const v1::GeneralizationGrid& grid,
+                                const std::vector<actor::GridAxis>& axes) {
+  report::GeneralizationMap map{.name = "generalization"};
   for (const actor::GridAxis& axis : axes) {
-    coordinator::MapAxis& out = map.axes.emplace_back(coordinator::MapAxis{.feature = axis.name});
+    report::MapAxis& out = map.axes.emplace_back(report::MapAxis{.feature = axis.name});
     for (int i = 0; i < axis.count; ++i) out.values.push_back(axis.value(i));
   }
   for (size_t p = 0; p < policies.size(); ++p) {
     const v1::PolicyGrid& cells = grid.policies(p);
-    coordinator::MapPolicy policy{
+    report::MapPolicy policy{
         .label = absl::StrCat(std::filesystem::path(cells.name()).filename().string(), " @ ",
                               StepsOf(cells))};
     for (const v1::GridCell& cell : cells.cells()) {
@@ -336,8 +335,8 @@ absl::Status Evaluate(const EvalFlags& flags, const GlobalFlags& global) {
       }));
   const v1::GeneralizationGrid grid = ToProto(policies, axes, flags);
   if (!flags.out.empty()) {
-    DCS_ASSIGN_OR_RETURN(const coordinator::GnuplotFigure figure,
-                         coordinator::GeneralizationMapFigure(MapOf(policies, grid, axes)));
+    DCS_ASSIGN_OR_RETURN(const report::GnuplotFigure figure,
+                         report::GeneralizationMapFigure(MapOf(policies, grid, axes)));
     DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
                          RenderFigure(figure, flags.format, flags.out));
     DCS_RETURN_IF_ERROR(

@@ -38,9 +38,9 @@ std::string Quote(absl::string_view output) {
 
 }  // namespace
 
-absl::Status WriteFigureFiles(const coordinator::GnuplotFigure& figure, const std::string& dir) {
-  DCS_RETURN_IF_ERROR(coordinator::CheckFigureName(figure.name));
-  for (const coordinator::DataFile& data : figure.data) {
+absl::Status WriteFigureFiles(const report::GnuplotFigure& figure, const std::string& dir) {
+  DCS_RETURN_IF_ERROR(report::CheckFigureName(figure.name));
+  for (const report::DataFile& data : figure.data) {
     DCS_RETURN_IF_ERROR(CheckFileName(data.name));
   }
   std::error_code error;
@@ -49,15 +49,14 @@ absl::Status WriteFigureFiles(const coordinator::GnuplotFigure& figure, const st
     return absl::PermissionDeniedError(
         absl::StrCat("cannot create the figure directory ", dir, ": ", error.message()));
   }
-  for (const coordinator::DataFile& data : figure.data) {
+  for (const report::DataFile& data : figure.data) {
     DCS_RETURN_IF_ERROR(WriteFileAtomically((fs::path(dir) / data.name).string(), data.csv));
   }
   return WriteFileAtomically((fs::path(dir) / figure.ScriptFileName()).string(), figure.script);
 }
 
-absl::StatusOr<RenderedFigure> RenderFigure(const coordinator::GnuplotFigure& figure,
-                                            coordinator::FigureFormat format,
-                                            const std::string& dir,
+absl::StatusOr<RenderedFigure> RenderFigure(const report::GnuplotFigure& figure,
+                                            report::FigureFormat format, const std::string& dir,
                                             const RenderOptions& options) {
   DCS_RETURN_IF_ERROR(WriteFigureFiles(figure, dir));
   const std::string script = (fs::path(dir) / figure.ScriptFileName()).string();
@@ -74,7 +73,7 @@ absl::StatusOr<RenderedFigure> RenderFigure(const coordinator::GnuplotFigure& fi
   std::error_code ignored;
   fs::remove(image, ignored);
   fs::remove(output_path, ignored);
-  const absl::string_view format_name = NameOf(coordinator::kFigureFormatNames, format);
+  const absl::string_view format_name = NameOf(report::kFigureFormatNames, format);
   absl::StatusOr<ChildProcess> child = ChildProcess::Start(
       {.path = *gnuplot,
        .args = {"-e", absl::StrCat("format='", format_name, "'"), figure.ScriptFileName()},

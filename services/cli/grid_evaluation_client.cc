@@ -41,8 +41,7 @@ absl::StatusOr<std::vector<actor::ContextResult>> ToCells(
   }
   std::vector<actor::ContextResult> results;
   for (size_t cell = 0; cell < cells; ++cell) {
-    coordinator::ContextReturns returns =
-        ContextReturnsFromProto(answer.results(static_cast<int>(cell)));
+    run::ContextReturns returns = ContextReturnsFromProto(answer.results(static_cast<int>(cell)));
     if (static_cast<int>(returns.returns.size()) != episodes) {
       return absl::DataLossError(absl::StrCat("the coordinator has ", returns.returns.size(),
                                               " returns for cell ", cell, "; the grid has ",

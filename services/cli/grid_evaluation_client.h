@@ -30,7 +30,8 @@ using GridProgress = std::function<void(int done, int cells)>;
 // base context is run `run_id`'s, as the coordinator stores its config), `episodes` per cell
 // from `seed`, in cell order with mean and std filled (actor::SummarizeContext), evaluated by
 // the cluster's actors at `address`. Waits as long as the cells take, however long no actor
-// takes them (an actor of the run's numeric libraries: RunStore::AcquireEvaluationJobs);
+// takes them (an actor of the run's numeric libraries:
+// EvaluationTable::AcquireEvaluationJobs);
 // `on_progress`, if set, hears of each change. Every call has the deadline `timeout`; a call
 // that fails transiently is retried with backoff until the coordinator has not answered for
 // `timeout`. Errors: NOT_FOUND for a run the coordinator does not know; UNAVAILABLE if it

@@ -53,15 +53,14 @@ absl::StatusOr<env::FeatureSchedule> ScheduleFromFile(const std::string& path,
       .stages = {{.steps = std::numeric_limits<int64_t>::max(), .spec = *std::move(parsed)}}};
 }
 
-// The features a frame shows: the run's varied feature, then those --context sets.
+// The features a frame shows: the run's varied feature, then those --context sets (`assigned`,
+// already checked against Env's features).
 template <typename Env>
-std::vector<int> ShownFeatures(int varied, const std::vector<std::string>& assignments) {
+std::vector<int> ShownFeatures(int varied, const std::map<std::string, double>& assigned) {
   std::vector<int> shown = {varied};
-  const absl::StatusOr<std::map<std::string, double>> values =
-      ParseAssignments(assignments, "--context");
-  for (const auto& [name, value] : values.value_or(std::map<std::string, double>())) {
-    const absl::StatusOr<int> index = Env::Features().IndexOf(name);
-    if (index.ok() && *index != varied) shown.push_back(*index);
+  for (const auto& [name, value] : assigned) {
+    const int index = *Env::Features().IndexOf(name);
+    if (index != varied) shown.push_back(index);
   }
   return shown;
 }
@@ -85,8 +84,9 @@ absl::Status PlayWith(const PlayFlags& flags, const learner::TrainedPolicy& trai
   env::DynamicContextOptions options = trained.plan.slot;
   options.pools.clear();
   options.schedules.clear();
+  DCS_ASSIGN_OR_RETURN(const auto assigned, ParseAssignments(flags.context, "--context"));
   DCS_ASSIGN_OR_RETURN(options.context,
-                       ContextWithAssignments<Env>(options.context, flags.context, "--context"));
+                       ContextWithAssignments<Env>(options.context, assigned, "--context"));
   if (!flags.schedule.empty()) {
     DCS_ASSIGN_OR_RETURN(env::FeatureSchedule schedule,
                          ScheduleFromFile(flags.schedule, trained.run.spec, trained.plan.feature,
@@ -95,7 +95,7 @@ absl::Status PlayWith(const PlayFlags& flags, const learner::TrainedPolicy& trai
   }
   options.run_seed = flags.seed;
   options.slot = 0;
-  const std::vector<int> shown = ShownFeatures<Env>(trained.plan.feature, flags.context);
+  const std::vector<int> shown = ShownFeatures<Env>(trained.plan.feature, assigned);
 
   DCS_ASSIGN_OR_RETURN(actor::PolicyNetwork policy,
                        actor::PolicyNetwork::Create(trained.learner->ActorWeights()));

@@ -86,8 +86,8 @@ std::vector<CliCommand> AddPolicyCommands(CLI::App& dcs, const GlobalFlags& glob
       ->capture_default_str();
   eval->add_option("--out", eval_flags->out,
                    "a directory for the figure: its data, gnuplot script and image");
-  AddChoiceOption(*eval, "--format", &eval_flags->format,
-                  ChoicesOf(coordinator::kFigureFormatNames), "the image: svg, png or pdf");
+  AddChoiceOption(*eval, "--format", &eval_flags->format, ChoicesOf(report::kFigureFormatNames),
+                  "the image: svg, png or pdf");
   eval->add_option("--threads", eval_flags->threads, "threads evaluating (default: one a core)")
       ->check(CLI::Range(0, 1024));
   eval->add_flag("--yes", eval_flags->yes, "run a grid however many episodes it makes");

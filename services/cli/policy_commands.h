@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "coordinator/gnuplot_figure.h"
+#include "report/gnuplot_figure.h"
 #include "services/cli/cli_command.h"
 
 namespace dcs::services::cli {
@@ -27,7 +27,7 @@ struct EvalFlags {
   int episodes = 30;                // per cell
   uint64_t seed = 0;
   std::string out;  // the figure's directory; empty: no figure
-  coordinator::FigureFormat format = coordinator::FigureFormat::kPng;
+  report::FigureFormat format = report::FigureFormat::kPng;
   int threads = 0;  // 0: one per core
   bool yes = false;  // run a grid above the size that asks first
   // Each RUN (a run of the cluster, not a directory) evaluated by the cluster's actors, one job

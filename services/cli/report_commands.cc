@@ -11,12 +11,12 @@
 #include "absl/strings/str_cat.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
-#include "coordinator/report_format.h"
-#include "coordinator/study_figures.h"
-#include "coordinator/study_report.h"
-#include "coordinator/sweep_figures.h"
-#include "coordinator/sweep_index_html.h"
-#include "coordinator/sweep_report.h"
+#include "report/report_format.h"
+#include "report/study_figures.h"
+#include "report/study_report.h"
+#include "report/sweep_figures.h"
+#include "report/sweep_index_html.h"
+#include "report/sweep_report.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/figure_render.h"
 #include "services/cli/run_client.h"
@@ -29,26 +29,26 @@ namespace {
 
 struct ReportFlags {
   std::string sweep_id;
-  coordinator::ReportOptions options;
-  coordinator::ReportFormat format = coordinator::ReportFormat::kTable;
+  report::ReportOptions options;
+  report::ReportFormat format = report::ReportFormat::kTable;
   int top = 20;  // a study sweep's: the best trials shown and counted
 };
 
 struct PlotFlags {
   std::string sweep_id;
   std::string out;
-  coordinator::FigureFormat format = coordinator::FigureFormat::kSvg;
+  report::FigureFormat format = report::FigureFormat::kSvg;
   int top = 20;  // as ReportFlags'
 };
 
-// A study sweep's report (coordinator/study_report.h), with its study's trials.
+// A study sweep's report (report/study_report.h), with its study's trials.
 absl::StatusOr<v1::StudyReport> FetchStudyReport(const GlobalFlags& flags,
                                                  const v1::SweepResults& results, int top,
-                                                 const coordinator::ReportOptions& options,
+                                                 const report::ReportOptions& options,
                                                  std::vector<coordinator::StudyTrial>* trials) {
   DCS_ASSIGN_OR_RETURN(
       *trials, ConnectStudies(CoordinatorAddress(flags), flags.timeout)->Trials(results.study_id()));
-  return coordinator::BuildStudyReport(results, *trials, top, options);
+  return report::BuildStudyReport(results, *trials, top, options);
 }
 
 int ReportCommand(const GlobalFlags& flags, const ReportFlags& report_flags) {
@@ -61,11 +61,11 @@ int ReportCommand(const GlobalFlags& flags, const ReportFlags& report_flags) {
       DCS_ASSIGN_OR_RETURN(const v1::StudyReport report,
                            FetchStudyReport(flags, results, report_flags.top,
                                             report_flags.options, &trials));
-      return coordinator::FormatStudyReport(report, report_flags.format, report_flags.top);
+      return report::FormatStudyReport(report, report_flags.format, report_flags.top);
     }
     DCS_ASSIGN_OR_RETURN(const v1::SweepReport report,
-                         coordinator::BuildSweepReport(results, report_flags.options));
-    return coordinator::FormatReport(report, report_flags.format);
+                         report::BuildSweepReport(results, report_flags.options));
+    return report::FormatReport(report, report_flags.format);
   }();
   if (!text.ok()) return FailCommand(text.status());
   std::cout << *text << std::flush;
@@ -74,19 +74,19 @@ int ReportCommand(const GlobalFlags& flags, const ReportFlags& report_flags) {
 
 // What `dcs plot` writes: the figures, and the report's text in each format.
 struct Plotted {
-  std::vector<coordinator::GnuplotFigure> figures;
-  std::function<std::string(coordinator::ReportFormat)> report;
+  std::vector<report::GnuplotFigure> figures;
+  std::function<std::string(report::ReportFormat)> report;
 };
 
-// A plain sweep's: its figures (coordinator/sweep_figures.h) and its table (last checkpoint,
+// A plain sweep's: its figures (report/sweep_figures.h) and its table (last checkpoint,
 // avg_combined).
 absl::StatusOr<Plotted> PlotSweep(const v1::SweepResults& results) {
-  DCS_ASSIGN_OR_RETURN(v1::SweepReport report, coordinator::BuildSweepReport(results, {}));
-  DCS_ASSIGN_OR_RETURN(std::vector<coordinator::GnuplotFigure> figures,
-                       coordinator::SweepFigures(results, report));
+  DCS_ASSIGN_OR_RETURN(v1::SweepReport report, report::BuildSweepReport(results, {}));
+  DCS_ASSIGN_OR_RETURN(std::vector<report::GnuplotFigure> figures,
+                       report::SweepFigures(results, report));
   return Plotted{.figures = std::move(figures),
-                 .report = [report = std::move(report)](coordinator::ReportFormat format) {
-                   return coordinator::FormatReport(report, format);
+                 .report = [report = std::move(report)](report::ReportFormat format) {
+                   return report::FormatReport(report, format);
                  }};
 }
 
@@ -101,17 +101,17 @@ absl::StatusOr<Plotted> PlotStudy(const GlobalFlags& flags, const v1::SweepResul
       const coordinator::StudyRecord study,
       ConnectStudies(CoordinatorAddress(flags), flags.timeout)->Get(results.study_id()));
   Plotted plotted;
-  for (absl::StatusOr<coordinator::GnuplotFigure> figure :
-       {coordinator::StudyHistoryFigure(study, trials),
-        coordinator::StudyStageModesFigure(report), coordinator::StudyRankShiftFigure(report)}) {
+  for (absl::StatusOr<report::GnuplotFigure> figure :
+       {report::StudyHistoryFigure(study, trials), report::StudyStageModesFigure(report),
+        report::StudyRankShiftFigure(report)}) {
     if (figure.ok()) {
       plotted.figures.push_back(*std::move(figure));
     } else if (!absl::IsFailedPrecondition(figure.status())) {  // no data for it yet
       return figure.status();
     }
   }
-  plotted.report = [report = std::move(report), top](coordinator::ReportFormat format) {
-    return coordinator::FormatStudyReport(report, format, top);
+  plotted.report = [report = std::move(report), top](report::ReportFormat format) {
+    return report::FormatStudyReport(report, format, top);
   };
   return plotted;
 }
@@ -135,25 +135,23 @@ absl::StatusOr<std::string> Plot(const GlobalFlags& flags, const PlotFlags& plot
     return absl::FailedPreconditionError(
         absl::StrCat("cannot create ", plot.out, ": ", error.message()));
   }
-  for (const coordinator::GnuplotFigure& figure : plotted.figures) {
+  for (const report::GnuplotFigure& figure : plotted.figures) {
     DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
                          RenderFigure(figure, plot.format, plot.out));
     std::cerr << "dcs: drew " << rendered.path << std::endl;
     if (!rendered.gnuplot_output.empty()) std::cerr << rendered.gnuplot_output << std::endl;
   }
-  for (const auto& [format, file] :
-       {std::pair{coordinator::ReportFormat::kCsv, "report.csv"},
-        std::pair{coordinator::ReportFormat::kLatex, "report.tex"},
-        std::pair{coordinator::ReportFormat::kMarkdown, "report.md"}}) {
+  for (const auto& [format, file] : {std::pair{report::ReportFormat::kCsv, "report.csv"},
+                                     std::pair{report::ReportFormat::kLatex, "report.tex"},
+                                     std::pair{report::ReportFormat::kMarkdown, "report.md"}}) {
     DCS_RETURN_IF_ERROR(
         WriteFileAtomically(absl::StrCat(plot.out, "/", file), plotted.report(format)));
   }
   const std::string index = absl::StrCat(plot.out, "/index.html");
   DCS_RETURN_IF_ERROR(WriteFileAtomically(
-      index, coordinator::SweepIndexHtml(
-                 absl::StrCat(results.name(), " (", results.sweep_id(), ")"),
-                 plotted.report(coordinator::ReportFormat::kHtml), plotted.figures,
-                 plot.format)));
+      index, report::SweepIndexHtml(absl::StrCat(results.name(), " (", results.sweep_id(), ")"),
+                                    plotted.report(report::ReportFormat::kHtml), plotted.figures,
+                                    plot.format)));
   return index;
 }
 
@@ -175,14 +173,13 @@ std::vector<CliCommand> AddReportCommands(CLI::App& dcs, const GlobalFlags& flag
   report->add_option("sweep", report_flags->sweep_id, "the sweep's id, e.g. sweep-1")
       ->required();
   AddChoiceOption(*report, "--checkpoint", &report_flags->options.checkpoint,
-                  ChoicesOf(coordinator::kReportCheckpointNames),
+                  ChoicesOf(report::kReportCheckpointNames),
                   "last (the paper's primary result) or best (best-anytime avg_combined; every "
                   "metric read at that same evaluation)");
   AddChoiceOption(*report, "--split", &report_flags->options.split,
-                  ChoicesOf(coordinator::kReportSplitNames),
+                  ChoicesOf(report::kReportSplitNames),
                   "the score: avg_combined over every context, or one split's mean");
-  AddChoiceOption(*report, "--format", &report_flags->format,
-                  ChoicesOf(coordinator::kReportFormatNames),
+  AddChoiceOption(*report, "--format", &report_flags->format, ChoicesOf(report::kReportFormatNames),
                   "table, md, csv, json, latex (booktabs) or html");
   report->add_option("--resamples", report_flags->options.bootstrap_resamples,
                      "bootstrap resamples of the intervals")
@@ -204,8 +201,8 @@ std::vector<CliCommand> AddReportCommands(CLI::App& dcs, const GlobalFlags& flag
               "index.html with the report's table; prints index.html's path");
   plot->add_option("sweep", plot_flags->sweep_id, "the sweep's id, e.g. sweep-1")->required();
   plot->add_option("--out", plot_flags->out, "the directory to write")->required();
-  AddChoiceOption(*plot, "--format", &plot_flags->format,
-                  ChoicesOf(coordinator::kFigureFormatNames), "svg, png or pdf");
+  AddChoiceOption(*plot, "--format", &plot_flags->format, ChoicesOf(report::kFigureFormatNames),
+                  "svg, png or pdf");
   plot->add_option("--top", plot_flags->top,
                    "a study sweep's: how many of the best trials the stage-mode heatmap counts")
       ->capture_default_str()

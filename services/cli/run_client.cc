@@ -175,37 +175,53 @@ absl::StatusOr<v1::Run> CancelRun(const std::string& address, const std::string&
 }
 
 absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& run_id,
-                                 absl::Duration timeout,
-                                 const std::function<void(const v1::Run&)>& on_change,
-                                 const std::function<bool()>& interrupted,
-                                 absl::Duration poll) {
-  auto stub = Coordinator(address);
-  std::optional<v1::Run> last;
-  while (!interrupted()) {
-    v1::GetRunRequest request;
-    request.set_run_id(run_id);
-    v1::GetRunResponse response;
-    const absl::Status status = CallUnary(*stub, &v1::CoordinatorService::Stub::GetRun, request,
-                                          response, timeout, Peer(address));
-    if (status.ok()) {
-      const v1::Run& run = response.run();
-      if (!last.has_value() ||
-          !google::protobuf::util::MessageDifferencer::Equals(last->progress(),
-                                                               run.progress()) ||
-          last->state() != run.state()) {
-        on_change(run);
-      }
-      last = run;
-      if (run.state() == v1::RUN_STATE_COMPLETED || run.state() == v1::RUN_STATE_FAILED ||
-          run.state() == v1::RUN_STATE_CANCELLED) {
-        return run;
-      }
-    } else if (!IsTransient(status)) {
-      return status;
-    }
-    absl::SleepFor(poll);
-  }
-  return absl::CancelledError(absl::StrCat("stopped following ", run_id));
+                                 const WatchCallbacks<v1::Run>& callbacks) {
+  v1::WatchRunRequest request;
+  request.set_run_id(run_id);
+  // A change of the run that the caller does not show (its checkpoint) is not passed on.
+  std::optional<v1::Run> shown;
+  DCS_ASSIGN_OR_RETURN(
+      const v1::GetRunResponse ended,
+      FollowWatch<v1::GetRunResponse>(
+          *Coordinator(address),
+          [&](v1::CoordinatorService::Stub& stub, grpc::ClientContext* context,
+              grpc::CompletionQueue* queue) {
+            return stub.PrepareAsyncWatchRun(context, request, queue);
+          },
+          {.on_update =
+               [&](const v1::GetRunResponse& update) {
+                 const v1::Run& run = update.run();
+                 if (shown.has_value() && shown->state() == run.state() &&
+                     google::protobuf::util::MessageDifferencer::Equals(shown->progress(),
+                                                                        run.progress())) {
+                   return;
+                 }
+                 shown = run;
+                 callbacks.on_update(run);
+               },
+           .interrupted = callbacks.interrupted,
+           .on_lost = callbacks.on_lost},
+          Peer(address), absl::StrCat("stopped following ", run_id)));
+  return ended.run();
+}
+
+absl::StatusOr<v1::GetSweepResponse> WatchSweep(
+    const std::string& address, const std::string& sweep_id,
+    const WatchCallbacks<v1::GetSweepResponse>& callbacks) {
+  v1::WatchSweepRequest request;
+  request.set_sweep_id(sweep_id);
+  return FollowWatch<v1::GetSweepResponse>(
+      *Coordinator(address),
+      [&](v1::CoordinatorService::Stub& stub, grpc::ClientContext* context,
+          grpc::CompletionQueue* queue) {
+        return stub.PrepareAsyncWatchSweep(context, request, queue);
+      },
+      callbacks, Peer(address), absl::StrCat("stopped following ", sweep_id));
+}
+
+std::string WatchLostMessage(const absl::Status& status) {
+  return absl::StrCat("dcs: lost the coordinator (", status.ToString(),
+                      "); watching again once it is back");
 }
 
 absl::Status DownloadRun(const std::string& address, const std::string& run_id,

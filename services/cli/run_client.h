@@ -3,8 +3,9 @@
 #define DCS_SERVICES_CLI_RUN_CLIENT_H_
 
 // The coordinator's runs and sweeps, as the `dcs` client uses them: submit, follow, list,
-// cancel, download; a sweep's results; a backup of the coordinator's store. Every call has a
-// deadline (`timeout`); errors are annotated with the coordinator's address. Thread-safe.
+// cancel, download; a sweep's results; a backup of the coordinator's store. Every call but a
+// watch has a deadline (`timeout`); errors are annotated with the coordinator's address.
+// Thread-safe.
 
 #include <cstdint>
 #include <functional>
@@ -18,6 +19,7 @@
 #include "dcs/v1/run.pb.h"
 #include "dcs/v1/sweep.pb.h"
 #include "services/cli/training_report.h"
+#include "services/cli/watch_call.h"
 
 namespace dcs::services::cli {
 
@@ -38,14 +40,21 @@ absl::StatusOr<std::vector<v1::Run>> ListRuns(const std::string& address,
 absl::StatusOr<v1::Run> CancelRun(const std::string& address, const std::string& run_id,
                                   absl::Duration timeout);
 
-// Follows run `run_id` until it ends: `on_change` gets the run whenever its progress or state
-// changed (asked every `poll`). Returns the ended run; CANCELLED once `interrupted` says so
-// (the run goes on). A coordinator that does not answer is asked again until it does.
+// Follows run `run_id` until it ends, on one stream from the coordinator, which sends only
+// changes (services/cli/watch_call.h): `on_update` gets the run whenever its progress or state
+// changed. Returns the ended run; CANCELLED once interrupted; other errors (NOT_FOUND for an
+// unknown run) as the coordinator gave them.
 absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& run_id,
-                                 absl::Duration timeout,
-                                 const std::function<void(const v1::Run&)>& on_change,
-                                 const std::function<bool()>& interrupted,
-                                 absl::Duration poll = absl::Milliseconds(250));
+                                 const WatchCallbacks<v1::Run>& callbacks);
+
+// Follows sweep `sweep_id` (with its runs) until it ends, as WatchRun follows a run: returns
+// the ended sweep.
+absl::StatusOr<v1::GetSweepResponse> WatchSweep(
+    const std::string& address, const std::string& sweep_id,
+    const WatchCallbacks<v1::GetSweepResponse>& callbacks);
+
+// What `dcs` says on stderr when a watch lost the coordinator (WatchCallbacks::on_lost).
+std::string WatchLostMessage(const absl::Status& status);
 
 // Writes run `run_id`'s files (config, checkpoints, evaluation log) into `dir`, as `dcs train
 // --out dir` lays them out. INVALID_ARGUMENT for a file path that would leave `dir`.

@@ -16,12 +16,17 @@ int FollowRun(const std::string& address, const std::string& run_id, const std::
   absl::StatusOr<v1::Run> run;
   {
     const DetachOnInterrupt detach;
-    run = WatchRun(
-        address, run_id, flags.timeout,
-        [&progress](const v1::Run& changed) {
-          progress.Update(ProgressLineOf(changed.progress()));
-        },
-        [&detach] { return detach.requested(); });
+    run = WatchRun(address, run_id,
+                   {.on_update =
+                        [&progress](const v1::Run& changed) {
+                          progress.Update(ProgressLineOf(changed.progress()));
+                        },
+                    .interrupted = [&detach] { return detach.requested(); },
+                    .on_lost =
+                        [&progress](const absl::Status& status) {
+                          progress.Finish();  // the progress line stays above the message
+                          std::cerr << WatchLostMessage(status) << std::endl;
+                        }});
   }
   progress.Finish();
   if (absl::IsCancelled(run.status())) {

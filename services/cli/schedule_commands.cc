@@ -11,9 +11,9 @@
 #include "absl/strings/str_cat.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
-#include "coordinator/gnuplot_figure.h"
-#include "coordinator/line_chart.h"
-#include "coordinator/schedule_preview.h"
+#include "report/gnuplot_figure.h"
+#include "report/line_chart.h"
+#include "report/schedule_preview.h"
 #include "run/schedule_yaml.h"
 #include "services/cli/figure_render.h"
 #include "services/exit_codes.h"
@@ -24,17 +24,17 @@ namespace {
 struct PreviewFlags {
   std::string spec;  // a YAML file, a family name, or "all"
   std::string range = "0.35,0.75";
-  coordinator::PreviewOptions options;
+  report::PreviewOptions options;
   std::string out;
   std::string svg;
 };
 
-absl::StatusOr<std::vector<coordinator::PreviewPanel>> PreviewPanels(const std::string& spec) {
-  if (!std::filesystem::exists(spec)) return coordinator::FamilyPreviewPanels(spec);
+absl::StatusOr<std::vector<report::PreviewPanel>> PreviewPanels(const std::string& spec) {
+  if (!std::filesystem::exists(spec)) return report::FamilyPreviewPanels(spec);
   DCS_ASSIGN_OR_RETURN(const std::string text, ReadFile(spec));
   DCS_ASSIGN_OR_RETURN(const std::vector<env::ScheduleConfig> configs,
                        run::ParseScheduleConfigsYaml(text, spec));
-  std::vector<coordinator::PreviewPanel> panels;
+  std::vector<report::PreviewPanel> panels;
   for (size_t i = 0; i < configs.size(); ++i) {
     const std::string& family = configs[i].family;
     panels.push_back(
@@ -45,17 +45,17 @@ absl::StatusOr<std::vector<coordinator::PreviewPanel>> PreviewPanels(const std::
 }
 
 // The figure of `--svg FILE`: named after FILE's stem, its files beside FILE.
-absl::StatusOr<coordinator::GnuplotFigure> PreviewFigure(
-    const std::vector<coordinator::PreviewPanel>& panels,
-    const std::vector<coordinator::PreviewTrajectory>& trajectories, const PreviewFlags& flags) {
+absl::StatusOr<report::GnuplotFigure> PreviewFigure(
+    const std::vector<report::PreviewPanel>& panels,
+    const std::vector<report::PreviewTrajectory>& trajectories, const PreviewFlags& flags) {
   const std::filesystem::path svg(flags.svg);
-  absl::StatusOr<coordinator::GnuplotFigure> figure = coordinator::LineChartFigure(
-      coordinator::PreviewChart(panels, trajectories, flags.options, svg.stem().string()));
+  absl::StatusOr<report::GnuplotFigure> figure = report::LineChartFigure(
+      report::PreviewChart(panels, trajectories, flags.options, svg.stem().string()));
   if (!figure.ok()) {
     return absl::InvalidArgumentError(absl::StrCat("--svg ", flags.svg, ": ",
                                                    figure.status().message()));
   }
-  for (const coordinator::DataFile& data : figure->data) {
+  for (const report::DataFile& data : figure->data) {
     const std::filesystem::path path = svg.parent_path() / data.name;
     std::error_code data_error, out_error;
     const std::filesystem::path data_path = std::filesystem::weakly_canonical(path, data_error);
@@ -70,12 +70,11 @@ absl::StatusOr<coordinator::GnuplotFigure> PreviewFigure(
 }
 
 // Renders the figure with gnuplot beside `flags.svg` and moves the image to it.
-absl::Status RenderPreviewFigure(const coordinator::GnuplotFigure& figure,
-                                 const PreviewFlags& flags) {
+absl::Status RenderPreviewFigure(const report::GnuplotFigure& figure, const PreviewFlags& flags) {
   const std::filesystem::path svg(flags.svg);
   const std::string dir = svg.has_parent_path() ? svg.parent_path().string() : ".";
   DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
-                       RenderFigure(figure, coordinator::FigureFormat::kSvg, dir));
+                       RenderFigure(figure, report::FigureFormat::kSvg, dir));
   if (std::filesystem::path(rendered.path).lexically_normal() != svg.lexically_normal()) {
     std::error_code error;
     std::filesystem::rename(rendered.path, svg, error);
@@ -97,16 +96,15 @@ absl::Status Preview(PreviewFlags flags) {
   }
   flags.options.lo = range[0];
   flags.options.hi = range[1];
-  DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::PreviewPanel> panels,
-                       PreviewPanels(flags.spec));
-  DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::PreviewTrajectory> trajectories,
-                       coordinator::RunPreview(panels, flags.options));
-  std::optional<coordinator::GnuplotFigure> figure;
+  DCS_ASSIGN_OR_RETURN(const std::vector<report::PreviewPanel> panels, PreviewPanels(flags.spec));
+  DCS_ASSIGN_OR_RETURN(const std::vector<report::PreviewTrajectory> trajectories,
+                       report::RunPreview(panels, flags.options));
+  std::optional<report::GnuplotFigure> figure;
   if (!flags.svg.empty()) {
     DCS_ASSIGN_OR_RETURN(figure, PreviewFigure(panels, trajectories, flags));
   }
-  DCS_RETURN_IF_ERROR(WriteFileAtomically(
-      flags.out, coordinator::PreviewCsv(panels, trajectories, flags.options)));
+  DCS_RETURN_IF_ERROR(
+      WriteFileAtomically(flags.out, report::PreviewCsv(panels, trajectories, flags.options)));
   std::cerr << "wrote " << trajectories.size() << " trajectories to " << flags.out << std::endl;
   if (figure.has_value()) DCS_RETURN_IF_ERROR(RenderPreviewFigure(*figure, flags));
   return absl::OkStatus();

@@ -3,7 +3,7 @@
 #define DCS_SERVICES_CLI_SCHEDULE_COMMANDS_H_
 
 // `dcs schedule preview`: context trajectories of schedules over a few episodes, as CSV and as
-// the paper's appendix figure (coordinator/schedule_preview.h), drawn by gnuplot
+// the paper's appendix figure (report/schedule_preview.h), drawn by gnuplot
 // (services/cli/figure_render.h): `--svg FILE` writes FILE with STEM.gp and STEM.csv beside it.
 
 #include <vector>

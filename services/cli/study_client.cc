@@ -9,9 +9,10 @@
 #include "absl/time/clock.h"
 #include "common/enum_names.h"
 #include "common/status_macros.h"
+#include "coordinator/store.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "services/channel.h"
-#include "services/study_proto.h"
+#include "services/coordinator/study_proto.h"
 #include "services/unary_call.h"
 
 namespace dcs::services::cli {
@@ -22,32 +23,32 @@ using coordinator::StudyTrial;
 
 class LocalStudies : public StudyClient {
  public:
-  explicit LocalStudies(std::unique_ptr<coordinator::RunStore> store) : store_(std::move(store)) {}
+  explicit LocalStudies(std::unique_ptr<coordinator::Store> store) : store_(std::move(store)) {}
 
   absl::StatusOr<StudyRecord> Create(const coordinator::StudySubmission& submission) override {
-    return store_->CreateStudy(submission, absl::Now());
+    return store_->studies().CreateStudy(submission, absl::Now());
   }
   absl::StatusOr<StudyRecord> Get(const std::string& study_id) override {
-    return store_->GetStudy(study_id);
+    return store_->studies().GetStudy(study_id);
   }
   absl::StatusOr<std::vector<StudyTrial>> Trials(const std::string& study_id) override {
-    return store_->ListStudyTrials(study_id);
+    return store_->studies().ListStudyTrials(study_id);
   }
   absl::StatusOr<StudyTrial> Ask(const std::string& study_id,
                                  const std::string& request_id) override {
-    return store_->AskTrial(study_id, request_id, absl::Now());
+    return store_->studies().AskTrial(study_id, request_id, absl::Now());
   }
   absl::StatusOr<StudyTrial> Tell(const std::string& study_id, int64_t number,
                                   coordinator::TrialState state, double value) override {
-    return store_->TellTrial(study_id, number, state, value, absl::Now());
+    return store_->studies().TellTrial(study_id, number, state, value, absl::Now());
   }
   absl::StatusOr<bool> Report(const std::string& study_id, int64_t number, int64_t step,
                               double value) override {
-    return store_->ReportTrial(study_id, number, step, value);
+    return store_->studies().ReportTrial(study_id, number, step, value);
   }
 
  private:
-  std::unique_ptr<coordinator::RunStore> store_;
+  std::unique_ptr<coordinator::Store> store_;
 };
 
 class RemoteStudies : public StudyClient {
@@ -138,9 +139,8 @@ class RemoteStudies : public StudyClient {
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<StudyClient>> OpenLocalStudies(const std::string& path) {
-  DCS_ASSIGN_OR_RETURN(
-      std::unique_ptr<coordinator::RunStore> store,
-      coordinator::RunStore::Open(path, coordinator::RunStoreOptions{}, absl::Now()));
+  DCS_ASSIGN_OR_RETURN(std::unique_ptr<coordinator::Store> store,
+                       coordinator::Store::Open(path, coordinator::StoreOptions{}, absl::Now()));
   return std::make_unique<LocalStudies>(std::move(store));
 }
 

@@ -14,7 +14,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/study_table.h"
 
 namespace dcs::services::cli {
 

@@ -1,9 +1,6 @@
 // Copyright 2026 The DCS Authors.
 #include "services/cli/study_commands.h"
 
-#include <google/protobuf/util/json_util.h>
-#include <google/protobuf/wrappers.pb.h>
-
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -16,8 +13,10 @@
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
 #include "common/text_table.h"
-#include "coordinator/run_store.h"
-#include "coordinator/study_figures.h"
+#include "coordinator/study_table.h"
+#include "dcs/proto_json.h"
+#include "dcs/v1/study.pb.h"
+#include "report/study_figures.h"
 #include "run/search_space_yaml.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/figure_render.h"
@@ -69,40 +68,24 @@ absl::StatusOr<std::unique_ptr<StudyClient>> Studies(const std::string& store,
   return ConnectStudies(CoordinatorAddress(flags), flags.timeout);
 }
 
-// A number or a string as a JSON literal, by protobuf's JSON printer (its escaping and number
-// format; ±inf as proto3's JSON spells it, "Infinity").
-template <typename Wrapper, typename T>
-std::string JsonLiteral(const T& value) {
-  Wrapper wrapper;
-  wrapper.set_value(value);
-  std::string text;
-  (void)google::protobuf::util::MessageToJsonString(wrapper, &text);
-  return text;
-}
-
-// A trial as one line of JSON, its keys in a fixed order: its number, its state, its value once
-// complete, its parameters in the space's order (a categorical by its choice's name).
+// A trial as one line of JSON (dcs.v1.StudyTrialLine).
 std::string TrialJson(const StudyTrial& trial, const run::SearchSpace& space) {
-  using google::protobuf::DoubleValue;
-  std::string json = absl::StrCat("{\"trial\": ", trial.number, ", \"state\": \"",
-                                  NameOf(coordinator::kTrialStateNames, trial.state), "\"");
-  if (trial.state == TrialState::kComplete) {
-    absl::StrAppend(&json, ", \"value\": ", JsonLiteral<DoubleValue>(trial.value));
-  }
-  absl::StrAppend(&json, ", \"params\": {");
-  const char* separator = "";
+  v1::StudyTrialLine line;
+  line.set_trial(static_cast<int32_t>(trial.number));
+  line.set_state(std::string(NameOf(coordinator::kTrialStateNames, trial.state)));
+  if (trial.state == TrialState::kComplete) line.set_value(trial.value);
+  auto& params = *line.mutable_params()->mutable_fields();
   for (const run::SearchParameter& parameter : space.parameters) {
     const auto value = trial.values.find(parameter.name);
     if (value == trial.values.end()) continue;
     const auto* choices = std::get_if<run::CategoricalDistribution>(&parameter.distribution);
-    absl::StrAppend(
-        &json, separator, JsonLiteral<google::protobuf::StringValue>(parameter.name), ": ",
-        choices == nullptr
-            ? JsonLiteral<DoubleValue>(value->second)
-            : JsonLiteral<google::protobuf::StringValue>(run::ChoiceOf(*choices, value->second)));
-    separator = ", ";
+    if (choices == nullptr) {
+      params[parameter.name].set_number_value(value->second);
+    } else {
+      params[parameter.name].set_string_value(run::ChoiceOf(*choices, value->second));
+    }
   }
-  return absl::StrCat(json, "}}");
+  return ProtoToJsonLine(line);
 }
 
 // The study's space, to name its parameters' values.
@@ -203,15 +186,15 @@ absl::Status Trials(const std::string& study_id, const GlobalFlags& flags, Study
 struct PlotFlags {
   std::string study;
   std::string out;
-  coordinator::FigureFormat format = coordinator::FigureFormat::kSvg;
+  report::FigureFormat format = report::FigureFormat::kSvg;
 };
 
 // The study's optimisation history drawn by gnuplot into --out, beside its data and script.
 absl::Status Plot(const PlotFlags& flags, StudyClient& studies) {
   DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study, studies.Get(flags.study));
   DCS_ASSIGN_OR_RETURN(const std::vector<StudyTrial> trials, studies.Trials(flags.study));
-  DCS_ASSIGN_OR_RETURN(const coordinator::GnuplotFigure figure,
-                       coordinator::StudyHistoryFigure(study, trials));
+  DCS_ASSIGN_OR_RETURN(const report::GnuplotFigure figure,
+                       report::StudyHistoryFigure(study, trials));
   DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
                        RenderFigure(figure, flags.format, flags.out));
   if (!rendered.gnuplot_output.empty()) std::cerr << rendered.gnuplot_output << std::endl;
@@ -305,8 +288,8 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
       "plot", "Draw the study's optimisation history with gnuplot; print the image's path");
   plot->add_option("study", plot_flags->study, "the study's id")->required();
   plot->add_option("--out", plot_flags->out, "the directory to write")->required();
-  AddChoiceOption(*plot, "--format", &plot_flags->format,
-                  ChoicesOf(coordinator::kFigureFormatNames), "svg, png or pdf");
+  AddChoiceOption(*plot, "--format", &plot_flags->format, ChoicesOf(report::kFigureFormatNames),
+                  "svg, png or pdf");
   add_store(plot);
 
   CLI::App* best = study->add_subcommand("best", "Print the best complete trial (JSON)");

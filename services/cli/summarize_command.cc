@@ -8,8 +8,8 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "common/text_table.h"
-#include "coordinator/runs_summary.h"
 #include "dcs/proto_json.h"
+#include "report/runs_summary.h"
 #include "services/exit_codes.h"
 
 namespace dcs::services::cli {
@@ -21,7 +21,7 @@ std::string FormatScoreSummary(const v1::ScoreSummary& score) {
 }
 
 int RunSummarize(const std::vector<std::string>& dirs, const GlobalFlags& global) {
-  absl::StatusOr<v1::RunsSummary> summary = coordinator::SummarizeRuns(dirs);
+  absl::StatusOr<v1::RunsSummary> summary = report::SummarizeRuns(dirs);
   if (!summary.ok()) return FailCommand(summary.status());
   if (global.output == OutputFormat::kJson) {
     std::cout << ProtoToJson(*summary) << std::endl;

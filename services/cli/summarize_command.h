@@ -4,7 +4,7 @@
 
 // `dcs summarize RUN_DIR...`: the paper's per-run scores (last and best-anytime avg_combined)
 // of finished runs, and across them IQM [Q1, Q3] with a 95% stratified-bootstrap interval
-// (coordinator/runs_summary.h): the numbers of one row of the paper's tables from a set of
+// (report/runs_summary.h): the numbers of one row of the paper's tables from a set of
 // seeds.
 
 #include <vector>

@@ -7,12 +7,10 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "absl/time/clock.h"
 #include "common/atomic_file.h"
 #include "common/text_table.h"
 #include "dcs/proto_json.h"
@@ -21,57 +19,53 @@
 #include "services/cli/run_client.h"
 #include "services/cli/sweep_view.h"
 #include "services/exit_codes.h"
-#include "services/unary_call.h"
 
 namespace dcs::services::cli {
 namespace {
 
-// Follows the sweep until it ends: on a terminal, the progress view redrawn in place every
-// second; otherwise its headline whenever a run starts or ends. Ctrl-C detaches (the sweep goes
-// on). Exit: 0 completed, 1 failed or cancelled, 130 detached.
-int WatchSweep(const GlobalFlags& flags, const std::string& sweep_id) {
-  const std::string address = CoordinatorAddress(flags);
+// Follows the sweep until it ends: on a terminal, the progress view redrawn in place whenever
+// it changes; otherwise its headline whenever a run starts or ends. Ctrl-C detaches (the sweep
+// goes on). Exit: 0 completed, 1 failed or cancelled, 130 detached.
+int WatchSweepCommand(const GlobalFlags& flags, const std::string& sweep_id) {
   const bool terminal = isatty(STDOUT_FILENO) == 1;
   const DetachOnInterrupt detach;
   std::string shown;
   int shown_lines = 0;
-  std::optional<v1::GetSweepResponse> last;
-  absl::Status status;
-  while (!detach.requested()) {
-    absl::StatusOr<v1::GetSweepResponse> sweep = GetSweep(address, sweep_id, flags.timeout);
-    if (!sweep.ok()) {
-      if (!IsTransient(sweep.status())) {
-        status = sweep.status();
-        break;
-      }
-    } else {
-      const std::string view = terminal ? SweepProgressView(*sweep) : SweepHeadline(*sweep);
-      // A terminal's view is redrawn whenever it changes; plain lines only when a run moved.
-      const v1::Sweep& counts = sweep->sweep();
-      const std::string key =
-          terminal ? view
-                   : absl::StrCat(counts.state(), " ", counts.completed(), " ", counts.running(),
-                                  " ", counts.queued(), " ", counts.failed(), " ",
-                                  counts.cancelled());
-      if (key != shown) {
-        // Back over the previous view and clear it, then draw the new one.
-        if (terminal && shown_lines > 0) std::cout << "\x1b[" << shown_lines << "F\x1b[J";
-        std::cout << view << (view.ends_with('\n') ? "" : "\n") << std::flush;
-        shown = key;
-        shown_lines = static_cast<int>(std::count(view.begin(), view.end(), '\n')) +
-                      (view.ends_with('\n') ? 0 : 1);
-      }
-      last = *std::move(sweep);
-      if (SweepEnded(last->sweep().state())) break;
-    }
-    absl::SleepFor(absl::Seconds(1));
-  }
-  if (!status.ok()) return FailCommand(status);
-  if (!last.has_value() || !SweepEnded(last->sweep().state())) {
+  auto show = [&](const v1::GetSweepResponse& sweep) {
+    const std::string view = terminal ? SweepProgressView(sweep) : SweepHeadline(sweep);
+    // A terminal's view is redrawn whenever it changes; plain lines only when a run moved.
+    const v1::Sweep& counts = sweep.sweep();
+    const std::string key =
+        terminal ? view
+                 : absl::StrCat(counts.state(), " ", counts.completed(), " ", counts.running(),
+                                " ", counts.queued(), " ", counts.failed(), " ",
+                                counts.cancelled());
+    if (key == shown) return;
+    // Back over the previous view and clear it, then draw the new one.
+    if (terminal && shown_lines > 0) std::cout << "\x1b[" << shown_lines << "F\x1b[J";
+    std::cout << view << (view.ends_with('\n') ? "" : "\n") << std::flush;
+    shown = key;
+    shown_lines = static_cast<int>(std::count(view.begin(), view.end(), '\n')) +
+                  (view.ends_with('\n') ? 0 : 1);
+  };
+  absl::StatusOr<v1::GetSweepResponse> last =
+      WatchSweep(CoordinatorAddress(flags), sweep_id,
+                 {.on_update = show,
+                  .interrupted = [&detach] { return detach.requested(); },
+                  .on_lost =
+                      [&](const absl::Status& status) {
+                        std::cout << std::flush;
+                        std::cerr << WatchLostMessage(status) << std::endl;
+                        // The view is drawn again below the message once the watch is back.
+                        shown.clear();
+                        shown_lines = 0;
+                      }});
+  if (absl::IsCancelled(last.status())) {
     std::cerr << "dcs: detached from " << sweep_id << " (it goes on); follow it with: dcs watch "
               << sweep_id << std::endl;
     return kExitInterrupted;
   }
+  if (!last.ok()) return FailCommand(last.status());
   if (last->sweep().state() != v1::SWEEP_STATE_COMPLETED) {
     std::cerr << "dcs: " << sweep_id << " " << SweepStateName(last->sweep().state())
               << (last->sweep().failed() > 0 ? "; `dcs retry " + sweep_id + "` reruns its "
@@ -117,7 +111,7 @@ int SubmitCommand(const GlobalFlags& flags, const SubmitFlags& submit) {
     std::cerr << "a search: " << sweep->study_id() << " asks for its trials";
   }
   std::cerr << "); follow it with: dcs watch " << sweep->sweep_id() << std::endl;
-  return submit.watch ? WatchSweep(flags, sweep->sweep_id()) : kExitOk;
+  return submit.watch ? WatchSweepCommand(flags, sweep->sweep_id()) : kExitOk;
 }
 
 int ListSweepsCommand(const GlobalFlags& flags) {
@@ -202,7 +196,7 @@ std::vector<CliCommand> AddSweepCommands(CLI::App& dcs, const GlobalFlags& flags
   return {
       {submit, [&flags, submit_flags] { return SubmitCommand(flags, *submit_flags); }},
       {sweeps, [&flags] { return ListSweepsCommand(flags); }},
-      {watch, [&flags, sweep_id] { return WatchSweep(flags, *sweep_id); }},
+      {watch, [&flags, sweep_id] { return WatchSweepCommand(flags, *sweep_id); }},
       {cancel, [&flags, sweep_id] { return CancelSweepCommand(flags, *sweep_id); }},
       {retry, [&flags, sweep_id] { return RetrySweepCommand(flags, *sweep_id); }},
   };

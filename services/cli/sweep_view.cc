@@ -59,11 +59,6 @@ std::string TrialName(const v1::Trial& trial) {
 
 }  // namespace
 
-bool SweepEnded(v1::SweepState state) {
-  return state == v1::SWEEP_STATE_COMPLETED || state == v1::SWEEP_STATE_FAILED ||
-         state == v1::SWEEP_STATE_CANCELLED;
-}
-
 std::string SweepHeadline(const v1::GetSweepResponse& response) {
   const v1::Sweep& sweep = response.sweep();
   std::string line = absl::StrCat(sweep.sweep_id(), " ", sweep.name(), ": ",

@@ -15,9 +15,6 @@
 
 namespace dcs::services::cli {
 
-// True once nothing moves the sweep any more (completed, failed or cancelled).
-bool SweepEnded(v1::SweepState state);
-
 // One line: "sweep-3 quickstart: running, 7/18 runs done (2 running, 9 queued, 0 failed),
 // 23400 steps/s, ETA 3m10s, best: sinusoidal (live) 468.2".
 std::string SweepHeadline(const v1::GetSweepResponse& sweep);

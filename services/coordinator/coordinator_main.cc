@@ -14,7 +14,7 @@
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
 #include "coordinator/library_versions.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/study_sweep.h"
 #include "coordinator/sweep_results.h"
 #include "coordinator/worker_registry.h"
@@ -61,10 +61,10 @@ class CoordinatorRole final : public ServiceRole {
           absl::StrCat("cannot create the data directory ", runs_.data_dir, ": ",
                        error.message()));
     }
-    DCS_ASSIGN_OR_RETURN(store_, coordinator::RunStore::Open(
-                                     (std::filesystem::path(runs_.data_dir) / "coordinator.db")
-                                         .string(),
-                                     {.lease_duration = runs_.lease_duration}, absl::Now()));
+    DCS_ASSIGN_OR_RETURN(store_,
+                         coordinator::Store::Open(
+                             (std::filesystem::path(runs_.data_dir) / "coordinator.db").string(),
+                             {.lease_duration = runs_.lease_duration}, absl::Now()));
     runs_.store = store_.get();
     study_logs_ = std::make_unique<coordinator::CompletedRunLogs>(runs_.data_dir);
     metrics.AddCollectable(std::make_shared<WorkerCollector>(*registry_));
@@ -92,6 +92,7 @@ class CoordinatorRole final : public ServiceRole {
 
   void Stop() override {
     if (stopping_.HasBeenNotified()) return;
+    service_->StopWatches();
     stopping_.Notify();
     if (reaper_.joinable()) reaper_.join();
   }
@@ -100,7 +101,7 @@ class CoordinatorRole final : public ServiceRole {
   // Returns lapsed leases to the queue as they lapse (every Acquire does too, but queue depths
   // and run states should not wait for one), and steps the open study sweeps.
   // Counts and logs every lapse, including those an Acquire expired first: under load the
-  // workers' Acquire calls find nearly all of them.
+  // workers' Acquire calls find nearly all of them. Either changes runs that watches follow.
   void ReapLapsedLeases() {
     const absl::Duration period = std::min(absl::Seconds(1), runs_.lease_duration / 4);
     int64_t reported = store_->LeasesLapsed();
@@ -114,6 +115,7 @@ class CoordinatorRole final : public ServiceRole {
         expired_->Increment(static_cast<double>(lapsed - reported));
         Log(LogLevel::kWarning, "leases lapsed", {{"count", std::to_string(lapsed - reported)}});
         reported = lapsed;
+        service_->RunsChanged();
       }
       AdvanceStudySweeps();
     }
@@ -122,7 +124,8 @@ class CoordinatorRole final : public ServiceRole {
   // One step of each open study sweep (coordinator/study_sweep.h). A sweep whose step fails is
   // logged and tried again at the next.
   void AdvanceStudySweeps() {
-    absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = store_->ListOpenSweeps();
+    absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps =
+        store_->sweeps().ListOpenSweeps();
     if (!sweeps.ok()) {
       Log(LogLevel::kError, "cannot list study sweeps", {{"error", sweeps.status().ToString()}});
       return;
@@ -145,6 +148,7 @@ class CoordinatorRole final : public ServiceRole {
         Log(LogLevel::kError, "cannot step a study sweep",
             {{"sweep_id", sweep.id}, {"error", step.status().ToString()}});
       } else if (step->asked + step->told + step->retrained > 0 || step->closed) {
+        service_->RunsChanged();
         Log(LogLevel::kInfo, "study sweep stepped",
             {{"sweep_id", sweep.id},
              {"asked", std::to_string(step->asked)},
@@ -159,7 +163,7 @@ class CoordinatorRole final : public ServiceRole {
   coordinator::WorkerRegistryOptions options_;
   RunStorage runs_{.data_dir = "dcs-coordinator-data"};
   std::unique_ptr<coordinator::WorkerRegistry> registry_;
-  std::unique_ptr<coordinator::RunStore> store_;
+  std::unique_ptr<coordinator::Store> store_;
   prometheus::Counter* expired_ = nullptr;
   std::unique_ptr<CoordinatorService> service_;
   // The reaper's: the open study sweeps' specs, parsed once, and their completed runs' logs.

@@ -1,7 +1,8 @@
 // Copyright 2026 The DCS Authors.
 //
-// CoordinatorService's runs and leases: the run store (coordinator/run_store.h) and the runs'
-// directories (coordinator/run_files.h) on the wire; and the store's backups.
+// CoordinatorService's runs and leases: the store's runs, evaluations and checkpoints
+// (coordinator/store.h) and the runs' directories (coordinator/run_files.h) on the wire; and
+// the store's backups.
 
 #include <atomic>
 #include <filesystem>
@@ -20,6 +21,7 @@
 #include "coordinator/run_submission.h"
 #include "dcs/v1/trajectory.pb.h"
 #include "services/coordinator/coordinator_service.h"
+#include "services/coordinator/record_proto.h"
 #include "services/evaluation_grid_proto.h"
 #include "services/grpc_status.h"
 #include "services/log.h"
@@ -33,12 +35,13 @@ namespace {
 
 constexpr char kDefaultConfigName[] = "run.yaml";
 
-// PutCheckpoint's stream: the pieces of one checkpoint and its evaluation log, stored once the
-// learner has sent them all. Owned by gRPC from construction until OnDone.
+// PutCheckpoint's stream: the pieces of one checkpoint and of its evaluation log's new part,
+// stored once the learner has sent them all. Owned by gRPC from construction until OnDone.
 class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointRequest> {
  public:
+  // The lease, the checkpoint, and its evaluation log from evaluation `first` on.
   using Store = std::function<absl::Status(const coordinator::LeaseKey&,
-                                           const run::PackedCheckpoint&,
+                                           const run::PackedCheckpoint&, int64_t first,
                                            const v1::EvaluationLog&)>;
   using Count = std::function<void(const absl::Status&)>;
 
@@ -69,6 +72,7 @@ class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointR
     const bool first = !key_.has_value();
     if (first) {
       DCS_ASSIGN_OR_RETURN(key_, LeaseFromProto(request_.lease()));
+      first_evaluation_ = request_.evaluations_before();
     }
     DCS_RETURN_IF_ERROR(AddCheckpointPiece(request_.checkpoint(), first, checkpoint_));
     if (log_.size() + request_.evaluation_log().size() > kMaxStreamedBytes) {
@@ -87,7 +91,7 @@ class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointR
       return absl::InvalidArgumentError(
           absl::StrCat("the evaluation log of checkpoint ", checkpoint_.name, " does not parse"));
     }
-    return store_(*key_, checkpoint_, log);
+    return store_(*key_, checkpoint_, first_evaluation_, log);
   }
 
   void End(const absl::Status& status) {
@@ -100,6 +104,7 @@ class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointR
   const Count count_;
   v1::PutCheckpointRequest request_;
   std::optional<coordinator::LeaseKey> key_;  // from the first piece
+  int64_t first_evaluation_ = 0;               // from the first piece
   run::PackedCheckpoint checkpoint_;
   std::string log_;
 };
@@ -121,13 +126,13 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitRun(grpc::CallbackServerCont
                          coordinator::CheckSubmittedRun(request->config(), config_name, seed));
     DCS_ASSIGN_OR_RETURN(
         const coordinator::RunRecord record,
-        runs_.store->SubmitRun({.request_id = request->request_id(),
-                                .config = run.config_text,
-                                .seed = run.spec.seed,
-                                .env = run.spec.env,
-                                .n_envs = run.spec.n_envs,
-                                .total_timesteps = run.spec.total_timesteps},
-                               absl::Now()));
+        runs_.store->runs().SubmitRun({.request_id = request->request_id(),
+                                       .config = run.config_text,
+                                       .seed = run.spec.seed,
+                                       .env = run.spec.env,
+                                       .n_envs = run.spec.n_envs,
+                                       .total_timesteps = run.spec.total_timesteps},
+                                      absl::Now()));
     // The run's directory holds its config, as `dcs train` writes it (again, on a retry).
     run.dir = coordinator::RunDirectory(runs_.data_dir, record.id);
     DCS_RETURN_IF_ERROR(run::CreateRunDirectory(run));
@@ -144,8 +149,8 @@ grpc::ServerUnaryReactor* CoordinatorService::GetRun(grpc::CallbackServerContext
                                                      const v1::GetRunRequest* request,
                                                      v1::GetRunResponse* response) {
   return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
-    absl::StatusOr<coordinator::RunRecord> run = runs_.store->GetRun(request->run_id());
-    if (run.ok()) *response->mutable_run() = RunToProto(*run);
+    absl::StatusOr<v1::GetRunResponse> run = ReadRun(request->run_id());
+    if (run.ok()) *response = *std::move(run);
     return run.status();
   });
 }
@@ -154,7 +159,7 @@ grpc::ServerUnaryReactor* CoordinatorService::ListRuns(grpc::CallbackServerConte
                                                        const v1::ListRunsRequest* /*request*/,
                                                        v1::ListRunsResponse* response) {
   return calls_.Offloaded(context, [this, response]() -> absl::Status {
-    absl::StatusOr<std::vector<coordinator::RunRecord>> runs = runs_.store->ListRuns();
+    absl::StatusOr<std::vector<coordinator::RunRecord>> runs = runs_.store->runs().ListRuns();
     if (runs.ok()) {
       for (const coordinator::RunRecord& run : *runs) *response->add_runs() = RunToProto(run);
     }
@@ -167,10 +172,11 @@ grpc::ServerUnaryReactor* CoordinatorService::CancelRun(grpc::CallbackServerCont
                                                         v1::CancelRunResponse* response) {
   return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     absl::StatusOr<coordinator::RunRecord> run =
-        runs_.store->CancelRun(request->run_id(), absl::Now());
+        runs_.store->runs().CancelRun(request->run_id(), absl::Now());
     if (run.ok()) {
       Log(LogLevel::kInfo, "run cancelled", {{"run_id", run->id}});
       *response->mutable_run() = RunToProto(*run);
+      watchers_.Notify(RunTopic(run->id));
     }
     return run.status();
   });
@@ -181,7 +187,7 @@ grpc::ServerWriteReactor<v1::RunFile>* CoordinatorService::GetRunFiles(
   return calls_.Serve<grpc::ServerWriteReactor<v1::RunFile>>(context, [&] {
     auto get = [this, request]() -> absl::StatusOr<std::vector<v1::RunFile>> {
       DCS_ASSIGN_OR_RETURN(const coordinator::RunRecord run,
-                           runs_.store->GetRun(request->run_id()));
+                           runs_.store->runs().GetRun(request->run_id()));
       DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunFile> files,
                            coordinator::ReadRunFiles(
                                coordinator::RunDirectory(runs_.data_dir, run.id)));
@@ -228,10 +234,11 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerCon
     auto acquire = [this, request, response]() -> absl::StatusOr<bool> {
       DCS_ASSIGN_OR_RETURN(
           const std::optional<coordinator::LearnerLease> lease,
-          runs_.store->AcquireRun(request->holder(), request->address(), request->numerics(),
-                                  absl::Now()));
+          runs_.store->runs().AcquireRun(request->holder(), request->address(),
+                                         request->numerics(), absl::Now()));
       if (!lease.has_value()) return false;
       learner_leases_.Increment();
+      watchers_.Notify(RunTopic(lease->run.id));
       Log(LogLevel::kInfo, "run leased",
           {{"run_id", lease->run.id}, {"learner", request->holder()},
            {"epoch", std::to_string(lease->key.epoch)},
@@ -262,10 +269,12 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireSlot(grpc::CallbackServerCo
     auto acquire = [this, request, response,
                     complete_learners = std::move(complete_learners)]() -> absl::StatusOr<bool> {
       DCS_ASSIGN_OR_RETURN(const std::optional<coordinator::SlotLease> lease,
-                           runs_.store->AcquireSlot(request->holder(), request->numerics(),
-                                                    complete_learners, absl::Now()));
+                           runs_.store->runs().AcquireSlot(request->holder(),
+                                                           request->numerics(),
+                                                           complete_learners, absl::Now()));
       if (!lease.has_value()) return false;
       slot_leases_.Increment();
+      watchers_.Notify(RunTopic(lease->key.run_id));  // its actors' numerics
       *response->mutable_lease() = LeaseToProto(lease->key);
       response->set_learner_address(lease->learner_address);
       response->set_learner_epoch(lease->learner_epoch);
@@ -285,7 +294,7 @@ grpc::ServerUnaryReactor* CoordinatorService::RenewLease(grpc::CallbackServerCon
     absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
     if (!key.ok()) return key.status();
     *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
-    return runs_.store->RenewLease(*key, absl::Now());
+    return runs_.store->runs().RenewLease(*key, absl::Now());
   });
 }
 
@@ -295,7 +304,9 @@ grpc::ServerUnaryReactor* CoordinatorService::ReleaseLease(grpc::CallbackServerC
   return calls_.Offloaded(context, [this, request]() -> absl::Status {
     absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
     if (!key.ok()) return key.status();
-    return runs_.store->ReleaseLease(*key, absl::Now());
+    const absl::Status released = runs_.store->runs().ReleaseLease(*key, absl::Now());
+    if (released.ok()) watchers_.Notify(RunTopic(key->run_id));
+    return released;
   });
 }
 
@@ -305,21 +316,26 @@ grpc::ServerUnaryReactor* CoordinatorService::ReportProgress(
   return calls_.Offloaded(context, [this, request]() -> absl::Status {
     absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
     if (!key.ok()) return key.status();
-    return runs_.store->ReportProgress(*key, ProgressFromProto(request->progress()),
-                                       absl::Now());
+    const absl::Status reported = runs_.store->runs().ReportProgress(
+        *key, ProgressFromProto(request->progress()), absl::Now());
+    if (reported.ok()) watchers_.Notify(RunTopic(key->run_id));
+    return reported;
   });
 }
 
 absl::Status CoordinatorService::StoreCheckpoint(const coordinator::LeaseKey& key,
                                                  const run::PackedCheckpoint& checkpoint,
-                                                 const v1::EvaluationLog& log) {
+                                                 int64_t first_evaluation,
+                                                 const v1::EvaluationLog& log_since) {
   // Only the lease's holder writes the run's directory; checked again when indexing.
-  DCS_RETURN_IF_ERROR(runs_.store->RenewLease(key, absl::Now()));
+  DCS_RETURN_IF_ERROR(runs_.store->runs().RenewLease(key, absl::Now()));
   DCS_ASSIGN_OR_RETURN(const coordinator::CheckpointRecord stored,
                        coordinator::StoreCheckpoint(
                            coordinator::RunDirectory(runs_.data_dir, key.run_id), checkpoint,
-                           log, runs_.keep_checkpoints));
-  return runs_.store->RecordCheckpoint(key, stored, absl::Now());
+                           first_evaluation, log_since, runs_.keep_checkpoints));
+  DCS_RETURN_IF_ERROR(runs_.store->checkpoints().RecordCheckpoint(key, stored, absl::Now()));
+  watchers_.Notify(RunTopic(key.run_id));
+  return absl::OkStatus();
 }
 
 grpc::ServerReadReactor<v1::PutCheckpointRequest>* CoordinatorService::PutCheckpoint(
@@ -328,7 +344,9 @@ grpc::ServerReadReactor<v1::PutCheckpointRequest>* CoordinatorService::PutCheckp
     return new CheckpointReader(
         calls_,
         [this](const coordinator::LeaseKey& key, const run::PackedCheckpoint& checkpoint,
-               const v1::EvaluationLog& log) { return StoreCheckpoint(key, checkpoint, log); },
+               int64_t first, const v1::EvaluationLog& log_since) {
+          return StoreCheckpoint(key, checkpoint, first, log_since);
+        },
         [this](const absl::Status& status) { rejected_.Count(status); });
   });
 }
@@ -342,7 +360,7 @@ grpc::ServerWriteReactor<v1::CheckpointPiece>* CoordinatorService::GetCheckpoint
         return absl::InvalidArgumentError("a run's checkpoints are for its learner lease");
       }
       // Only the lease's holder resumes the run.
-      DCS_RETURN_IF_ERROR(runs_.store->RenewLease(key, absl::Now()));
+      DCS_RETURN_IF_ERROR(runs_.store->runs().RenewLease(key, absl::Now()));
       // The learner hosts the run now (it asks as it loads it): its slots are worth taking.
       parked_.Wake(kSlotsTopic);
       DCS_ASSIGN_OR_RETURN(const run::PackedCheckpoint checkpoint,
@@ -364,7 +382,8 @@ grpc::ServerUnaryReactor* CoordinatorService::FinishRun(grpc::CallbackServerCont
   return calls_.Offloaded(context, [this, request]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
     DCS_ASSIGN_OR_RETURN(const coordinator::RunState state, RunStateFromProto(request->state()));
-    DCS_RETURN_IF_ERROR(runs_.store->FinishRun(key, state, request->error(), absl::Now()));
+    DCS_RETURN_IF_ERROR(runs_.store->runs().FinishRun(key, state, request->error(), absl::Now()));
+    watchers_.Notify(RunTopic(key.run_id));
     Log(LogLevel::kInfo, "run finished",
         {{"run_id", key.run_id}, {"state", std::string(NameOf(coordinator::kRunStateNames, state))},
          {"error", request->error()}});
@@ -380,13 +399,14 @@ grpc::ServerReadReactor<v1::SubmitEvaluationRequest>* CoordinatorService::Submit
       DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request.lease()));
       v1::PolicyWeights weights;  // checked here, so that actors are given what parses
       DCS_RETURN_IF_ERROR(joined.Parse(weights));
-      DCS_RETURN_IF_ERROR(runs_.store->SubmitEvaluation(key,
-                                                        {.policy_version = request.policy_version(),
-                                                         .step = request.step(),
-                                                         .contexts = request.contexts(),
-                                                         .episodes = request.episodes(),
-                                                         .weights = std::move(joined.payload())},
-                                                        absl::Now()));
+      DCS_RETURN_IF_ERROR(runs_.store->evaluations().SubmitEvaluation(
+          key,
+          {.policy_version = request.policy_version(),
+           .step = request.step(),
+           .contexts = request.contexts(),
+           .episodes = request.episodes(),
+           .weights = std::move(joined.payload())},
+          absl::Now()));
       parked_.Wake(kEvaluationJobsTopic);
       return absl::OkStatus();
     };
@@ -409,15 +429,14 @@ CoordinatorService::SubmitGridEvaluation(grpc::CallbackServerContext* context,
       DCS_ASSIGN_OR_RETURN(const int cells, GridCellCount(request.grid()));
       v1::PolicyWeights weights;  // checked here, so that actors are given what parses
       DCS_RETURN_IF_ERROR(joined.Parse(weights));
-      DCS_ASSIGN_OR_RETURN(
-          const int64_t key,
-          runs_.store->SubmitGridEvaluation({.request_id = request.request_id(),
-                                             .run_id = request.run_id(),
-                                             .cells = cells,
-                                             .episodes = request.episodes(),
-                                             .grid = request.grid().SerializeAsString(),
-                                             .weights = std::move(joined.payload())},
-                                            absl::Now()));
+      DCS_ASSIGN_OR_RETURN(const int64_t key, runs_.store->evaluations().SubmitGridEvaluation(
+                                                  {.request_id = request.request_id(),
+                                                   .run_id = request.run_id(),
+                                                   .cells = cells,
+                                                   .episodes = request.episodes(),
+                                                   .grid = request.grid().SerializeAsString(),
+                                                   .weights = std::move(joined.payload())},
+                                                  absl::Now()));
       response->set_evaluation_key(key);
       parked_.Wake(kEvaluationJobsTopic);
       return absl::OkStatus();
@@ -438,7 +457,7 @@ grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
     auto progress = [this, request, response]() -> absl::StatusOr<bool> {
       DCS_ASSIGN_OR_RETURN(
           const coordinator::EvaluationProgress evaluation,
-          runs_.store->GetEvaluation(request->run_id(), request->policy_version()));
+          runs_.store->evaluations().GetEvaluation(request->run_id(), request->policy_version()));
       response->Clear();
       response->set_contexts(evaluation.contexts);
       response->set_done(evaluation.done);
@@ -459,10 +478,9 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
     auto acquire =
         [this, request]() -> absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> {
       DCS_ASSIGN_OR_RETURN(std::optional<coordinator::EvaluationGrant> grant,
-                           runs_.store->AcquireEvaluationJobs(request->holder(),
-                                                              request->numerics(),
-                                                              request->max_jobs(), AliveActors(),
-                                                              request->grid_cells(), absl::Now()));
+                           runs_.store->evaluations().AcquireEvaluationJobs(
+                               request->holder(), request->numerics(), request->max_jobs(),
+                               AliveActors(), request->grid_cells(), absl::Now()));
       v1::AcquireEvaluationResponse header;
       if (!grant.has_value()) return std::vector{std::move(header)};
       evaluation_leases_.Increment(static_cast<double>(grant->jobs.size()));
@@ -517,7 +535,7 @@ grpc::ServerUnaryReactor* CoordinatorService::ReportEvaluation(
                          .result = ContextReturnsFromProto(delivered.result())});
     }
     DCS_ASSIGN_OR_RETURN(const std::vector<bool> duplicate,
-                         runs_.store->ReportEvaluationJobs(results));
+                         runs_.store->evaluations().ReportEvaluationJobs(results));
     for (const bool delivered_before : duplicate) response->add_duplicate(delivered_before);
     for (const coordinator::JobResult& delivered : results) {
       parked_.Wake(EvaluationTopic(delivered.job.run_id, delivered.job.policy_version));

@@ -10,6 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "services/cluster_proto.h"
+#include "services/coordinator/record_proto.h"
 #include "services/grpc_status.h"
 #include "services/log.h"
 #include "services/time_proto.h"
@@ -32,6 +33,13 @@ prometheus::Family<prometheus::Counter>& LeasesFamily(prometheus::Registry& metr
       .Register(metrics);
 }
 
+prometheus::Family<prometheus::Gauge>& WatchersFamily(prometheus::Registry& metrics) {
+  return prometheus::BuildGauge()
+      .Name("dcs_watchers")
+      .Help("WatchRun and WatchSweep streams open now, by kind (run, sweep).")
+      .Register(metrics);
+}
+
 }  // namespace
 
 CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, RunStorage runs,
@@ -48,12 +56,14 @@ CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, Ru
       slot_leases_(LeasesFamily(metrics).Add({{"kind", "slot"}})),
       evaluation_leases_(LeasesFamily(metrics).Add({{"kind", "evaluation"}})),
       rejected_(metrics, "dcs_requests_rejected_total",
-                "Requests the coordinator refused, by reason (the status code).") {}
+                "Requests the coordinator refused, by reason (the status code)."),
+      run_watchers_(WatchersFamily(metrics).Add({{"kind", "run"}})),
+      sweep_watchers_(WatchersFamily(metrics).Add({{"kind", "sweep"}})) {}
 
 int CoordinatorService::AliveActors() const {
   const std::vector<coordinator::WorkerRecord> workers = registry_.List(absl::Now());
   return static_cast<int>(std::count_if(workers.begin(), workers.end(), [](const auto& worker) {
-    return worker.info.role == coordinator::WorkerRole::kActor &&
+    return worker.info.role == WorkerRole::kActor &&
            worker.state == coordinator::WorkerState::kAlive;
   }));
 }
@@ -110,17 +120,16 @@ grpc::ServerUnaryReactor* CoordinatorService::RegisterWorker(
     grpc::CallbackServerContext* context, const v1::RegisterWorkerRequest* request,
     v1::RegisterWorkerResponse* response) {
   return calls_.Inline(context, [&]() -> absl::Status {
-    absl::StatusOr<coordinator::WorkerInfo> info = WorkerInfoFromProto(request->worker());
+    absl::StatusOr<WorkerInfo> info = WorkerInfoFromProto(request->worker());
     if (!info.ok()) return info.status();
-    const coordinator::WorkerRole role = info->role;
+    const WorkerRole role = info->role;
     const std::string address = info->address;
     absl::StatusOr<std::string> id = registry_.Register(*std::move(info), absl::Now());
     if (!id.ok()) return id.status();
 
-    (role == coordinator::WorkerRole::kLearner ? learner_registrations_ : actor_registrations_)
-        .Increment();
+    (role == WorkerRole::kLearner ? learner_registrations_ : actor_registrations_).Increment();
     Log(LogLevel::kInfo, "worker registered",
-        {{"worker_id", *id}, {"role", coordinator::WorkerRoleName(role)}, {"address", address}});
+        {{"worker_id", *id}, {"role", WorkerRoleName(role)}, {"address", address}});
     response->set_worker_id(*id);
     *response->mutable_heartbeat_interval() =
         DurationToProto(registry_.options().heartbeat_interval);

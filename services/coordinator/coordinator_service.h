@@ -6,17 +6,20 @@
 // calls the library, encodes the reply and converts the status. Every call comes in through
 // ServedCalls (services/served_calls.h), which authenticates it; what touches the store or the
 // runs' directories runs on the service's work pool, never on gRPC's threads; membership
-// (memory only) is answered inline. Workers' membership is in
-// coordinator_service.cc, runs, leases and the store's backups in coordinator_runs.cc, sweeps in
-// coordinator_sweeps.cc. The calls by which workers ask for work (AcquireRun, AcquireSlot,
-// AcquireEvaluation) and a learner for its evaluation (GetEvaluation) may wait for it: with a
-// `wait`, a call that finds nothing is parked (services/parked_calls.h) until the work may have
-// come (a run submitted, a run taken, an evaluation submitted, its last job reported) or its
-// wait is up. Thread-safe.
+// (memory only) is answered inline. Workers' membership is in coordinator_service.cc, runs,
+// leases and the store's backups in coordinator_runs.cc, sweeps in coordinator_sweeps.cc,
+// watches of runs and sweeps in coordinator_watch.cc. The calls by which workers ask for work
+// (AcquireRun, AcquireSlot, AcquireEvaluation) and a learner for its evaluation (GetEvaluation)
+// may wait for it: with a `wait`, a call that finds nothing is parked (services/parked_calls.h)
+// until the work may have come (a run submitted, a run taken, an evaluation submitted, its last
+// job reported) or its wait is up. A watch streams only what changed: each handler that changes
+// a run or a sweep says so (Watchers::Notify), and the watch's stream looks at the store again
+// (services/coordinator/watchers.h). Thread-safe.
 // Borrows the registry and the store (must outlive the service); owns its metrics'
 // registration.
 
 #include <prometheus/counter.h>
+#include <prometheus/gauge.h>
 #include <prometheus/registry.h>
 
 #include <functional>
@@ -24,13 +27,14 @@
 
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/sweep_results.h"
 #include "coordinator/worker_registry.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "run/run_checkpoint.h"
 #include "services/build_info.h"
+#include "services/coordinator/watchers.h"
 #include "services/grpc_status.h"
 #include "services/parked_calls.h"
 #include "services/refusal_counter.h"
@@ -41,16 +45,17 @@ namespace dcs::services {
 
 // Where the coordinator keeps runs.
 struct RunStorage {
-  coordinator::RunStore* store = nullptr;  // borrowed
-  std::string data_dir;                    // runs' directories: coordinator/run_files.h
+  coordinator::Store* store = nullptr;  // borrowed
+  std::string data_dir;                 // runs' directories: coordinator/run_files.h
   absl::Duration lease_duration = absl::Seconds(10);
   int keep_checkpoints = 3;
 };
 
 class CoordinatorService final : public v1::CoordinatorService::CallbackService {
  public:
-  // Registers dcs_worker_registrations_total{role}, dcs_leases_granted_total{kind} and
-  // dcs_requests_rejected_total{reason} in `metrics`, which must outlive the service.
+  // Registers dcs_worker_registrations_total{role}, dcs_leases_granted_total{kind},
+  // dcs_requests_rejected_total{reason} and dcs_watchers{kind} in `metrics`, which must outlive
+  // the service.
   CoordinatorService(coordinator::WorkerRegistry& registry, RunStorage runs, BuildInfo build,
                      absl::Time start_time, prometheus::Registry& metrics);
 
@@ -153,6 +158,18 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   grpc::ServerUnaryReactor* ReportEvaluation(grpc::CallbackServerContext* context,
                                              const v1::ReportEvaluationRequest* request,
                                              v1::ReportEvaluationResponse* response) override;
+  // Watches (coordinator_watch.cc).
+  grpc::ServerWriteReactor<v1::GetRunResponse>* WatchRun(
+      grpc::CallbackServerContext* context, const v1::WatchRunRequest* request) override;
+  grpc::ServerWriteReactor<v1::GetSweepResponse>* WatchSweep(
+      grpc::CallbackServerContext* context, const v1::WatchSweepRequest* request) override;
+
+  // Runs changed, and their writer cannot say which (the lease reaper returned lapsed leases'
+  // runs to the queue, a study sweep stepped): every watch looks again.
+  void RunsChanged();
+  // Ends every watch with UNAVAILABLE (its client watches again once the coordinator is back),
+  // and each begun later: the coordinator stops. Call before the server drains.
+  void StopWatches();
 
  private:
   // What parked calls wait for (ParkedCalls topics): a queued run (AcquireRun), a free slot of
@@ -163,6 +180,20 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   static constexpr char kSlotsTopic[] = "slots";
   static constexpr char kEvaluationJobsTopic[] = "evaluation jobs";
   static std::string EvaluationTopic(absl::string_view run_id, int64_t policy_version);
+  // What watches follow (Watchers topics): a run, a sweep. A handler that changed a run or a
+  // sweep notifies its topic; a sweep's watch follows its runs' too.
+  static std::string RunTopic(absl::string_view run_id);
+  // A watch sends at most one message per interval, as often as `dcs` asked before it watched
+  // (GetRun every 250 ms, GetSweep every second): a burst of changes (a sweep's runs all
+  // reporting progress) reaches it as its latest state, and a watch costs the store no more
+  // reads than a poll did, however busy its runs are.
+  static constexpr absl::Duration kRunWatchInterval = absl::Milliseconds(250);
+  static constexpr absl::Duration kSweepWatchInterval = absl::Seconds(1);
+  static std::string SweepTopic(absl::string_view sweep_id);
+  // What GetRun (GetSweep) answers, and each message of a watch of the run (the sweep): all the
+  // store reads of one answer.
+  absl::StatusOr<v1::GetRunResponse> ReadRun(const std::string& run_id) const;
+  absl::StatusOr<v1::GetSweepResponse> ReadSweep(const std::string& sweep_id) const;
 
   // Makes a call's answer with `attempt`, which prepares it and returns whether it found what
   // the caller waits for, then gives it with `answer` (its status, counted if a refusal). With
@@ -183,10 +214,11 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
                                          std::function<absl::StatusOr<bool>()> attempt);
   // The actors heartbeating now, who share each evaluation's jobs.
   int AliveActors() const;
-  // Stores a checkpoint a learner streamed (PutCheckpoint), with the evaluation log as of it.
+  // Stores a checkpoint a learner streamed (PutCheckpoint), with the evaluation log as of it
+  // from evaluation `first_evaluation` on (coordinator::StoreCheckpoint).
   absl::Status StoreCheckpoint(const coordinator::LeaseKey& key,
-                               const run::PackedCheckpoint& checkpoint,
-                               const v1::EvaluationLog& log);
+                               const run::PackedCheckpoint& checkpoint, int64_t first_evaluation,
+                               const v1::EvaluationLog& log_since);
 
   coordinator::WorkerRegistry& registry_;
   const RunStorage runs_;
@@ -199,6 +231,11 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   prometheus::Counter& slot_leases_;
   prometheus::Counter& evaluation_leases_;
   RefusalCounter rejected_;
+  prometheus::Gauge& run_watchers_;
+  prometheus::Gauge& sweep_watchers_;
+  // Every watch is removed from it by its call's end, before the service goes; outlives the
+  // pool, whose work notifies it.
+  Watchers watchers_;
   // Destroyed after the pool, whose work may wake parked calls, answering the calls still
   // parked while the rest is alive.
   ParkedCalls parked_;

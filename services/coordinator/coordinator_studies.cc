@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
 //
-// CoordinatorService's studies: the run store's ask-and-tell (coordinator/run_store.h) on the
+// CoordinatorService's studies: the store's ask-and-tell (coordinator/study_table.h) on the
 // wire.
 
 #include <string>
@@ -9,8 +9,8 @@
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
 #include "services/coordinator/coordinator_service.h"
+#include "services/coordinator/study_proto.h"
 #include "services/log.h"
-#include "services/study_proto.h"
 
 namespace dcs::services {
 
@@ -21,7 +21,7 @@ grpc::ServerUnaryReactor* CoordinatorService::CreateStudy(grpc::CallbackServerCo
     DCS_ASSIGN_OR_RETURN(coordinator::StudyRecord study, StudyFromProto(request->study()));
     study.submission.request_id = request->request_id();
     DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord created,
-                         runs_.store->CreateStudy(study.submission, absl::Now()));
+                         runs_.store->studies().CreateStudy(study.submission, absl::Now()));
     Log(LogLevel::kInfo, "study created",
         {{"study_id", created.id}, {"name", created.submission.name}});
     *response->mutable_study() = StudyToProto(created);
@@ -34,9 +34,9 @@ grpc::ServerUnaryReactor* CoordinatorService::GetStudy(grpc::CallbackServerConte
                                                        v1::GetStudyResponse* response) {
   return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study,
-                         runs_.store->GetStudy(request->study_id()));
+                         runs_.store->studies().GetStudy(request->study_id()));
     DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::StudyTrial> trials,
-                         runs_.store->ListStudyTrials(request->study_id()));
+                         runs_.store->studies().ListStudyTrials(request->study_id()));
     *response->mutable_study() = StudyToProto(study);
     for (const coordinator::StudyTrial& trial : trials) {
       *response->add_trials() = StudyTrialToProto(trial);
@@ -49,8 +49,8 @@ namespace {
 
 // A study a sweep drives is asked and told by the coordinator only: FAILED_PRECONDITION for a
 // client's ask, tell or report, naming the sweep.
-absl::Status RequireAskAndTell(coordinator::RunStore& store, const std::string& study_id) {
-  DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study, store.GetStudy(study_id));
+absl::Status RequireAskAndTell(coordinator::Store& store, const std::string& study_id) {
+  DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study, store.studies().GetStudy(study_id));
   if (study.sweep_id.empty()) return absl::OkStatus();
   return absl::FailedPreconditionError(absl::StrCat(
       study_id, " is driven by ", study.sweep_id, ": the coordinator asks and tells it"));
@@ -63,9 +63,9 @@ grpc::ServerUnaryReactor* CoordinatorService::AskTrial(grpc::CallbackServerConte
                                                        v1::AskTrialResponse* response) {
   return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     DCS_RETURN_IF_ERROR(RequireAskAndTell(*runs_.store, request->study_id()));
-    DCS_ASSIGN_OR_RETURN(const coordinator::StudyTrial trial,
-                         runs_.store->AskTrial(request->study_id(), request->request_id(),
-                                               absl::Now()));
+    DCS_ASSIGN_OR_RETURN(
+        const coordinator::StudyTrial trial,
+        runs_.store->studies().AskTrial(request->study_id(), request->request_id(), absl::Now()));
     *response->mutable_trial() = StudyTrialToProto(trial);
     return absl::OkStatus();
   });
@@ -83,8 +83,8 @@ grpc::ServerUnaryReactor* CoordinatorService::TellTrial(grpc::CallbackServerCont
     }
     DCS_RETURN_IF_ERROR(RequireAskAndTell(*runs_.store, request->study_id()));
     DCS_ASSIGN_OR_RETURN(const coordinator::StudyTrial trial,
-                         runs_.store->TellTrial(request->study_id(), request->number(), *state,
-                                                request->value(), absl::Now()));
+                         runs_.store->studies().TellTrial(request->study_id(), request->number(),
+                                                          *state, request->value(), absl::Now()));
     *response->mutable_trial() = StudyTrialToProto(trial);
     return absl::OkStatus();
   });
@@ -96,8 +96,8 @@ grpc::ServerUnaryReactor* CoordinatorService::ReportTrial(grpc::CallbackServerCo
   return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     DCS_RETURN_IF_ERROR(RequireAskAndTell(*runs_.store, request->study_id()));
     DCS_ASSIGN_OR_RETURN(const bool prune,
-                         runs_.store->ReportTrial(request->study_id(), request->number(),
-                                                  request->step(), request->value()));
+                         runs_.store->studies().ReportTrial(request->study_id(), request->number(),
+                                                            request->step(), request->value()));
     response->set_prune(prune);
     return absl::OkStatus();
   });

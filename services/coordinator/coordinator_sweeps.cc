@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
 //
-// CoordinatorService's sweeps: the run store's sweeps (coordinator/run_store.h), their
+// CoordinatorService's sweeps: the store's sweeps (coordinator/sweep_table.h), their
 // expansion from a spec (coordinator/sweep_submission.h) and their results
 // (coordinator/sweep_results.h) on the wire.
 
@@ -15,8 +15,8 @@
 #include "coordinator/sweep_results.h"
 #include "coordinator/sweep_submission.h"
 #include "services/coordinator/coordinator_service.h"
+#include "services/coordinator/record_proto.h"
 #include "services/log.h"
-#include "services/run_proto.h"
 
 namespace dcs::services {
 namespace {
@@ -47,10 +47,10 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitSweep(grpc::CallbackServerCo
       return absl::OkStatus();
     }
     DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord record,
-                         runs_.store->SubmitSweep(sweep.submission, absl::Now()));
+                         runs_.store->sweeps().SubmitSweep(sweep.submission, absl::Now()));
     // Each run's directory holds its config, as `dcs train` writes it (again, on a retry).
     DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
-                         runs_.store->ListSweepRuns(record.id));
+                         runs_.store->sweeps().ListSweepRuns(record.id));
     for (size_t i = 0; i < runs.size() && i < sweep.requests.size(); ++i) {
       run::RunRequest& run = sweep.requests[i];
       run.dir = coordinator::RunDirectory(runs_.data_dir, runs[i].id);
@@ -69,13 +69,9 @@ grpc::ServerUnaryReactor* CoordinatorService::GetSweep(grpc::CallbackServerConte
                                                        const v1::GetSweepRequest* request,
                                                        v1::GetSweepResponse* response) {
   return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
-    DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord sweep,
-                         runs_.store->GetSweep(request->sweep_id()));
-    DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
-                         runs_.store->ListSweepRuns(request->sweep_id()));
-    *response->mutable_sweep() = SweepToProto(sweep);
-    for (const coordinator::RunRecord& run : runs) *response->add_runs() = RunToProto(run);
-    return absl::OkStatus();
+    absl::StatusOr<v1::GetSweepResponse> sweep = ReadSweep(request->sweep_id());
+    if (sweep.ok()) *response = *std::move(sweep);
+    return sweep.status();
   });
 }
 
@@ -83,7 +79,8 @@ grpc::ServerUnaryReactor* CoordinatorService::ListSweeps(
     grpc::CallbackServerContext* context, const v1::ListSweepsRequest* /*request*/,
     v1::ListSweepsResponse* response) {
   return calls_.Offloaded(context, [this, response]() -> absl::Status {
-    absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = runs_.store->ListSweeps();
+    absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps =
+        runs_.store->sweeps().ListSweeps();
     if (sweeps.ok()) {
       for (const coordinator::SweepRecord& sweep : *sweeps) {
         *response->add_sweeps() = SweepToProto(sweep);
@@ -98,10 +95,11 @@ grpc::ServerUnaryReactor* CoordinatorService::CancelSweep(grpc::CallbackServerCo
                                                           v1::CancelSweepResponse* response) {
   return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     absl::StatusOr<coordinator::SweepRecord> sweep =
-        runs_.store->CancelSweep(request->sweep_id(), absl::Now());
+        runs_.store->sweeps().CancelSweep(request->sweep_id(), absl::Now());
     if (sweep.ok()) {
       Log(LogLevel::kInfo, "sweep cancelled", {{"sweep_id", sweep->id}});
       *response->mutable_sweep() = SweepToProto(*sweep);
+      RunsChanged();  // its runs, which their watches follow too
     }
     return sweep.status();
   });
@@ -112,12 +110,13 @@ grpc::ServerUnaryReactor* CoordinatorService::RetrySweep(grpc::CallbackServerCon
                                                          v1::RetrySweepResponse* response) {
   return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     absl::StatusOr<std::pair<coordinator::SweepRecord, int>> retried =
-        runs_.store->RetrySweep(request->sweep_id(), absl::Now());
+        runs_.store->sweeps().RetrySweep(request->sweep_id(), absl::Now());
     if (retried.ok()) {
       Log(LogLevel::kInfo, "sweep retried",
           {{"sweep_id", retried->first.id}, {"runs", std::to_string(retried->second)}});
       *response->mutable_sweep() = SweepToProto(retried->first);
       response->set_retried(retried->second);
+      RunsChanged();  // its runs, which their watches follow too
     }
     return retried.status();
   });
@@ -128,9 +127,9 @@ grpc::ServerUnaryReactor* CoordinatorService::GetSweepResults(
     v1::SweepResults* response) {
   return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord sweep,
-                         runs_.store->GetSweep(request->sweep_id()));
+                         runs_.store->sweeps().GetSweep(request->sweep_id()));
     DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
-                         runs_.store->ListSweepRuns(request->sweep_id()));
+                         runs_.store->sweeps().ListSweepRuns(request->sweep_id()));
     DCS_ASSIGN_OR_RETURN(*response,
                          coordinator::CollectSweepResults(sweep, runs, completed_logs_,
                                                           request->scores_only()));

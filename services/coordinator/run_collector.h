@@ -18,17 +18,17 @@
 
 #include <vector>
 
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 
 namespace dcs::services {
 
 class RunCollector final : public prometheus::Collectable {
  public:
-  explicit RunCollector(coordinator::RunStore& store) : store_(store) {}
+  explicit RunCollector(coordinator::Store& store) : store_(store) {}
   std::vector<prometheus::MetricFamily> Collect() const override;
 
  private:
-  coordinator::RunStore& store_;
+  coordinator::Store& store_;
 };
 
 }  // namespace dcs::services

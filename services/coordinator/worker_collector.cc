@@ -8,7 +8,6 @@
 namespace dcs::services {
 
 std::vector<prometheus::MetricFamily> WorkerCollector::Collect() const {
-  using coordinator::WorkerRole;
   using coordinator::WorkerState;
   prometheus::MetricFamily family{"dcs_workers",
                                   "Workers known to the coordinator, by role and state.",
@@ -18,7 +17,7 @@ std::vector<prometheus::MetricFamily> WorkerCollector::Collect() const {
   for (WorkerRole role : {WorkerRole::kLearner, WorkerRole::kActor}) {
     for (WorkerState state : {WorkerState::kAlive, WorkerState::kLost}) {
       prometheus::ClientMetric metric;
-      metric.label = {{"role", std::string(coordinator::WorkerRoleName(role))},
+      metric.label = {{"role", std::string(WorkerRoleName(role))},
                       {"state", std::string(coordinator::WorkerStateName(state))}};
       for (const coordinator::WorkerRecord& worker : workers) {
         if (worker.info.role == role && worker.state == state) metric.gauge.value += 1;

@@ -14,6 +14,7 @@
 #include "common/status_macros.h"
 #include "common/status_util.h"
 #include "env/env_registry.h"
+#include "run/appended_evaluation_log.h"
 #include "run/run_checkpoint.h"
 #include "run/run_spec_yaml.h"
 #include "services/backoff.h"
@@ -30,10 +31,13 @@
 namespace dcs::services {
 
 struct HostedRuns::Run {
-  coordinator::LeaseKey lease;
+  run::LeaseKey lease;
   std::string config;
   prometheus::Labels metric_labels;  // run_id, sweep_id, condition, observe
   absl::Time renewed_at;                     // the manager thread's
+  // The run's first so many evaluations are in the coordinator's log: those of the checkpoint
+  // the run was loaded from, then of each checkpoint stored. The run's thread's.
+  int64_t evaluations_stored = 0;
 
   absl::Mutex mu;
   std::shared_ptr<learner::RunHost> host ABSL_GUARDED_BY(mu);  // null while loading
@@ -176,7 +180,7 @@ bool HostedRuns::AcquireRun() {
     return false;
   }
   if (!response.has_lease()) return false;
-  absl::StatusOr<coordinator::LeaseKey> lease = LeaseFromProto(response.lease());
+  absl::StatusOr<run::LeaseKey> lease = LeaseFromProto(response.lease());
   if (!lease.ok()) return false;
   auto run = std::make_shared<Run>();
   run->lease = *lease;
@@ -242,25 +246,29 @@ absl::Status HostedRuns::PutCheckpoint(Run& run, const run::Checkpoint& checkpoi
                                        const v1::EvaluationLog& log) {
   const std::vector<v1::CheckpointPiece> pieces =
       CheckpointToPieces(run::PackCheckpoint(checkpoint));
-  const std::string log_bytes = log.SerializeAsString();
+  const std::string log_bytes =
+      run::EvaluationLogSince(log, run.evaluations_stored).SerializeAsString();
   const std::vector<absl::string_view> log_pieces = SplitIntoPieces(log_bytes);
   std::vector<v1::PutCheckpointRequest> requests(std::max(pieces.size(), log_pieces.size()));
   *requests.front().mutable_lease() = LeaseToProto(run.lease);
+  requests.front().set_evaluations_before(run.evaluations_stored);
   for (size_t i = 0; i < pieces.size(); ++i) *requests[i].mutable_checkpoint() = pieces[i];
   for (size_t i = 0; i < log_pieces.size(); ++i) {
     requests[i].set_evaluation_log(log_pieces[i].data(), log_pieces[i].size());
   }
-  return Retry(run, [&] {
+  DCS_RETURN_IF_ERROR(Retry(run, [&] {
     v1::PutCheckpointResponse response;
     return CallClientStream(*coordinator_, &v1::CoordinatorService::Stub::PutCheckpoint, requests,
                             response, options_.transfer_timeout, "coordinator");
-  });
+  }));
+  run.evaluations_stored = log.evaluations_size();
+  return absl::OkStatus();
 }
 
-void HostedRuns::Finish(Run& run, coordinator::RunState state, const std::string& error) {
+void HostedRuns::Finish(Run& run, v1::RunState state, const std::string& error) {
   v1::FinishRunRequest request;
   *request.mutable_lease() = LeaseToProto(run.lease);
-  request.set_state(RunStateToProto(state));
+  request.set_state(state);
   request.set_error(error);
   const absl::Status status = Retry(run, [&] {
     v1::FinishRunResponse response;
@@ -276,6 +284,8 @@ void HostedRuns::Finish(Run& run, coordinator::RunState state, const std::string
 absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Load(Run& run) {
   DCS_ASSIGN_OR_RETURN(run::RunSpec spec, run::ParseRunSpecYaml(run.config, run.lease.run_id));
   DCS_ASSIGN_OR_RETURN(const std::optional<run::Checkpoint> checkpoint, FetchCheckpoint(run));
+  // The coordinator's log holds at least its evaluations (coordinator/run_files.h).
+  if (checkpoint.has_value()) run.evaluations_stored = checkpoint->state.evaluations.size();
   Log(LogLevel::kInfo, "hosting a run",
       {{"run_id", run.lease.run_id}, {"epoch", std::to_string(run.lease.epoch)},
        {"checkpoint", checkpoint.has_value() ? checkpoint->name : "none"}});
@@ -298,7 +308,7 @@ void HostedRuns::Train(Run& run) {
   if (!loaded.ok()) {
     Log(LogLevel::kError, "cannot load a run",
         {{"run_id", run.lease.run_id}, {"error", loaded.status().ToString()}});
-    if (!run.lost) Finish(run, coordinator::RunState::kFailed, loaded.status().ToString());
+    if (!run.lost) Finish(run, v1::RUN_STATE_FAILED, loaded.status().ToString());
     return;
   }
   {
@@ -311,7 +321,7 @@ void HostedRuns::Train(Run& run) {
   if (host.complete()) {
     // Its checkpoint holds its end, final evaluation included (RunHost::Step stores it once
     // every evaluation is in): a learner stopped between storing it and finishing the run.
-    Finish(run, coordinator::RunState::kCompleted, "");
+    Finish(run, v1::RUN_STATE_COMPLETED, "");
     Log(LogLevel::kInfo, "run complete: its checkpoint holds its end",
         {{"run_id", run.lease.run_id}});
     return;
@@ -324,7 +334,7 @@ void HostedRuns::Train(Run& run) {
       if (run.lost || absl::IsCancelled(step.status())) return;
       Log(LogLevel::kError, "a run failed",
           {{"run_id", run.lease.run_id}, {"error", step.status().ToString()}});
-      Finish(run, coordinator::RunState::kFailed, step.status().ToString());
+      Finish(run, v1::RUN_STATE_FAILED, step.status().ToString());
       return;
     }
     const learner::TrainingProgress& progress = step->progress;
@@ -356,12 +366,12 @@ void HostedRuns::Train(Run& run) {
       const absl::Status stored = PutCheckpoint(run, *step->checkpoint, step->evaluation_log);
       if (!stored.ok()) {
         if (run.lost || stopping_.HasBeenNotified()) return;
-        Finish(run, coordinator::RunState::kFailed, stored.ToString());
+        Finish(run, v1::RUN_STATE_FAILED, stored.ToString());
         return;
       }
     }
     if (step->complete) {
-      Finish(run, coordinator::RunState::kCompleted, "");
+      Finish(run, v1::RUN_STATE_COMPLETED, "");
       Log(LogLevel::kInfo, "run complete", {{"run_id", run.lease.run_id}});
       return;
     }

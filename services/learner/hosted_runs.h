@@ -33,7 +33,6 @@
 #include "absl/synchronization/mutex.h"
 #include "absl/synchronization/notification.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "learner/run_host.h"
 #include "run/run_checkpoint.h"
@@ -96,10 +95,12 @@ class HostedRuns {
   absl::Status Retry(Run& run, Attempt attempt);
   // The run's latest checkpoint from the coordinator; nullopt if it has none yet.
   absl::StatusOr<std::optional<run::Checkpoint>> FetchCheckpoint(Run& run);
-  // Sends `checkpoint` with `log` to the coordinator, which stores it before answering.
+  // Sends `checkpoint` with the part of `log`, the run's evaluation log as of it, that the
+  // coordinator has not stored yet; the coordinator stores both before answering.
   absl::Status PutCheckpoint(Run& run, const run::Checkpoint& checkpoint,
                              const v1::EvaluationLog& log);
-  void Finish(Run& run, coordinator::RunState state, const std::string& error);
+  // Tells the coordinator the run ended in `state`: completed, or failed with `error`.
+  void Finish(Run& run, v1::RunState state, const std::string& error);
   // Tells the OnRunChanged listener, if any.
   void Changed(const std::string& run_id);
 

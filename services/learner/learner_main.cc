@@ -10,7 +10,7 @@
 
 #include "absl/strings/string_view.h"
 #include "common/status_macros.h"
-#include "coordinator/worker_registry.h"
+#include "common/worker_info.h"
 #include "learner/torch_runtime.h"
 #include "services/learner/hosted_runs.h"
 #include "services/learner/learner_service.h"
@@ -22,7 +22,7 @@ namespace {
 
 class LearnerRole final : public WorkerServiceRole {
  public:
-  LearnerRole() : WorkerServiceRole(coordinator::WorkerRole::kLearner) {}
+  LearnerRole() : WorkerServiceRole(WorkerRole::kLearner) {}
 
   void AddFlags(CLI::App& app) override {
     WorkerServiceRole::AddFlags(app);

@@ -32,7 +32,7 @@ absl::StatusOr<actor::EvaluationResult> ToResult(const learner::EvaluationTask& 
   }
   actor::EvaluationResult result;
   for (size_t c = 0; c < contexts.size(); ++c) {
-    const coordinator::ContextReturns returns =
+    const run::ContextReturns returns =
         ContextReturnsFromProto(answer.results(static_cast<int>(c)));
     if (static_cast<int>(returns.returns.size()) != task.spec.eval_episodes) {
       return absl::DataLossError(absl::StrCat("the coordinator has ", returns.returns.size(),
@@ -49,7 +49,7 @@ absl::StatusOr<actor::EvaluationResult> ToResult(const learner::EvaluationTask& 
 }  // namespace
 
 learner::Evaluator EvaluateOnActors(std::shared_ptr<v1::CoordinatorService::Stub> coordinator,
-                                    coordinator::LeaseKey lease, RemoteEvaluationOptions options) {
+                                    run::LeaseKey lease, RemoteEvaluationOptions options) {
   return [coordinator = std::move(coordinator), lease = std::move(lease), options](
              const learner::EvaluationTask& task,
              const absl::Notification& stop) -> absl::StatusOr<actor::EvaluationResult> {

@@ -15,9 +15,9 @@
 #include <memory>
 
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "learner/run_host.h"
+#include "run/lease_key.h"
 
 namespace dcs::services {
 
@@ -30,7 +30,7 @@ struct RemoteEvaluationOptions {
 // when the host stops or the lease is lost; DATA_LOSS if the coordinator's results do not
 // match the run's contexts and episodes.
 learner::Evaluator EvaluateOnActors(std::shared_ptr<v1::CoordinatorService::Stub> coordinator,
-                                    coordinator::LeaseKey lease, RemoteEvaluationOptions options);
+                                    run::LeaseKey lease, RemoteEvaluationOptions options);
 
 }  // namespace dcs::services
 

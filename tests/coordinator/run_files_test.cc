@@ -2,10 +2,13 @@
 #include "coordinator/run_files.h"
 
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "run/appended_evaluation_log.h"
+#include "run/evaluation_log.h"
 #include "run/run_checkpoint.h"
 #include "tests/testing/temp_dir.h"
 
@@ -34,7 +37,7 @@ class RunFilesTest : public testing::TempDirTest {};
 TEST_F(RunFilesTest, StoresACheckpointAsDcsTrainLaysItOut) {
   const std::string run_dir = RunDirectory(dir().string(), "run-1");
   EXPECT_EQ(run_dir, (dir() / "runs" / "run-1").string());
-  ASSERT_TRUE(StoreCheckpoint(run_dir, Arriving(256), Log(), 3).ok());
+  ASSERT_TRUE(StoreCheckpoint(run_dir, Arriving(256), 0, Log(), 3).ok());
   absl::StatusOr<run::PackedCheckpoint> latest = LatestCheckpoint(run_dir);
   ASSERT_TRUE(latest.ok()) << latest.status();
   EXPECT_EQ(latest->name, "000000000256");
@@ -50,11 +53,29 @@ TEST_F(RunFilesTest, StoresACheckpointAsDcsTrainLaysItOut) {
                                   Field(&RunFile::path, "evaluations.json")));
 }
 
+TEST_F(RunFilesTest, HandsOutTheAppendedLogAsDcsTrainWritesIt) {
+  const std::string run_dir = RunDirectory(dir().string(), "run-1");
+  v1::EvaluationLog log = Log();
+  log.add_evaluations()->set_step(128);
+  ASSERT_TRUE(StoreCheckpoint(run_dir, Arriving(128), 0, log, 3).ok());
+  log.add_evaluations()->set_step(256);
+  log.set_complete(true);
+  ASSERT_TRUE(StoreCheckpoint(run_dir, Arriving(256), 1, run::EvaluationLogSince(log, 1), 3).ok());
+  absl::StatusOr<std::vector<RunFile>> files = ReadRunFiles(run_dir);
+  ASSERT_TRUE(files.ok()) << files.status();
+  std::map<std::string, std::string> contents;
+  for (const RunFile& file : *files) contents[file.path] = file.contents;
+  EXPECT_FALSE(contents.contains("evaluations.jsonl"));
+  for (const run::EvaluationLogFile& file : run::EvaluationLogFiles(log)) {
+    EXPECT_EQ(contents[file.name], file.contents) << file.name;
+  }
+}
+
 TEST_F(RunFilesTest, RefusesACorruptCheckpointAndStoresNothing) {
   const std::string run_dir = RunDirectory(dir().string(), "run-1");
   run::PackedCheckpoint corrupt = Arriving(256);
   corrupt.learner[0] = 'L';
-  const absl::Status status = StoreCheckpoint(run_dir, corrupt, Log(), 3).status();
+  const absl::Status status = StoreCheckpoint(run_dir, corrupt, 0, Log(), 3).status();
   EXPECT_EQ(status.code(), absl::StatusCode::kDataLoss);
   EXPECT_THAT(status.message(), HasSubstr("learner.bin of checkpoint 000000000256 arrived corrupt"));
   EXPECT_EQ(LatestCheckpoint(run_dir).status().code(), absl::StatusCode::kNotFound);
@@ -63,7 +84,7 @@ TEST_F(RunFilesTest, RefusesACorruptCheckpointAndStoresNothing) {
   for (const char* name : {"../../escape", "latest", "256", "00000000025x"}) {
     run::PackedCheckpoint misnamed = Arriving(256);
     misnamed.name = name;
-    const absl::Status refused = StoreCheckpoint(run_dir, misnamed, Log(), 3).status();
+    const absl::Status refused = StoreCheckpoint(run_dir, misnamed, 0, Log(), 3).status();
     EXPECT_EQ(refused.code(), absl::StatusCode::kInvalidArgument) << name;
     EXPECT_THAT(refused.message(), HasSubstr("is not a checkpoint's name")) << name;
   }

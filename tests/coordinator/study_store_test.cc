@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
 //
-// RunStore's studies (coordinator/study_store.cc) on a real SQLite file.
+// The store's studies (coordinator/study_table.h) on a real SQLite file.
 
 #include <cmath>
 #include <limits>
@@ -14,7 +14,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/testing/temp_dir.h"
@@ -61,39 +61,40 @@ int64_t CountIn(const StudyRecord& study, TrialState wanted) {
 
 class StudyStoreTest : public testing::TempDirTest {
  protected:
-  std::unique_ptr<RunStore> Open(const std::string& file = "coordinator.db") {
-    absl::StatusOr<std::unique_ptr<RunStore>> store =
-        RunStore::Open(Path(file), RunStoreOptions{}, kStart);
+  std::unique_ptr<Store> Open(const std::string& file = "coordinator.db") {
+    absl::StatusOr<std::unique_ptr<Store>> store = Store::Open(Path(file), StoreOptions{}, kStart);
     EXPECT_TRUE(store.ok()) << store.status();
     return std::move(*store);
   }
 };
 
 // Asks `count` trials, telling each x² (x its parameter); returns their values.
-std::vector<run::ParameterValues> AskAndTell(RunStore& store, const std::string& study, int count) {
+std::vector<run::ParameterValues> AskAndTell(Store& store, const std::string& study, int count) {
   std::vector<run::ParameterValues> asked;
   for (int i = 0; i < count; ++i) {
-    absl::StatusOr<StudyTrial> trial = store.AskTrial(study, NextAsk(), kStart);
+    absl::StatusOr<StudyTrial> trial = store.studies().AskTrial(study, NextAsk(), kStart);
     EXPECT_TRUE(trial.ok()) << trial.status();
     asked.push_back(trial->values);
     const double x = trial->values.at("x");
-    EXPECT_TRUE(store.TellTrial(study, trial->number, TrialState::kComplete, x * x, kStart).ok());
+    EXPECT_TRUE(
+        store.studies().TellTrial(study, trial->number, TrialState::kComplete, x * x, kStart).ok());
   }
   return asked;
 }
 
 TEST_F(StudyStoreTest, AskTellAndBestAsOptunas) {
-  std::unique_ptr<RunStore> store = Open();
-  absl::StatusOr<StudyRecord> study = store->CreateStudy(Study("r1"), kStart);
+  std::unique_ptr<Store> store = Open();
+  absl::StatusOr<StudyRecord> study = store->studies().CreateStudy(Study("r1"), kStart);
   ASSERT_TRUE(study.ok()) << study.status();
   EXPECT_EQ(study->id, "study-1");
   EXPECT_FALSE(study->best.has_value());
   AskAndTell(*store, study->id, 12);
 
-  study = store->GetStudy(study->id);
+  study = store->studies().GetStudy(study->id);
   EXPECT_EQ(CountIn(*study, TrialState::kComplete), 12);
   ASSERT_TRUE(study->best.has_value());
-  const absl::StatusOr<std::vector<StudyTrial>> trials = store->ListStudyTrials(study->id);
+  const absl::StatusOr<std::vector<StudyTrial>> trials =
+      store->studies().ListStudyTrials(study->id);
   ASSERT_EQ(trials->size(), 12u);
   for (size_t i = 0; i < trials->size(); ++i) {
     const StudyTrial& trial = (*trials)[i];
@@ -102,8 +103,8 @@ TEST_F(StudyStoreTest, AskTellAndBestAsOptunas) {
     EXPECT_LE(study->best->value, trial.value);
   }
   // A repeated request returns the study it made.
-  EXPECT_EQ(store->CreateStudy(Study("r1"), kStart)->id, "study-1");
-  EXPECT_EQ(store->CreateStudy(Study("r2"), kStart)->id, "study-2");
+  EXPECT_EQ(store->studies().CreateStudy(Study("r1"), kStart)->id, "study-1");
+  EXPECT_EQ(store->studies().CreateStudy(Study("r2"), kStart)->id, "study-2");
 }
 
 // The sampler keeps nothing between trials: a store reopened (a coordinator restarted) asks the
@@ -111,17 +112,17 @@ TEST_F(StudyStoreTest, AskTellAndBestAsOptunas) {
 TEST_F(StudyStoreTest, AReopenedStoreAsksWhatTheFirstWouldHave) {
   std::vector<run::ParameterValues> uninterrupted;
   {
-    std::unique_ptr<RunStore> store = Open();
-    const std::string study = store->CreateStudy(Study("same"), kStart)->id;
+    std::unique_ptr<Store> store = Open();
+    const std::string study = store->studies().CreateStudy(Study("same"), kStart)->id;
     uninterrupted = AskAndTell(*store, study, 15);
   }
   std::vector<run::ParameterValues> reopened;
   {
-    std::unique_ptr<RunStore> store = Open("reopened.db");
-    const std::string study = store->CreateStudy(Study("same"), kStart)->id;
+    std::unique_ptr<Store> store = Open("reopened.db");
+    const std::string study = store->studies().CreateStudy(Study("same"), kStart)->id;
     reopened = AskAndTell(*store, study, 8);
   }
-  std::unique_ptr<RunStore> store = Open("reopened.db");
+  std::unique_ptr<Store> store = Open("reopened.db");
   const std::vector<run::ParameterValues> rest = AskAndTell(*store, "study-1", 7);
   reopened.insert(reopened.end(), rest.begin(), rest.end());
   EXPECT_EQ(reopened, uninterrupted);
@@ -129,123 +130,128 @@ TEST_F(StudyStoreTest, AReopenedStoreAsksWhatTheFirstWouldHave) {
 
 // A retried ask (its response lost) gets the trial the first made, not a second one.
 TEST_F(StudyStoreTest, ARepeatedAskReturnsTheTrialItMade) {
-  std::unique_ptr<RunStore> store = Open();
-  const std::string study = store->CreateStudy(Study("r"), kStart)->id;
-  const absl::StatusOr<StudyTrial> first = store->AskTrial(study, "same", kStart);
-  const absl::StatusOr<StudyTrial> again = store->AskTrial(study, "same", kStart);
+  std::unique_ptr<Store> store = Open();
+  const std::string study = store->studies().CreateStudy(Study("r"), kStart)->id;
+  const absl::StatusOr<StudyTrial> first = store->studies().AskTrial(study, "same", kStart);
+  const absl::StatusOr<StudyTrial> again = store->studies().AskTrial(study, "same", kStart);
   ASSERT_TRUE(first.ok() && again.ok());
   EXPECT_EQ(again->number, first->number);
   EXPECT_EQ(again->values, first->values);
-  EXPECT_EQ(store->ListStudyTrials(study)->size(), 1u);
-  EXPECT_EQ(store->AskTrial(study, "", kStart).status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(store->studies().ListStudyTrials(study)->size(), 1u);
+  EXPECT_EQ(store->studies().AskTrial(study, "", kStart).status().code(),
+            absl::StatusCode::kInvalidArgument);
 }
 
 TEST_F(StudyStoreTest, TellRefusesFinishedTrialsAndFailsNaN) {
-  std::unique_ptr<RunStore> store = Open();
-  const std::string study = store->CreateStudy(Study("r"), kStart)->id;
-  const int64_t first = store->AskTrial(study, NextAsk(), kStart)->number;
-  const int64_t second = store->AskTrial(study, NextAsk(), kStart)->number;
+  std::unique_ptr<Store> store = Open();
+  const std::string study = store->studies().CreateStudy(Study("r"), kStart)->id;
+  const int64_t first = store->studies().AskTrial(study, NextAsk(), kStart)->number;
+  const int64_t second = store->studies().AskTrial(study, NextAsk(), kStart)->number;
   EXPECT_EQ(second, first + 1);
 
-  const absl::StatusOr<StudyTrial> nan = store->TellTrial(
+  const absl::StatusOr<StudyTrial> nan = store->studies().TellTrial(
       study, first, TrialState::kComplete, std::numeric_limits<double>::quiet_NaN(), kStart);
   ASSERT_TRUE(nan.ok()) << nan.status();
   EXPECT_EQ(nan->state, TrialState::kFailed);
 
   const absl::StatusOr<StudyTrial> again =
-      store->TellTrial(study, first, TrialState::kComplete, 1.0, kStart);
+      store->studies().TellTrial(study, first, TrialState::kComplete, 1.0, kStart);
   EXPECT_EQ(again.status().code(), absl::StatusCode::kFailedPrecondition);
   EXPECT_THAT(again.status().message(), HasSubstr("it is failed"));
   // The same tell again (a retry) is answered as the first was.
-  const absl::StatusOr<StudyTrial> retried = store->TellTrial(
+  const absl::StatusOr<StudyTrial> retried = store->studies().TellTrial(
       study, first, TrialState::kComplete, std::numeric_limits<double>::quiet_NaN(), kStart);
   ASSERT_TRUE(retried.ok()) << retried.status();
   EXPECT_EQ(retried->state, TrialState::kFailed);
-  EXPECT_EQ(store->TellTrial(study, 99, TrialState::kComplete, 1.0, kStart).status().code(),
-            absl::StatusCode::kNotFound);
-  EXPECT_EQ(store->TellTrial(study, second, TrialState::kRunning, 1.0, kStart).status().code(),
-            absl::StatusCode::kInvalidArgument);
-  EXPECT_EQ(store->AskTrial("study-7", NextAsk(), kStart).status().code(),
+  EXPECT_EQ(
+      store->studies().TellTrial(study, 99, TrialState::kComplete, 1.0, kStart).status().code(),
+      absl::StatusCode::kNotFound);
+  EXPECT_EQ(
+      store->studies().TellTrial(study, second, TrialState::kRunning, 1.0, kStart).status().code(),
+      absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(store->studies().AskTrial("study-7", NextAsk(), kStart).status().code(),
             absl::StatusCode::kNotFound);
 
   const double inf = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(store->TellTrial(study, second, TrialState::kComplete, inf, kStart)->value, inf);
-  EXPECT_EQ(store->GetStudy(study)->best->value, inf);  // ±inf is a value
+  EXPECT_EQ(store->studies().TellTrial(study, second, TrialState::kComplete, inf, kStart)->value,
+            inf);
+  EXPECT_EQ(store->studies().GetStudy(study)->best->value, inf);  // ±inf is a value
 }
 
 TEST_F(StudyStoreTest, PrunedTrialsKeepTheirReportsAndLastValue) {
-  std::unique_ptr<RunStore> store = Open();
-  const std::string study = store->CreateStudy(Study("r"), kStart)->id;
-  const int64_t trial = store->AskTrial(study, NextAsk(), kStart)->number;
-  ASSERT_TRUE(store->ReportTrial(study, trial, 1, 5.0).ok());
-  ASSERT_TRUE(store->ReportTrial(study, trial, 3, 4.0).ok());
-  ASSERT_TRUE(store->ReportTrial(study, trial, 3, 9.0).ok());  // a repeated step keeps the first
+  std::unique_ptr<Store> store = Open();
+  const std::string study = store->studies().CreateStudy(Study("r"), kStart)->id;
+  const int64_t trial = store->studies().AskTrial(study, NextAsk(), kStart)->number;
+  ASSERT_TRUE(store->studies().ReportTrial(study, trial, 1, 5.0).ok());
+  ASSERT_TRUE(store->studies().ReportTrial(study, trial, 3, 4.0).ok());
+  ASSERT_TRUE(
+      store->studies().ReportTrial(study, trial, 3, 9.0).ok());  // a repeated step keeps the first
   const absl::StatusOr<StudyTrial> pruned =
-      store->TellTrial(study, trial, TrialState::kPruned, 0.0, kStart);
+      store->studies().TellTrial(study, trial, TrialState::kPruned, 0.0, kStart);
   ASSERT_TRUE(pruned.ok()) << pruned.status();
   EXPECT_EQ(pruned->value, 4.0);
   EXPECT_THAT(pruned->reported, ElementsAre(Pair(1, 5.0), Pair(3, 4.0)));
-  EXPECT_EQ(store->ReportTrial(study, trial, 4, 1.0).status().code(),
+  EXPECT_EQ(store->studies().ReportTrial(study, trial, 4, 1.0).status().code(),
             absl::StatusCode::kFailedPrecondition);
-  EXPECT_THAT((*store->ListStudyTrials(study))[0].reported,
+  EXPECT_THAT((*store->studies().ListStudyTrials(study))[0].reported,
               ElementsAre(Pair(1, 5.0), Pair(3, 4.0)));
 }
 
 // A study with the median pruner: once enough trials completed, a trial whose report is worse
 // than theirs at the same step is to be stopped; without a pruner none is.
 TEST_F(StudyStoreTest, TheStudysPrunerAnswersEachReport) {
-  std::unique_ptr<RunStore> store = Open();
+  std::unique_ptr<Store> store = Open();
   StudySubmission with_pruner = Study("pruned");
   with_pruner.pruner = {.kind = PrunerKind::kMedian, .median = {.startup_trials = 2}};
-  const std::string study = store->CreateStudy(with_pruner, kStart)->id;
-  const std::string plain = store->CreateStudy(Study("plain"), kStart)->id;
+  const std::string study = store->studies().CreateStudy(with_pruner, kStart)->id;
+  const std::string plain = store->studies().CreateStudy(Study("plain"), kStart)->id;
   for (const std::string& id : {study, plain}) {
     for (const double value : {1.0, 2.0, 3.0}) {
-      const int64_t trial = store->AskTrial(id, NextAsk(), kStart)->number;
-      ASSERT_TRUE(store->ReportTrial(id, trial, 10, value).ok());
-      ASSERT_TRUE(store->TellTrial(id, trial, TrialState::kComplete, value, kStart).ok());
+      const int64_t trial = store->studies().AskTrial(id, NextAsk(), kStart)->number;
+      ASSERT_TRUE(store->studies().ReportTrial(id, trial, 10, value).ok());
+      ASSERT_TRUE(store->studies().TellTrial(id, trial, TrialState::kComplete, value, kStart).ok());
     }
   }
-  EXPECT_EQ(store->GetStudy(study)->submission.pruner.kind, PrunerKind::kMedian);
-  const int64_t poor = store->AskTrial(study, NextAsk(), kStart)->number;
-  EXPECT_TRUE(*store->ReportTrial(study, poor, 10, 2.5));  // worse than the median, 2
-  const int64_t good = store->AskTrial(study, NextAsk(), kStart)->number;
-  EXPECT_FALSE(*store->ReportTrial(study, good, 10, 1.5));
-  const int64_t unpruned = store->AskTrial(plain, NextAsk(), kStart)->number;
-  EXPECT_FALSE(*store->ReportTrial(plain, unpruned, 10, 9.0));
+  EXPECT_EQ(store->studies().GetStudy(study)->submission.pruner.kind, PrunerKind::kMedian);
+  const int64_t poor = store->studies().AskTrial(study, NextAsk(), kStart)->number;
+  EXPECT_TRUE(*store->studies().ReportTrial(study, poor, 10, 2.5));  // worse than the median, 2
+  const int64_t good = store->studies().AskTrial(study, NextAsk(), kStart)->number;
+  EXPECT_FALSE(*store->studies().ReportTrial(study, good, 10, 1.5));
+  const int64_t unpruned = store->studies().AskTrial(plain, NextAsk(), kStart)->number;
+  EXPECT_FALSE(*store->studies().ReportTrial(plain, unpruned, 10, 9.0));
 }
 
 // Successive halving keeps each trial's rungs in the store: the second trial to reach rung 0
 // with a worse value is stopped.
 TEST_F(StudyStoreTest, SuccessiveHalvingRemembersTheRungs) {
-  std::unique_ptr<RunStore> store = Open();
+  std::unique_ptr<Store> store = Open();
   StudySubmission halving = Study("halving");
   halving.pruner = {.kind = PrunerKind::kSuccessiveHalving,
                     .halving = {.min_resource = 1, .reduction_factor = 2}};
-  const std::string study = store->CreateStudy(halving, kStart)->id;
-  const int64_t first = store->AskTrial(study, NextAsk(), kStart)->number;
-  EXPECT_FALSE(*store->ReportTrial(study, first, 1, 1.0));
-  const int64_t second = store->AskTrial(study, NextAsk(), kStart)->number;
-  EXPECT_TRUE(*store->ReportTrial(study, second, 1, 2.0));
+  const std::string study = store->studies().CreateStudy(halving, kStart)->id;
+  const int64_t first = store->studies().AskTrial(study, NextAsk(), kStart)->number;
+  EXPECT_FALSE(*store->studies().ReportTrial(study, first, 1, 1.0));
+  const int64_t second = store->studies().AskTrial(study, NextAsk(), kStart)->number;
+  EXPECT_TRUE(*store->studies().ReportTrial(study, second, 1, 2.0));
 }
 
 TEST_F(StudyStoreTest, BadStudiesAreRefusedAndStoreNothing) {
-  std::unique_ptr<RunStore> store = Open();
+  std::unique_ptr<Store> store = Open();
   StudySubmission bad_space = Study("a");
   bad_space.space = "parameters: [{name: x, type: float, low: 2, high: 1}]";
-  EXPECT_THAT(store->CreateStudy(bad_space, kStart).status().message(),
+  EXPECT_THAT(store->studies().CreateStudy(bad_space, kStart).status().message(),
               HasSubstr("parameter 'x': low 2 is above high 1"));
   StudySubmission bad_group = Study("b");
   bad_group.tpe.group = true;
-  EXPECT_EQ(store->CreateStudy(bad_group, kStart).status().code(),
+  EXPECT_EQ(store->studies().CreateStudy(bad_group, kStart).status().code(),
             absl::StatusCode::kInvalidArgument);
   StudySubmission bad_pruner = Study("c");
   bad_pruner.pruner = {.kind = PrunerKind::kSuccessiveHalving, .halving = {.reduction_factor = 1}};
-  EXPECT_THAT(store->CreateStudy(bad_pruner, kStart).status().message(),
+  EXPECT_THAT(store->studies().CreateStudy(bad_pruner, kStart).status().message(),
               HasSubstr("reduction_factor >= 2"));
-  EXPECT_EQ(store->CreateStudy(Study(""), kStart).status().code(),
+  EXPECT_EQ(store->studies().CreateStudy(Study(""), kStart).status().code(),
             absl::StatusCode::kInvalidArgument);
-  EXPECT_TRUE(store->ListStudies()->empty());
+  EXPECT_TRUE(store->studies().ListStudies()->empty());
 }
 
 // Issue 14 (found by tests/fuzz/run_store_fuzzer): a study row damaged in the file (a space that
@@ -259,8 +265,8 @@ class DamagedStudyTest : public StudyStoreTest {
   std::vector<absl::Status> ReadAfter(const std::string& sql) {
     const std::string file = absl::StrCat("damaged-", ++stores_, ".db");
     {
-      std::unique_ptr<RunStore> store = Open(file);
-      const std::string study = store->CreateStudy(Study("r"), kStart)->id;
+      std::unique_ptr<Store> store = Open(file);
+      const std::string study = store->studies().CreateStudy(Study("r"), kStart)->id;
       AskAndTell(*store, study, 1);
     }
     {
@@ -268,9 +274,9 @@ class DamagedStudyTest : public StudyStoreTest {
       db.exec("PRAGMA ignore_check_constraints = ON");
       db.exec(sql);
     }
-    std::unique_ptr<RunStore> store = Open(file);
-    return {store->GetStudy("study-1").status(), store->ListStudies().status(),
-            store->ListStudyTrials("study-1").status()};
+    std::unique_ptr<Store> store = Open(file);
+    return {store->studies().GetStudy("study-1").status(), store->studies().ListStudies().status(),
+            store->studies().ListStudyTrials("study-1").status()};
   }
 
  private:

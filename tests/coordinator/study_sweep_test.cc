@@ -14,7 +14,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/time/time.h"
 #include "coordinator/run_files.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/study_sweep_spec.h"
 #include "coordinator/sweep_submission.h"
 #include "gmock/gmock.h"
@@ -61,8 +61,7 @@ class StudySweepTest : public testing::TempDirTest {
  protected:
   void SetUp() override {
     testing::TempDirTest::SetUp();
-    absl::StatusOr<std::unique_ptr<RunStore>> store =
-        RunStore::Open(Path("coordinator.db"), {}, kNow);
+    absl::StatusOr<std::unique_ptr<Store>> store = Store::Open(Path("coordinator.db"), {}, kNow);
     ASSERT_TRUE(store.ok()) << store.status();
     store_ = *std::move(store);
     logs_ = std::make_unique<CompletedRunLogs>(Path("data"));
@@ -71,7 +70,7 @@ class StudySweepTest : public testing::TempDirTest {
   SweepRecord Submit(const std::string& spec_text) {
     absl::StatusOr<ExpandedSweep> expanded = ExpandSweep(spec_text, "search.yaml", "", "req");
     EXPECT_TRUE(expanded.ok()) << expanded.status();
-    absl::StatusOr<SweepRecord> sweep = store_->SubmitSweep(expanded->submission, kNow);
+    absl::StatusOr<SweepRecord> sweep = store_->sweeps().SubmitSweep(expanded->submission, kNow);
     EXPECT_TRUE(sweep.ok()) << sweep.status();
     absl::StatusOr<StudySweepSpec> spec = ParseStudySweepYaml(spec_text, "search.yaml");
     EXPECT_TRUE(spec.ok()) << spec.status();
@@ -80,7 +79,7 @@ class StudySweepTest : public testing::TempDirTest {
   }
 
   StudySweepStep Advance(const std::string& sweep_id) {
-    absl::StatusOr<SweepRecord> sweep = store_->GetSweep(sweep_id);
+    absl::StatusOr<SweepRecord> sweep = store_->sweeps().GetSweep(sweep_id);
     EXPECT_TRUE(sweep.ok()) << sweep.status();
     absl::StatusOr<StudySweepStep> step =
         AdvanceStudySweep(*store_, Path("data"), *logs_, *sweep, spec_, kNow);
@@ -91,7 +90,7 @@ class StudySweepTest : public testing::TempDirTest {
   // A learner takes a queued run.
   LeaseKey Lease() {
     absl::StatusOr<std::optional<LearnerLease>> lease =
-        store_->AcquireRun("learner", "127.0.0.1:1", "numerics", kNow);
+        store_->runs().AcquireRun("learner", "127.0.0.1:1", "numerics", kNow);
     EXPECT_TRUE(lease.ok() && lease->has_value()) << lease.status();
     return lease.ok() && lease->has_value() ? (*lease)->key : LeaseKey{};
   }
@@ -114,9 +113,9 @@ class StudySweepTest : public testing::TempDirTest {
     const RunProgress progress{.timesteps = scores.rbegin()->first,
                                .avg_combined = log.last(),
                                .evaluation_step = scores.rbegin()->first};
-    EXPECT_TRUE(store_->ReportProgress(key, progress, kNow).ok());
+    EXPECT_TRUE(store_->runs().ReportProgress(key, progress, kNow).ok());
     if (finish) {
-      EXPECT_TRUE(store_->FinishRun(key, RunState::kCompleted, "", kNow).ok());
+      EXPECT_TRUE(store_->runs().FinishRun(key, RunState::kCompleted, "", kNow).ok());
     }
   }
 
@@ -128,12 +127,13 @@ class StudySweepTest : public testing::TempDirTest {
   }
 
   std::vector<StudyTrial> Trials(const SweepRecord& sweep) {
-    absl::StatusOr<std::vector<StudyTrial>> trials = store_->ListStudyTrials(sweep.study_id);
+    absl::StatusOr<std::vector<StudyTrial>> trials =
+        store_->studies().ListStudyTrials(sweep.study_id);
     EXPECT_TRUE(trials.ok()) << trials.status();
     return trials.value_or(std::vector<StudyTrial>{});
   }
 
-  std::unique_ptr<RunStore> store_;
+  std::unique_ptr<Store> store_;
   std::unique_ptr<CompletedRunLogs> logs_;
   StudySweepSpec spec_;
 };
@@ -147,14 +147,14 @@ TEST_F(StudySweepTest, AsksTrainsTellsAndRetrainsTheBest) {
   // Two trials in parallel, each with both seeds; a second step asks nothing more.
   EXPECT_EQ(Advance(submitted.id).asked, 2);
   EXPECT_EQ(Advance(submitted.id).asked, 0);
-  absl::StatusOr<SweepRecord> sweep = store_->GetSweep(submitted.id);
+  absl::StatusOr<SweepRecord> sweep = store_->sweeps().GetSweep(submitted.id);
   ASSERT_TRUE(sweep.ok());
   ASSERT_EQ(sweep->trials.size(), 2u);
   EXPECT_EQ(sweep->trials[0].condition, "T000");
   EXPECT_EQ(sweep->trials[1].study_trial, 1);
   EXPECT_EQ(sweep->trials[0].family, "multi_stage");
   EXPECT_EQ(sweep->trials[0].observe, "live");
-  absl::StatusOr<std::vector<RunRecord>> runs = store_->ListSweepRuns(submitted.id);
+  absl::StatusOr<std::vector<RunRecord>> runs = store_->sweeps().ListSweepRuns(submitted.id);
   ASSERT_TRUE(runs.ok());
   ASSERT_EQ(runs->size(), 4u);
   EXPECT_EQ((*runs)[0].submission.seed, 0u);
@@ -190,14 +190,14 @@ TEST_F(StudySweepTest, AsksTrainsTellsAndRetrainsTheBest) {
 
   // The search ended: the two best (trials 4 and 1) retrain with 3 new seeds, and the sweep
   // closes.
-  sweep = store_->GetSweep(submitted.id);
+  sweep = store_->sweeps().GetSweep(submitted.id);
   ASSERT_TRUE(sweep.ok());
   EXPECT_FALSE(sweep->open);
   ASSERT_EQ(sweep->trials.size(), 7u);
   EXPECT_EQ(sweep->trials[5].condition, "T004 retrain");
   EXPECT_TRUE(sweep->trials[5].retrain);
   EXPECT_EQ(sweep->trials[6].condition, "T001 retrain");
-  runs = store_->ListSweepRuns(submitted.id);
+  runs = store_->sweeps().ListSweepRuns(submitted.id);
   ASSERT_TRUE(runs.ok());
   ASSERT_EQ(runs->size(), 16u);
   std::vector<uint64_t> retrain_seeds;
@@ -211,24 +211,24 @@ TEST_F(StudySweepTest, AsksTrainsTellsAndRetrainsTheBest) {
 TEST_F(StudySweepTest, AStepCutShortIsFinishedByTheNext) {
   const SweepRecord sweep = Submit(kSpec);
   // A step asked for trial 0 and stopped before queueing its runs.
-  ASSERT_TRUE(store_->AskTrial(sweep.study_id, "req/ask/0", kNow).ok());
+  ASSERT_TRUE(store_->studies().AskTrial(sweep.study_id, "req/ask/0", kNow).ok());
   const StudySweepStep step = Advance(sweep.id);
   EXPECT_EQ(step.asked, 1);  // trial 1 only: trial 0 is queued, not asked again
   std::vector<StudyTrial> trials = Trials(sweep);
   EXPECT_EQ(trials.size(), 2u);
-  absl::StatusOr<SweepRecord> stepped = store_->GetSweep(sweep.id);
+  absl::StatusOr<SweepRecord> stepped = store_->sweeps().GetSweep(sweep.id);
   ASSERT_TRUE(stepped.ok());
   ASSERT_EQ(stepped->trials.size(), 2u);
   EXPECT_EQ(stepped->trials[0].study_trial, 0);
 
   // Queueing a trial again adds nothing.
-  absl::StatusOr<std::vector<RunRecord>> before = store_->ListSweepRuns(sweep.id);
+  absl::StatusOr<std::vector<RunRecord>> before = store_->sweeps().ListSweepRuns(sweep.id);
   ASSERT_TRUE(before.ok());
-  absl::StatusOr<std::vector<RunRecord>> again =
-      store_->AddSweepTrial(sweep.id, stepped->trials[0], {before->front().submission}, kNow);
+  absl::StatusOr<std::vector<RunRecord>> again = store_->sweeps().AddSweepTrial(
+      sweep.id, stepped->trials[0], {before->front().submission}, kNow);
   ASSERT_TRUE(again.ok()) << again.status();
   EXPECT_EQ(again->size(), 2u);
-  absl::StatusOr<std::vector<RunRecord>> after = store_->ListSweepRuns(sweep.id);
+  absl::StatusOr<std::vector<RunRecord>> after = store_->sweeps().ListSweepRuns(sweep.id);
   ASSERT_TRUE(after.ok());
   EXPECT_EQ(after->size(), before->size());
 }
@@ -237,7 +237,7 @@ TEST_F(StudySweepTest, AFailedRunFailsItsTrial) {
   const SweepRecord sweep = Submit(kSpec);
   Advance(sweep.id);
   Train({{2000, 10}}, true);
-  ASSERT_TRUE(store_->FinishRun(Lease(), RunState::kFailed, "NaN loss", kNow).ok());
+  ASSERT_TRUE(store_->runs().FinishRun(Lease(), RunState::kFailed, "NaN loss", kNow).ok());
   EXPECT_EQ(Advance(sweep.id).told, 1);
   EXPECT_EQ(Trials(sweep)[0].state, TrialState::kFailed);
 }
@@ -245,15 +245,15 @@ TEST_F(StudySweepTest, AFailedRunFailsItsTrial) {
 TEST_F(StudySweepTest, CancellingTheSweepFailsItsRunningTrialsAndClosesIt) {
   const SweepRecord sweep = Submit(kSpec);
   Advance(sweep.id);
-  absl::StatusOr<SweepRecord> cancelled = store_->CancelSweep(sweep.id, kNow);
+  absl::StatusOr<SweepRecord> cancelled = store_->sweeps().CancelSweep(sweep.id, kNow);
   ASSERT_TRUE(cancelled.ok()) << cancelled.status();
   EXPECT_FALSE(cancelled->open);
   EXPECT_EQ(cancelled->state, SweepState::kCancelled);
   for (const StudyTrial& trial : Trials(sweep)) EXPECT_EQ(trial.state, TrialState::kFailed);
-  absl::StatusOr<std::vector<SweepRecord>> open = store_->ListOpenSweeps();
+  absl::StatusOr<std::vector<SweepRecord>> open = store_->sweeps().ListOpenSweeps();
   ASSERT_TRUE(open.ok());
   EXPECT_TRUE(open->empty());
-  EXPECT_EQ(store_->RetrySweep(sweep.id, kNow).status().code(),
+  EXPECT_EQ(store_->sweeps().RetrySweep(sweep.id, kNow).status().code(),
             absl::StatusCode::kFailedPrecondition);
 
   // A step that read the sweep before the cancel asks for a trial it cannot queue: it fails too,
@@ -289,7 +289,7 @@ TEST_F(StudySweepTest, TheMedianPrunerStopsATrialBehindAtAStageBoundary) {
   const std::vector<StudyTrial> trials = Trials(sweep);
   EXPECT_EQ(trials[1].state, TrialState::kPruned);
   EXPECT_THAT(trials[1].reported, ElementsAre(std::pair<const int64_t, double>(1000, 10)));
-  absl::StatusOr<std::vector<RunRecord>> runs = store_->ListSweepRuns(sweep.id);
+  absl::StatusOr<std::vector<RunRecord>> runs = store_->sweeps().ListSweepRuns(sweep.id);
   ASSERT_TRUE(runs.ok());
   EXPECT_EQ((*runs)[2].state, RunState::kCancelled);
   EXPECT_EQ((*runs)[3].state, RunState::kCancelled);

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "coordinator/run_files.h"
-#include "coordinator/sweep_report.h"
+#include "report/sweep_report.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "run/evaluation_log.h"
@@ -142,12 +142,14 @@ TEST(KeepScoresOnlyTest, AReportOfCutLogsIsTheReportOfWholeOnes) {
   for (v1::TrialResults& trial : *cut.mutable_trials()) {
     for (v1::EvaluationLog& log : *trial.mutable_runs()) KeepScoresOnly(log);
   }
-  for (ReportCheckpoint checkpoint : {ReportCheckpoint::kLast, ReportCheckpoint::kBest}) {
-    for (ReportSplit split :
-         {ReportSplit::kCombined, ReportSplit::kId, ReportSplit::kOodLow, ReportSplit::kOodHigh}) {
-      ReportOptions options{.checkpoint = checkpoint, .split = split, .bootstrap_resamples = 50};
-      absl::StatusOr<v1::SweepReport> from_whole = BuildSweepReport(whole, options);
-      absl::StatusOr<v1::SweepReport> from_cut = BuildSweepReport(cut, options);
+  for (report::ReportCheckpoint checkpoint :
+       {report::ReportCheckpoint::kLast, report::ReportCheckpoint::kBest}) {
+    for (report::ReportSplit split : {report::ReportSplit::kCombined, report::ReportSplit::kId,
+                                      report::ReportSplit::kOodLow, report::ReportSplit::kOodHigh}) {
+      report::ReportOptions options{
+          .checkpoint = checkpoint, .split = split, .bootstrap_resamples = 50};
+      absl::StatusOr<v1::SweepReport> from_whole = report::BuildSweepReport(whole, options);
+      absl::StatusOr<v1::SweepReport> from_cut = report::BuildSweepReport(cut, options);
       ASSERT_TRUE(from_whole.ok()) << from_whole.status();
       ASSERT_TRUE(from_cut.ok()) << from_cut.status();
       EXPECT_EQ(from_cut->SerializeAsString(), from_whole->SerializeAsString());

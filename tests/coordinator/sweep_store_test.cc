@@ -1,7 +1,7 @@
 // Copyright 2026 The DCS Authors.
 //
-// RunStore's sweeps (coordinator/sweep_store.cc) on a real SQLite file, and backups of a store
-// holding them (RunStore::Backup).
+// The store's sweeps (coordinator/sweep_table.h) on a real SQLite file, and backups of a store
+// holding them (Store::Backup).
 
 #include <sys/mount.h>
 #include <sys/stat.h>
@@ -20,7 +20,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/time/time.h"
 #include "coordinator/run_state.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/testing/temp_dir.h"
@@ -65,17 +65,17 @@ int64_t CountIn(const SweepRecord& sweep, RunState wanted) {
 
 class SweepStoreTest : public testing::TempDirTest {
  protected:
-  std::unique_ptr<RunStore> Open() {
-    absl::StatusOr<std::unique_ptr<RunStore>> store =
-        RunStore::Open(Path("coordinator.db"), {.lease_duration = absl::Seconds(10)}, kStart);
+  std::unique_ptr<Store> Open() {
+    absl::StatusOr<std::unique_ptr<Store>> store =
+        Store::Open(Path("coordinator.db"), {.lease_duration = absl::Seconds(10)}, kStart);
     EXPECT_TRUE(store.ok()) << store.status();
     return store.ok() ? *std::move(store) : nullptr;
   }
 
   // Leases the next run to a learner and returns its id.
-  static std::string Acquire(RunStore& store) {
+  static std::string Acquire(Store& store) {
     absl::StatusOr<std::optional<LearnerLease>> lease =
-        store.AcquireRun("L", "127.0.0.1:5000", "N", kStart);
+        store.runs().AcquireRun("L", "127.0.0.1:5000", "N", kStart);
     EXPECT_TRUE(lease.ok() && lease->has_value()) << lease.status();
     return lease.ok() && lease->has_value() ? (*lease)->run.id : "";
   }
@@ -83,8 +83,8 @@ class SweepStoreTest : public testing::TempDirTest {
 
 TEST_F(SweepStoreTest, ASweepQueuesARunPerTrialAndSeedAndSurvivesReopening) {
   {
-    std::unique_ptr<RunStore> store = Open();
-    absl::StatusOr<SweepRecord> sweep = store->SubmitSweep(Sweep("s", 3, 2), kStart);
+    std::unique_ptr<Store> store = Open();
+    absl::StatusOr<SweepRecord> sweep = store->sweeps().SubmitSweep(Sweep("s", 3, 2), kStart);
     ASSERT_TRUE(sweep.ok()) << sweep.status();
     EXPECT_EQ(sweep->id, "sweep-1");
     EXPECT_EQ(sweep->state, SweepState::kQueued);
@@ -92,49 +92,50 @@ TEST_F(SweepStoreTest, ASweepQueuesARunPerTrialAndSeedAndSurvivesReopening) {
     ASSERT_EQ(sweep->trials.size(), 3u);
     EXPECT_EQ(sweep->trials[1].condition, "condition-1");
     // The same request again creates nothing.
-    absl::StatusOr<SweepRecord> again = store->SubmitSweep(Sweep("s", 3, 2), kStart);
+    absl::StatusOr<SweepRecord> again = store->sweeps().SubmitSweep(Sweep("s", 3, 2), kStart);
     ASSERT_TRUE(again.ok());
     EXPECT_EQ(again->id, "sweep-1");
   }
-  std::unique_ptr<RunStore> store = Open();
-  absl::StatusOr<std::vector<RunRecord>> runs = store->ListSweepRuns("sweep-1");
+  std::unique_ptr<Store> store = Open();
+  absl::StatusOr<std::vector<RunRecord>> runs = store->sweeps().ListSweepRuns("sweep-1");
   ASSERT_TRUE(runs.ok()) << runs.status();
   ASSERT_EQ(runs->size(), 6u);
   EXPECT_EQ((*runs)[4].sweep_id, "sweep-1");
   EXPECT_EQ((*runs)[4].trial, 1);
   EXPECT_EQ((*runs)[4].submission.seed, 1u);
-  absl::StatusOr<std::vector<SweepRecord>> sweeps = store->ListSweeps();
+  absl::StatusOr<std::vector<SweepRecord>> sweeps = store->sweeps().ListSweeps();
   ASSERT_TRUE(sweeps.ok());
   EXPECT_EQ(sweeps->size(), 1u);
   // A run submitted alone belongs to no sweep.
-  absl::StatusOr<RunRecord> alone =
-      store->SubmitRun({.request_id = "alone", .config = "env: cartpole\n", .n_envs = 1}, kStart);
+  absl::StatusOr<RunRecord> alone = store->runs().SubmitRun(
+      {.request_id = "alone", .config = "env: cartpole\n", .n_envs = 1}, kStart);
   ASSERT_TRUE(alone.ok());
   EXPECT_EQ(alone->sweep_id, "");
   EXPECT_EQ(alone->trial, std::nullopt);
 }
 
 TEST_F(SweepStoreTest, ABadRunLeavesNothingOfTheSweep) {
-  std::unique_ptr<RunStore> store = Open();
+  std::unique_ptr<Store> store = Open();
   SweepSubmission sweep = Sweep("s", 2, 2);
   sweep.runs.back().trial = 2;
-  EXPECT_THAT(store->SubmitSweep(sweep, kStart).status().message(), HasSubstr("names trial 2"));
+  EXPECT_THAT(store->sweeps().SubmitSweep(sweep, kStart).status().message(),
+              HasSubstr("names trial 2"));
   sweep = Sweep("s", 2, 2);
   sweep.runs[1].run.request_id = sweep.runs[0].run.request_id;  // the runs table refuses it
-  EXPECT_FALSE(store->SubmitSweep(sweep, kStart).ok());
-  absl::StatusOr<std::vector<SweepRecord>> sweeps = store->ListSweeps();
-  absl::StatusOr<std::vector<RunRecord>> runs = store->ListRuns();
+  EXPECT_FALSE(store->sweeps().SubmitSweep(sweep, kStart).ok());
+  absl::StatusOr<std::vector<SweepRecord>> sweeps = store->sweeps().ListSweeps();
+  absl::StatusOr<std::vector<RunRecord>> runs = store->runs().ListRuns();
   ASSERT_TRUE(sweeps.ok() && runs.ok());
   EXPECT_TRUE(sweeps->empty());
   EXPECT_TRUE(runs->empty());
 }
 
 TEST_F(SweepStoreTest, ASmallSweepSubmittedAfterABigOneIsNotStarved) {
-  std::unique_ptr<RunStore> store = Open();
-  ASSERT_TRUE(store->SubmitSweep(Sweep("big", 10, 10), kStart).ok());
+  std::unique_ptr<Store> store = Open();
+  ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("big", 10, 10), kStart).ok());
   EXPECT_EQ(Acquire(*store), "run-1");
   EXPECT_EQ(Acquire(*store), "run-2");
-  ASSERT_TRUE(store->SubmitSweep(Sweep("small", 1, 2), kStart).ok());  // runs 101 and 102
+  ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("small", 1, 2), kStart).ok());  // runs 101 and 102
   // The small sweep has no running run: its run goes first, then the two sweeps take turns.
   EXPECT_EQ(Acquire(*store), "run-101");
   EXPECT_EQ(Acquire(*store), "run-102");
@@ -142,49 +143,54 @@ TEST_F(SweepStoreTest, ASmallSweepSubmittedAfterABigOneIsNotStarved) {
 }
 
 TEST_F(SweepStoreTest, CancellingStopsEveryActiveRunAndRetryRequeuesOnlyFailedOnes) {
-  std::unique_ptr<RunStore> store = Open();
-  ASSERT_TRUE(store->SubmitSweep(Sweep("s", 2, 2), kStart).ok());
+  std::unique_ptr<Store> store = Open();
+  ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("s", 2, 2), kStart).ok());
   // run-1 fails, run-2 completes; run-3 and run-4 stay queued.
-  absl::StatusOr<std::optional<LearnerLease>> first = store->AcquireRun("L", "a", "N", kStart);
-  absl::StatusOr<std::optional<LearnerLease>> second = store->AcquireRun("L", "a", "N", kStart);
+  absl::StatusOr<std::optional<LearnerLease>> first =
+      store->runs().AcquireRun("L", "a", "N", kStart);
+  absl::StatusOr<std::optional<LearnerLease>> second =
+      store->runs().AcquireRun("L", "a", "N", kStart);
   ASSERT_TRUE(first.ok() && first->has_value() && second.ok() && second->has_value());
-  ASSERT_TRUE(store->FinishRun((*first)->key, RunState::kFailed, "boom", kStart).ok());
-  ASSERT_TRUE(store->FinishRun((*second)->key, RunState::kCompleted, "", kStart).ok());
-  absl::StatusOr<SweepRecord> sweep = store->GetSweep("sweep-1");
+  ASSERT_TRUE(store->runs().FinishRun((*first)->key, RunState::kFailed, "boom", kStart).ok());
+  ASSERT_TRUE(store->runs().FinishRun((*second)->key, RunState::kCompleted, "", kStart).ok());
+  absl::StatusOr<SweepRecord> sweep = store->sweeps().GetSweep("sweep-1");
   ASSERT_TRUE(sweep.ok());
   EXPECT_EQ(sweep->state, SweepState::kRunning);
 
-  absl::StatusOr<SweepRecord> cancelled = store->CancelSweep("sweep-1", kStart);
+  absl::StatusOr<SweepRecord> cancelled = store->sweeps().CancelSweep("sweep-1", kStart);
   ASSERT_TRUE(cancelled.ok()) << cancelled.status();
   EXPECT_EQ(cancelled->state, SweepState::kCancelled);
   EXPECT_EQ(CountIn(*cancelled, RunState::kCancelled), 2);
-  EXPECT_EQ(store->CancelSweep("sweep-1", kStart).status().code(),
+  EXPECT_EQ(store->sweeps().CancelSweep("sweep-1", kStart).status().code(),
             absl::StatusCode::kFailedPrecondition);
 
-  absl::StatusOr<std::pair<SweepRecord, int>> retried = store->RetrySweep("sweep-1", kStart);
+  absl::StatusOr<std::pair<SweepRecord, int>> retried =
+      store->sweeps().RetrySweep("sweep-1", kStart);
   ASSERT_TRUE(retried.ok()) << retried.status();
   EXPECT_EQ(retried->second, 1);
-  absl::StatusOr<RunRecord> run = store->GetRun("run-1");
+  absl::StatusOr<RunRecord> run = store->runs().GetRun("run-1");
   ASSERT_TRUE(run.ok());
   EXPECT_EQ(run->state, RunState::kQueued);
   EXPECT_EQ(run->error, "");
   EXPECT_EQ(retried->first.state, SweepState::kRunning);
-  EXPECT_THAT(store->RetrySweep("sweep-1", kStart).status().message(),
+  EXPECT_THAT(store->sweeps().RetrySweep("sweep-1", kStart).status().message(),
               HasSubstr("no failed run"));
 }
 
 TEST_F(SweepStoreTest, ALearnerLeaseNamesTheRunsTrial) {
-  std::unique_ptr<RunStore> store = Open();
-  ASSERT_TRUE(store->SubmitSweep(Sweep("s", 2, 1), kStart).ok());
-  ASSERT_TRUE(store->SubmitRun({.request_id = "alone",
-                                .config = "env: cartpole\n",
-                                .env = "cartpole",
-                                .total_timesteps = 1000},
-                               kStart)
+  std::unique_ptr<Store> store = Open();
+  ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("s", 2, 1), kStart).ok());
+  ASSERT_TRUE(store->runs()
+                  .SubmitRun({.request_id = "alone",
+                              .config = "env: cartpole\n",
+                              .env = "cartpole",
+                              .total_timesteps = 1000},
+                             kStart)
                   .ok());
   std::vector<std::pair<std::string, std::string>> trials;
   for (int i = 0; i < 3; ++i) {
-    absl::StatusOr<std::optional<LearnerLease>> lease = store->AcquireRun("L", "a", "N", kStart);
+    absl::StatusOr<std::optional<LearnerLease>> lease =
+        store->runs().AcquireRun("L", "a", "N", kStart);
     ASSERT_TRUE(lease.ok() && lease->has_value()) << lease.status();
     trials.emplace_back((*lease)->condition, (*lease)->observe);
   }
@@ -194,17 +200,19 @@ TEST_F(SweepStoreTest, ALearnerLeaseNamesTheRunsTrial) {
 }
 
 TEST_F(SweepStoreTest, CountsOnlySweepsWithWorkAhead) {
-  std::unique_ptr<RunStore> store = Open();
-  ASSERT_TRUE(store->SubmitSweep(Sweep("done", 1, 1), kStart).ok());  // run-1
-  ASSERT_TRUE(store->SubmitSweep(Sweep("busy", 1, 3), kStart).ok());  // runs 2 to 4
-  absl::StatusOr<std::optional<LearnerLease>> done = store->AcquireRun("L", "a", "N", kStart);
+  std::unique_ptr<Store> store = Open();
+  ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("done", 1, 1), kStart).ok());  // run-1
+  ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("busy", 1, 3), kStart).ok());  // runs 2 to 4
+  absl::StatusOr<std::optional<LearnerLease>> done =
+      store->runs().AcquireRun("L", "a", "N", kStart);
   ASSERT_TRUE(done.ok() && done->has_value());
   ASSERT_EQ((*done)->key.run_id, "run-1");
-  ASSERT_TRUE(store->FinishRun((*done)->key, RunState::kCompleted, "", kStart).ok());
-  absl::StatusOr<std::optional<LearnerLease>> running = store->AcquireRun("L", "a", "N", kStart);
+  ASSERT_TRUE(store->runs().FinishRun((*done)->key, RunState::kCompleted, "", kStart).ok());
+  absl::StatusOr<std::optional<LearnerLease>> running =
+      store->runs().AcquireRun("L", "a", "N", kStart);
   ASSERT_TRUE(running.ok() && running->has_value());
   ASSERT_EQ((*running)->key.run_id, "run-2");
-  ASSERT_TRUE(store->ReportProgress((*running)->key, {.timesteps = 400}, kStart).ok());
+  ASSERT_TRUE(store->runs().ReportProgress((*running)->key, {.timesteps = 400}, kStart).ok());
 
   absl::StatusOr<StoreCounts> counts = store->Counts();
   ASSERT_TRUE(counts.ok()) << counts.status();
@@ -217,29 +225,30 @@ TEST_F(SweepStoreTest, CountsOnlySweepsWithWorkAhead) {
                           std::pair(RunState::kCancelled, 0)));
   EXPECT_EQ(busy.steps_remaining, 2 * 1000 + 600);
 
-  ASSERT_TRUE(store->CancelSweep("sweep-2", kStart).ok());
+  ASSERT_TRUE(store->sweeps().CancelSweep("sweep-2", kStart).ok());
   EXPECT_THAT(store->Counts()->active_sweeps, ::testing::IsEmpty());
 }
 
 TEST_F(SweepStoreTest, UnknownSweepsAreNotFound) {
-  std::unique_ptr<RunStore> store = Open();
-  EXPECT_EQ(store->GetSweep("sweep-9").status().code(), absl::StatusCode::kNotFound);
-  EXPECT_EQ(store->GetSweep("run-1").status().code(), absl::StatusCode::kNotFound);
-  EXPECT_EQ(store->ListSweepRuns("sweep-9").status().code(), absl::StatusCode::kNotFound);
-  EXPECT_EQ(store->CancelSweep("sweep-9", kStart).status().code(), absl::StatusCode::kNotFound);
+  std::unique_ptr<Store> store = Open();
+  EXPECT_EQ(store->sweeps().GetSweep("sweep-9").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(store->sweeps().GetSweep("run-1").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(store->sweeps().ListSweepRuns("sweep-9").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(store->sweeps().CancelSweep("sweep-9", kStart).status().code(),
+            absl::StatusCode::kNotFound);
 }
 
 // What a test compares of a store's runs and sweeps.
-std::vector<std::string> Contents(RunStore& store) {
+std::vector<std::string> Contents(Store& store) {
   std::vector<std::string> contents;
-  absl::StatusOr<std::vector<RunRecord>> runs = store.ListRuns();
+  absl::StatusOr<std::vector<RunRecord>> runs = store.runs().ListRuns();
   EXPECT_TRUE(runs.ok()) << runs.status();
   for (const RunRecord& run : runs.ok() ? *runs : std::vector<RunRecord>{}) {
     contents.push_back(absl::StrCat(run.id, " ", NameOf(kRunStateNames, run.state), " ",
                                     run.sweep_id, " ", run.trial.value_or(-1), " ",
                                     run.progress.timesteps, " ", run.submission.request_id));
   }
-  absl::StatusOr<std::vector<SweepRecord>> sweeps = store.ListSweeps();
+  absl::StatusOr<std::vector<SweepRecord>> sweeps = store.sweeps().ListSweeps();
   EXPECT_TRUE(sweeps.ok()) << sweeps.status();
   for (const SweepRecord& sweep : sweeps.ok() ? *sweeps : std::vector<SweepRecord>{}) {
     contents.push_back(absl::StrCat(sweep.id, " ", sweep.name, " ", sweep.trials.size(), " ",
@@ -249,12 +258,13 @@ std::vector<std::string> Contents(RunStore& store) {
 }
 
 TEST_F(SweepStoreTest, ABackupIsTheStoreAsItWasAndOpensAsIt) {
-  std::unique_ptr<RunStore> store = Open();
-  ASSERT_TRUE(store->SubmitSweep(Sweep("s", 3, 2), kStart).ok());
-  ASSERT_TRUE(store->SubmitSweep(Sweep("t", 1, 1), kStart).ok());
-  absl::StatusOr<std::optional<LearnerLease>> lease = store->AcquireRun("L", "a", "N", kStart);
+  std::unique_ptr<Store> store = Open();
+  ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("s", 3, 2), kStart).ok());
+  ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("t", 1, 1), kStart).ok());
+  absl::StatusOr<std::optional<LearnerLease>> lease =
+      store->runs().AcquireRun("L", "a", "N", kStart);
   ASSERT_TRUE(lease.ok() && lease->has_value());
-  ASSERT_TRUE(store->ReportProgress((*lease)->key, {.timesteps = 400}, kStart).ok());
+  ASSERT_TRUE(store->runs().ReportProgress((*lease)->key, {.timesteps = 400}, kStart).ok());
   const std::vector<std::string> before = Contents(*store);
 
   absl::StatusOr<BackupCounts> counts = store->Backup(Path("backup.db"));
@@ -263,10 +273,10 @@ TEST_F(SweepStoreTest, ABackupIsTheStoreAsItWasAndOpensAsIt) {
   EXPECT_EQ(counts->sweeps, 2);
   EXPECT_EQ(counts->studies, 0);
   // The store goes on; the backup does not.
-  ASSERT_TRUE(store->SubmitSweep(Sweep("later", 1, 1), kStart).ok());
+  ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("later", 1, 1), kStart).ok());
 
-  absl::StatusOr<std::unique_ptr<RunStore>> restored =
-      RunStore::Open(Path("backup.db"), {.lease_duration = absl::Seconds(10)}, kStart);
+  absl::StatusOr<std::unique_ptr<Store>> restored =
+      Store::Open(Path("backup.db"), {.lease_duration = absl::Seconds(10)}, kStart);
   ASSERT_TRUE(restored.ok()) << restored.status();
   EXPECT_EQ(Contents(**restored), before);
   EXPECT_THAT(before, ::testing::Contains(HasSubstr("run-1 running sweep-1 0 400")));
@@ -308,8 +318,8 @@ class SmallDirectory {
 };
 
 TEST_F(SweepStoreTest, ABackupWhereItCannotBeWrittenFailsNamingItAndLeavesNothing) {
-  std::unique_ptr<RunStore> store = Open();
-  ASSERT_TRUE(store->SubmitSweep(Sweep("s", 100, 10), kStart).ok());  // over 64 KiB
+  std::unique_ptr<Store> store = Open();
+  ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("s", 100, 10), kStart).ok());  // over 64 KiB
   const std::string missing = Path("missing/backup.db");
   EXPECT_EQ(store->Backup(missing).status().code(), absl::StatusCode::kNotFound);
   EXPECT_THAT(store->Backup(missing).status().message(), HasSubstr(missing));
@@ -328,7 +338,7 @@ TEST_F(SweepStoreTest, ABackupWhereItCannotBeWrittenFailsNamingItAndLeavesNothin
   EXPECT_THAT(exhausted.message(), HasSubstr(Path("full/backup.db")));
   EXPECT_TRUE(std::filesystem::is_empty(Path("full")));
   // The store is as it was.
-  EXPECT_EQ(store->ListRuns()->size(), 1000u);
+  EXPECT_EQ(store->runs().ListRuns()->size(), 1000u);
 }
 
 TEST(SweepStateTest, DerivesFromItsRuns) {

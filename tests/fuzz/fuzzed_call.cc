@@ -56,7 +56,7 @@ std::string EncodeCall(const FuzzedCall& call) {
 }
 
 grpc::Status MakeCall(const std::shared_ptr<grpc::Channel>& channel, const FuzzedCall& call,
-                      const std::string& token, absl::Duration timeout) {
+                      const std::string& token, absl::Duration timeout, int max_responses) {
   grpc::GenericStub stub(channel);
   grpc::ClientContext context;
   context.set_deadline(absl::ToChronoTime(absl::Now() + timeout));
@@ -78,7 +78,12 @@ grpc::Status MakeCall(const std::shared_ptr<grpc::Channel>& channel, const Fuzze
     stream->WritesDone(tag);
     Await(queue);
     grpc::ByteBuffer response;
+    int responses = 0;
     do {
+      if (responses++ == max_responses) {
+        context.TryCancel();
+        break;
+      }
       stream->Read(&response, tag);
     } while (Await(queue));
   }

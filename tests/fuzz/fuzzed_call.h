@@ -13,6 +13,7 @@
 #include <grpcpp/support/status.h>
 #include <google/protobuf/descriptor.h>
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,9 +35,11 @@ FuzzedCall DecodeCall(const google::protobuf::ServiceDescriptor& service, absl::
 std::string EncodeCall(const FuzzedCall& call);
 
 // Makes `call` on `channel` with the bearer `token`, within `timeout`: writes its requests,
-// closes its side, reads every response. Returns the call's status.
+// closes its side, reads every response, or cancels the call after `max_responses` of them
+// (for a stream that ends only when what it watches does). Returns the call's status.
 grpc::Status MakeCall(const std::shared_ptr<grpc::Channel>& channel, const FuzzedCall& call,
-                      const std::string& token, absl::Duration timeout);
+                      const std::string& token, absl::Duration timeout,
+                      int max_responses = std::numeric_limits<int>::max());
 
 }  // namespace dcs::fuzz
 

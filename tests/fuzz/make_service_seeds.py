@@ -88,6 +88,8 @@ def coordinator_calls():
         "CancelRun": [['run_id: "run-1"']],
         "GetRunFiles": [['run_id: "run-1"']],
         "BackupStore": [[""]],
+        "WatchRun": [['run_id: "run-1"']],
+        "WatchSweep": [['sweep_id: "sweep-1"']],
         "SubmitSweep": [[f'request_id: "sweep-a" spec: {quoted(sweep_spec)} '
                          'spec_name: "quickstart.yaml" name: "quickstart"'],
                         [f'request_id: "sweep-b" spec: {quoted(sweep_spec)} validate_only: true']],

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
-// Fuzzes the coordinator's store readers (coordinator/run_store.h) on a database file that is
-// not what the store wrote: the input is the whole file, which RunStore::Open opens (and
+// Fuzzes the coordinator's store readers (coordinator/store.h) on a database file that is
+// not what the store wrote: the input is the whole file, which Store::Open opens (and
 // migrates), then every read method is called on every run, sweep, study and evaluation it
 // lists. The seeds are stores written by test runs (a run with evaluations and checkpoints, a
 // sweep, a study, a study sweep), all but one rewritten with 512-byte pages to be small.
@@ -19,14 +19,14 @@
 #include "absl/strings/str_cat.h"
 #include "absl/time/time.h"
 #include "common/atomic_file.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "tests/fuzz/fuzz_check.h"
 #include "tests/fuzz/scratch_dir.h"
 
 namespace dcs::fuzz {
 namespace {
 
-using coordinator::RunStore;
+using coordinator::Store;
 
 // A fixed time: what Open and the reads do must depend on the file alone.
 const absl::Time kNow = absl::FromUnixSeconds(1'800'000'000);
@@ -40,36 +40,36 @@ bool Readable(const absl::Status& status) {
   return status.ok();
 }
 
-void ReadRun(RunStore& store, const coordinator::RunRecord& run) {
-  if (absl::StatusOr<coordinator::RunRecord> again = store.GetRun(run.id);
+void ReadRun(Store& store, const coordinator::RunRecord& run) {
+  if (absl::StatusOr<coordinator::RunRecord> again = store.runs().GetRun(run.id);
       Readable(again.status())) {
     DCS_FUZZ_CHECK(again->id == run.id, absl::OkStatus());
   }
-  Readable(store.ListCheckpoints(run.id).status());
+  Readable(store.checkpoints().ListCheckpoints(run.id).status());
   for (int64_t version : {int64_t{0}, int64_t{1}, run.progress.policy_version}) {
-    Readable(store.GetEvaluation(run.id, version).status());
+    Readable(store.evaluations().GetEvaluation(run.id, version).status());
   }
 }
 
-void ReadEverything(RunStore& store) {
-  if (absl::StatusOr<std::vector<coordinator::RunRecord>> runs = store.ListRuns();
+void ReadEverything(Store& store) {
+  if (absl::StatusOr<std::vector<coordinator::RunRecord>> runs = store.runs().ListRuns();
       Readable(runs.status())) {
     for (const coordinator::RunRecord& run : *runs) ReadRun(store, run);
   }
-  Readable(store.GetRun("run-1").status());
-  Readable(store.ListOpenSweeps().status());
-  if (absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = store.ListSweeps();
+  Readable(store.runs().GetRun("run-1").status());
+  Readable(store.sweeps().ListOpenSweeps().status());
+  if (absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = store.sweeps().ListSweeps();
       Readable(sweeps.status())) {
     for (const coordinator::SweepRecord& sweep : *sweeps) {
-      Readable(store.GetSweep(sweep.id).status());
-      Readable(store.ListSweepRuns(sweep.id).status());
+      Readable(store.sweeps().GetSweep(sweep.id).status());
+      Readable(store.sweeps().ListSweepRuns(sweep.id).status());
     }
   }
-  if (absl::StatusOr<std::vector<coordinator::StudyRecord>> studies = store.ListStudies();
+  if (absl::StatusOr<std::vector<coordinator::StudyRecord>> studies = store.studies().ListStudies();
       Readable(studies.status())) {
     for (const coordinator::StudyRecord& study : *studies) {
-      Readable(store.GetStudy(study.id).status());
-      Readable(store.ListStudyTrials(study.id).status());
+      Readable(store.studies().GetStudy(study.id).status());
+      Readable(store.studies().ListStudyTrials(study.id).status());
     }
   }
   Readable(store.Counts().status());
@@ -84,7 +84,7 @@ void FuzzStore(const uint8_t* data, size_t size) {
   const absl::Status written =
       WriteFileAtomically(path, std::string(reinterpret_cast<const char*>(data), size));
   DCS_FUZZ_CHECK(written.ok(), written);
-  absl::StatusOr<std::unique_ptr<RunStore>> store = RunStore::Open(path, {}, kNow);
+  absl::StatusOr<std::unique_ptr<Store>> store = Store::Open(path, {}, kNow);
   if (!Readable(store.status())) return;
   ReadEverything(**store);
 }

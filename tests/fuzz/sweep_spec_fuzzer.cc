@@ -12,7 +12,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
-#include "coordinator/run_store.h"
+#include "coordinator/sweep_table.h"
 #include "coordinator/sweep_submission.h"
 #include "run/run_spec_yaml.h"
 #include "tests/fuzz/fuzz_check.h"

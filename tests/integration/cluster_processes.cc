@@ -65,6 +65,12 @@ void ClusterProcesses::Kill(const std::string& name) {
   processes_.erase(name);
 }
 
+void ClusterProcesses::Stop(const std::string& name) {
+  ASSERT_TRUE(processes_.count(name)) << name;
+  processes_.at(name).Stop(absl::Seconds(10));
+  processes_.erase(name);
+}
+
 std::string ClusterProcesses::Log(const std::string& name) const {
   return ReadFile(absl::StrCat(dir_, "/", name, ".log")).value_or("");
 }

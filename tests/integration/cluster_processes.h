@@ -41,8 +41,10 @@ class ClusterProcesses {
 
   // SIGKILL, and waits for it to die.
   void Kill(const std::string& name);
+  // SIGTERM, as `dcs down` stops it, and waits for it to exit (SIGKILL after 10 s).
+  void Stop(const std::string& name);
 
-  // Starts process `name`, killed before, again with the same program and arguments.
+  // Starts process `name`, killed or stopped before, again with the same program and arguments.
   void Restart(const std::string& name);
 
   // The names of the processes running now, in name order.

@@ -8,6 +8,7 @@
 #include <grpcpp/grpcpp.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -36,6 +37,7 @@
 #include "google/protobuf/util/message_differencer.h"
 #include "gtest/gtest.h"
 #include "learner/training_session.h"
+#include "run/appended_evaluation_log.h"
 #include "run/evaluation_log.h"
 #include "run/run_plan.h"
 #include "run/run_checkpoint.h"
@@ -54,6 +56,7 @@
 #include "services/unary_call.h"
 #include "tests/integration/cluster_processes.h"
 #include "tests/integration/test_util.h"
+#include "tests/learner/small_run.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
 #include "tests/testing/slowdown.h"
@@ -67,37 +70,17 @@ using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-// Three slots, two stages, pools, evaluations with checkpoints between them: every part of a
-// run that a handover or a restart could get wrong. 10 rollouts of 3 x 256 steps.
-constexpr char kConfig[] = R"(env: cartpole
-seed: 5
-total_timesteps: 7680
-n_envs: 3
-feature: length
-training_range: [0.35, 0.75]
-pool: {size: 3}
-stages:
-  - {steps: 3000, schedule: {family: sinusoidal, amplitude_frac: 0.5, period: 40}}
-  - {steps: 4680, schedule: {family: random_walk, std_frac: 0.05}}
-observe: live
-evaluation: {freq: 1536, episodes: 3, contexts: {id: [0.5], ood_high: [1.0]}}
-ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
-)";
+// The learner tests' run (learner::CartPoleRun) with three slots, evaluations with checkpoints
+// between them: 10 rollouts of 3 x 256 steps.
+const std::string kConfig = learner::CartPoleRun(
+    {.seed = 5, .total_timesteps = 7680, .n_envs = 3, .first_stage_steps = 3000,
+     .evaluation_freq = 1536, .evaluation_episodes = 3, .n_steps = 256, .batch_size = 64});
 
 // An image policy (NatureCNN on CarRacing's frames, the context through its own branch), two
 // slots: its policy (4.5 MB) and each slot's rollout (48 frames of 27 kB) are larger than one
 // message and travel in pieces.
-constexpr char kImageConfig[] = R"(env: car_racing
-seed: 3
-total_timesteps: 192
-n_envs: 2
-feature: COM_Y
-training_range: [-0.8, 0.8]
-pool: {size: 3}
-observe: live
-evaluation: {freq: 96, episodes: 1, contexts: {id: [0.0]}}
-ppo: {n_steps: 48, batch_size: 48, n_epochs: 2, context_layers: [16]}
-)";
+const std::string kImageConfig = learner::CarRacingRun(
+    {.seed = 3, .evaluation_freq = 96, .n_steps = 48, .context_branch = true});
 
 // kImageConfig without the context branch, as a sweep through `dcs submit`: static and a
 // sinusoid, one seed.
@@ -128,7 +111,7 @@ struct RunOutcome {
 
 // The outcome of run `config` stored in `dir`, as `dcs train` lays a run out. Weights are
 // compared as loaded back, not as bytes: libtorch's serialisation is not byte-stable.
-std::optional<RunOutcome> ReadOutcome(const std::string& dir, const char* config = kConfig) {
+std::optional<RunOutcome> ReadOutcome(const std::string& dir, const std::string& config = kConfig) {
   absl::StatusOr<v1::EvaluationLog> log = run::ReadEvaluationLog(dir);
   EXPECT_TRUE(log.ok()) << log.status();
   absl::StatusOr<run::Checkpoint> checkpoint = run::ReadLatestCheckpoint(dir);
@@ -147,8 +130,8 @@ std::optional<RunOutcome> ReadOutcome(const std::string& dir, const char* config
   return RunOutcome{.log = *std::move(log), .parameters = session->Parameters()};
 }
 
-void ExpectSameOutcome(const RunOutcome& actual, const RunOutcome& expected) {
-  EXPECT_EQ(actual.parameters, expected.parameters) << "final weights differ";
+// The same evaluation log but for the seconds each evaluation took.
+void ExpectSameLog(const v1::EvaluationLog& actual, const v1::EvaluationLog& expected) {
   google::protobuf::util::MessageDifferencer differencer;
   google::protobuf::util::DefaultFieldComparator comparator;
   comparator.set_treat_nan_as_equal(true);  // a split without contexts summarises to NaN
@@ -156,11 +139,16 @@ void ExpectSameOutcome(const RunOutcome& actual, const RunOutcome& expected) {
   differencer.IgnoreField(v1::ContextEvaluation::descriptor()->FindFieldByName("seconds"));
   std::string differences;
   differencer.ReportDifferencesToString(&differences);
-  EXPECT_TRUE(differencer.Compare(actual.log, expected.log)) << differences;
+  EXPECT_TRUE(differencer.Compare(actual, expected)) << differences;
+}
+
+void ExpectSameOutcome(const RunOutcome& actual, const RunOutcome& expected) {
+  EXPECT_EQ(actual.parameters, expected.parameters) << "final weights differ";
+  ExpectSameLog(actual.log, expected.log);
 }
 
 // Run `config` as `dcs train` trains it in one process.
-RunOutcome TrainInOneProcess(const char* config) {
+RunOutcome TrainInOneProcess(const std::string& config) {
   const std::string dir = testing::MakeTempDir();
   const std::string file = dir + "/run.yaml";
   EXPECT_TRUE(WriteFileAtomically(file, config).ok());
@@ -182,7 +170,7 @@ class Cluster : public ClusterProcesses {
   Cluster() : ClusterProcesses(kLease) {}
 
   // Submits the run of `config`; returns its id.
-  std::string Submit(const char* config = kConfig) {
+  std::string Submit(const std::string& config = kConfig) {
     absl::StatusOr<v1::Run> run = services::cli::SubmitRun(coordinator_address(), config,
                                                            "run.yaml", std::nullopt, kTimeout);
     EXPECT_TRUE(run.ok()) << run.status();
@@ -201,11 +189,12 @@ class Cluster : public ClusterProcesses {
   }
 
   // Waits for the run of `config` to end, downloads it, and reads what it left.
-  std::optional<RunOutcome> Finish(const std::string& run_id, const char* config = kConfig) {
+  std::optional<RunOutcome> Finish(const std::string& run_id, const std::string& config = kConfig) {
     const absl::Time deadline = absl::Now() + testing::Patient(absl::Minutes(4));
     absl::StatusOr<v1::Run> run = services::cli::WatchRun(
-        coordinator_address(), run_id, kTimeout, [](const v1::Run&) {},
-        [deadline] { return absl::Now() > deadline; });
+        coordinator_address(), run_id,
+        {.on_update = [](const v1::Run&) {},
+         .interrupted = [deadline] { return absl::Now() > deadline; }});
     EXPECT_TRUE(run.ok()) << run.status() << "; logs in " << dir();
     if (!run.ok()) return std::nullopt;
     EXPECT_EQ(run->state(), v1::RUN_STATE_COMPLETED) << run->error() << "; logs in " << dir();
@@ -341,6 +330,15 @@ TEST_F(DataPlaneTest, AKilledLearnersRunResumesOnAnotherFromItsCheckpoint) {
   ExpectSameOutcome(*outcome, InOneProcess());
   EXPECT_THAT(cluster.Log("survivor"),
               ContainsRegex("hosting a run run_id=run-1 epoch=2 checkpoint=0000000"));
+  // The coordinator appended each checkpoint's new evaluations, the survivor's after the doomed
+  // learner's: its log is the one of one process, each evaluation once.
+  const std::string stored = absl::StrCat(cluster.data_dir(), "/runs/", run_id);
+  ASSERT_TRUE(run::HasAppendedEvaluationLog(stored));
+  absl::StatusOr<v1::EvaluationLog> log = run::ReadEvaluationLog(stored);
+  ASSERT_TRUE(log.ok()) << log.status();
+  ExpectSameLog(*log, InOneProcess().log);
+  const std::string lines = ReadFile(stored + "/evaluations.jsonl").value_or("");
+  EXPECT_EQ(std::count(lines.begin(), lines.end(), '\n'), InOneProcess().log.evaluations_size());
 }
 
 TEST_F(DataPlaneTest, AKilledCoordinatorRestartsOnItsDataAndLosesNothing) {

@@ -17,11 +17,11 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
-#include "coordinator/sweep_figures.h"
-#include "coordinator/sweep_report.h"
-#include "coordinator/sweep_index_html.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "report/sweep_figures.h"
+#include "report/sweep_index_html.h"
+#include "report/sweep_report.h"
 #include "services/cli/figure_render.h"
 #include "tests/integration/browser.h"
 #include "tests/integration/test_util.h"
@@ -31,8 +31,8 @@ namespace dcs::integration {
 namespace {
 
 namespace fs = std::filesystem;
-using coordinator::FigureFormat;
-using coordinator::GnuplotFigure;
+using report::FigureFormat;
+using report::GnuplotFigure;
 using ::testing::HasSubstr;
 
 // Deterministic noise in [0, 1).
@@ -132,13 +132,12 @@ class FiguresTest : public ::testing::Test {
   // Renders every figure of DemoResults() as `format` and writes index.html.
   std::vector<GnuplotFigure> RenderReport(FigureFormat format) {
     const v1::SweepResults results = DemoResults();
-    coordinator::ReportOptions options;
+    report::ReportOptions options;
     options.bootstrap_resamples = 200;
-    const absl::StatusOr<v1::SweepReport> report = coordinator::BuildSweepReport(results, options);
+    const absl::StatusOr<v1::SweepReport> report = report::BuildSweepReport(results, options);
     EXPECT_TRUE(report.ok()) << report.status();
     if (!report.ok()) return {};
-    absl::StatusOr<std::vector<GnuplotFigure>> figures =
-        coordinator::SweepFigures(results, *report);
+    absl::StatusOr<std::vector<GnuplotFigure>> figures = report::SweepFigures(results, *report);
     EXPECT_TRUE(figures.ok()) << figures.status();
     if (!figures.ok()) return {};
     for (const GnuplotFigure& figure : *figures) {
@@ -149,9 +148,9 @@ class FiguresTest : public ::testing::Test {
         EXPECT_EQ(rendered->gnuplot_output, "") << figure.name;
       }
     }
-    EXPECT_TRUE(WriteFileAtomically(dir_ + "/index.html",
-                                    coordinator::SweepIndexHtml("Sweep cartpole_length", kTable,
-                                                                *figures, format))
+    EXPECT_TRUE(WriteFileAtomically(
+                    dir_ + "/index.html",
+                    report::SweepIndexHtml("Sweep cartpole_length", kTable, *figures, format))
                     .ok());
     return *figures;
   }

@@ -15,7 +15,6 @@
 #include <utility>
 #include <vector>
 
-#include "absl/strings/match.h"
 #include "absl/strings/str_split.h"
 #include "absl/strings/strip.h"
 #include "absl/time/clock.h"
@@ -87,8 +86,11 @@ void WaitForTrials(const ClusterProcesses& cluster, int complete) {
     const RunResult trials =
         DcsAt({"study", "trials", "study-1", "-o", "json"}, cluster.coordinator_address());
     int done = 0;
-    for (absl::string_view line : absl::StrSplit(trials.output, '\n')) {
-      done += absl::StrContains(line, "\"state\": \"complete\"") ? 1 : 0;
+    for (absl::string_view line : absl::StrSplit(trials.output, '\n', absl::SkipEmpty())) {
+      google::protobuf::Struct trial;  // none while the coordinator is down: not JSON
+      if (!google::protobuf::util::JsonStringToMessage(std::string(line), &trial).ok()) continue;
+      const auto state = trial.fields().find("state");
+      done += state != trial.fields().end() && state->second.string_value() == "complete" ? 1 : 0;
     }
     if (done >= complete) return;
     absl::SleepFor(absl::Milliseconds(200));

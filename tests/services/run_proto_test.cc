@@ -19,6 +19,19 @@ std::string Bytes(size_t size) {
   return bytes;
 }
 
+TEST(RunProtoTest, OnlyCompletedFailedAndCancelledRunsAndSweepsHaveEnded) {
+  EXPECT_FALSE(RunEnded(v1::RUN_STATE_QUEUED));
+  EXPECT_FALSE(RunEnded(v1::RUN_STATE_RUNNING));
+  EXPECT_TRUE(RunEnded(v1::RUN_STATE_COMPLETED));
+  EXPECT_TRUE(RunEnded(v1::RUN_STATE_FAILED));
+  EXPECT_TRUE(RunEnded(v1::RUN_STATE_CANCELLED));
+  EXPECT_FALSE(SweepEnded(v1::SWEEP_STATE_QUEUED));
+  EXPECT_FALSE(SweepEnded(v1::SWEEP_STATE_RUNNING));
+  EXPECT_TRUE(SweepEnded(v1::SWEEP_STATE_COMPLETED));
+  EXPECT_TRUE(SweepEnded(v1::SWEEP_STATE_FAILED));
+  EXPECT_TRUE(SweepEnded(v1::SWEEP_STATE_CANCELLED));
+}
+
 TEST(RunProtoTest, ACheckpointLargerThanAPieceGoesInPiecesAndComesBackWhole) {
   const run::PackedCheckpoint checkpoint{.name = "000000000256",
                                          .learner = Bytes(2 * kPieceBytes + 5),
@@ -53,18 +66,6 @@ TEST(RunProtoTest, AStreamedCheckpointMustNameItselfFirstAndOnlyItself) {
   other.set_name("000000000512");
   EXPECT_EQ(AddCheckpointPiece(other, /*first=*/false, into).code(),
             absl::StatusCode::kInvalidArgument);
-}
-
-TEST(RunProtoTest, FilesGoInPiecesInOrderAndAnEmptyFileIsOnePiece) {
-  const std::vector<v1::RunFile> pieces =
-      RunFilesToPieces({{.path = "a", .contents = Bytes(kPieceBytes + 1)},
-                        {.path = "b", .contents = ""}});
-  ASSERT_EQ(pieces.size(), 3u);
-  EXPECT_EQ(pieces[0].path(), "a");
-  EXPECT_EQ(pieces[1].path(), "a");
-  EXPECT_EQ(pieces[0].contents() + pieces[1].contents(), Bytes(kPieceBytes + 1));
-  EXPECT_EQ(pieces[2].path(), "b");
-  EXPECT_TRUE(pieces[2].contents().empty());
 }
 
 }  // namespace

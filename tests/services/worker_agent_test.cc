@@ -131,7 +131,7 @@ TEST_F(WorkerAgentTest, JoinsHeartbeatsAndLeaves) {
   std::vector<coordinator::WorkerRecord> workers = coordinator->registry().List(absl::Now());
   ASSERT_EQ(workers.size(), 1u);
   EXPECT_EQ(workers[0].info.address, "127.0.0.1:7777");
-  EXPECT_EQ(workers[0].info.role, coordinator::WorkerRole::kActor);
+  EXPECT_EQ(workers[0].info.role, WorkerRole::kActor);
   EXPECT_EQ(workers[0].info.hostname, "test-host");
   EXPECT_EQ(Value(metrics_, "dcs_coordinator_connected"), 1);
 

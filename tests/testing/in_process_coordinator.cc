@@ -18,7 +18,7 @@ absl::StatusOr<std::unique_ptr<InProcessCoordinator>> InProcessCoordinator::Star
   if (!registry.ok()) return registry.status();
   coordinator->registry_ = *std::move(registry);
   const std::string data_dir = options.data_dir.empty() ? MakeTempDir() : options.data_dir;
-  absl::StatusOr<std::unique_ptr<coordinator::RunStore>> store = coordinator::RunStore::Open(
+  absl::StatusOr<std::unique_ptr<coordinator::Store>> store = coordinator::Store::Open(
       data_dir + "/coordinator.db", {.lease_duration = options.lease_duration}, absl::Now());
   if (!store.ok()) return store.status();
   coordinator->store_ = *std::move(store);

@@ -2,7 +2,7 @@
 #ifndef DCS_TESTS_TESTING_IN_PROCESS_COORDINATOR_H_
 #define DCS_TESTS_TESTING_IN_PROCESS_COORDINATOR_H_
 
-// A coordinator served inside the test process: a WorkerRegistry, a RunStore in a data
+// A coordinator served inside the test process: a WorkerRegistry, a Store in a data
 // directory, the CoordinatorService over them, and a services::Server serving that service,
 // with its metrics in a prometheus::Registry.
 // For tests of code that talks to a coordinator over gRPC. Thread-compatible.
@@ -15,7 +15,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
-#include "coordinator/run_store.h"
+#include "coordinator/store.h"
 #include "coordinator/worker_registry.h"
 #include "services/build_info.h"
 #include "services/coordinator/coordinator_service.h"
@@ -58,7 +58,7 @@ class InProcessCoordinator {
   // Destroyed bottom-up: the server before the service, registry and metrics it uses.
   std::shared_ptr<prometheus::Registry> metrics_ = std::make_shared<prometheus::Registry>();
   std::unique_ptr<coordinator::WorkerRegistry> registry_;
-  std::unique_ptr<coordinator::RunStore> store_;
+  std::unique_ptr<coordinator::Store> store_;
   std::unique_ptr<services::CoordinatorService> service_;
   std::unique_ptr<services::Server> server_;
 };

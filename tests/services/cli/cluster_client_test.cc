@@ -80,7 +80,7 @@ TEST_F(ClusterClientTest, WaitUntilServingTimesOutWithLastAnswer) {
 }
 
 TEST_F(ClusterClientTest, GetClusterStatusReturnsWorkers) {
-  coordinator::WorkerInfo info{.role = coordinator::WorkerRole::kLearner, .address = "h:1"};
+  WorkerInfo info{.role = WorkerRole::kLearner, .address = "h:1"};
   const absl::StatusOr<std::string> id = coordinator_->registry().Register(info, absl::Now());
   ASSERT_TRUE(id.ok()) << id.status();
   const absl::StatusOr<v1::GetClusterStatusResponse> status =

@@ -13,18 +13,18 @@
 
 #include "absl/strings/match.h"
 #include "common/atomic_file.h"
-#include "coordinator/bar_chart.h"
-#include "coordinator/heatmap_chart.h"
-#include "coordinator/line_chart.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "report/bar_chart.h"
+#include "report/heatmap_chart.h"
+#include "report/line_chart.h"
 #include "tests/testing/temp_dir.h"
 
 namespace dcs::services::cli {
 namespace {
 
-using coordinator::FigureFormat;
-using coordinator::GnuplotFigure;
+using report::FigureFormat;
+using report::GnuplotFigure;
 using ::testing::Contains;
 using ::testing::HasSubstr;
 using ::testing::IsSupersetOf;
@@ -68,14 +68,14 @@ class FigureRenderTest : public dcs::testing::TempDirTest {
     EXPECT_EQ(rendered->gnuplot_output, "") << "gnuplot warned about " << figure.name;
     // The figure's data and script stay beside the image.
     EXPECT_TRUE(std::filesystem::is_regular_file(Path(figure.ScriptFileName())));
-    for (const coordinator::DataFile& data : figure.data) {
+    for (const report::DataFile& data : figure.data) {
       EXPECT_TRUE(std::filesystem::is_regular_file(Path(data.name))) << data.name;
     }
     return ReadFile(rendered->path).value_or("");
   }
 };
 
-coordinator::LineChart Curves() {
+report::LineChart Curves() {
   return {.name = "curves",
           .title = "Learning curves",
           .panels = {{.title = "observe: none",
@@ -91,7 +91,7 @@ coordinator::LineChart Curves() {
                                  .y = {10, 50, 90},
                                  .y_low = {8, 45, 80},
                                  .y_high = {12, 55, 95},
-                                 .color = coordinator::kBaselineColor,
+                                 .color = report::kBaselineColor,
                                  .dashed = true}}},
                      {.title = "observe: live",
                       .x_label = "environment steps",
@@ -100,7 +100,7 @@ coordinator::LineChart Curves() {
 }
 
 TEST_F(FigureRenderTest, RendersLinesWithBandsToSvg) {
-  absl::StatusOr<GnuplotFigure> figure = coordinator::LineChartFigure(Curves());
+  absl::StatusOr<GnuplotFigure> figure = report::LineChartFigure(Curves());
   ASSERT_TRUE(figure.ok()) << figure.status();
   const std::string text = Render(*figure);
   EXPECT_TRUE(text.starts_with("<?xml")) << text.substr(0, 100);
@@ -118,7 +118,7 @@ TEST_F(FigureRenderTest, RendersLinesWithBandsToSvg) {
 }
 
 TEST_F(FigureRenderTest, RendersPanelsWithMarkersAndSteps) {
-  coordinator::LineChart chart = Curves();
+  report::LineChart chart = Curves();
   chart.name = "markers";
   chart.panels[0].x_range = std::make_pair(0.0, 2000.0);
   chart.panels[0].y_range = std::make_pair(0.0, 200.0);
@@ -126,7 +126,7 @@ TEST_F(FigureRenderTest, RendersPanelsWithMarkersAndSteps) {
   chart.panels[0].y_markers = {100};
   chart.panels[1].lines[0].steps = true;
   chart.panels.push_back({.title = "empty"});
-  absl::StatusOr<GnuplotFigure> figure = coordinator::LineChartFigure(chart);
+  absl::StatusOr<GnuplotFigure> figure = report::LineChartFigure(chart);
   ASSERT_TRUE(figure.ok()) << figure.status();
   const Svg svg = ReadSvg(Render(*figure));
   EXPECT_EQ(svg.plots, 4 + 1 + 1);  // the empty panel plots NaN
@@ -134,20 +134,20 @@ TEST_F(FigureRenderTest, RendersPanelsWithMarkersAndSteps) {
 }
 
 TEST_F(FigureRenderTest, RendersGroupedBars) {
-  const coordinator::BarChart chart{
+  const report::BarChart chart{
       .name = "bars",
       .title = "Per context",
-      .panels = {{.title = "observe: none",
-                  .x_label = "evaluation context",
-                  .y_label = "mean return",
-                  .categories = {{"0.1", "OOD-low"}, {"0.4", "ID"}, {"0.6", "ID"},
-                                 {"0.9", "OOD-high"}},
-                  .series = {{.label = "sinusoidal",
-                              .y = {10, 200, 180, kNaN},
-                              .y_low = {5, 150, 170, kNaN},
-                              .y_high = {20, 250, 190, kNaN}},
-                             {.label = "static", .y = {-20, 150, 160, 40}, .color = "#000000"}}}}};
-  absl::StatusOr<GnuplotFigure> figure = coordinator::BarChartFigure(chart);
+      .panels = {
+          {.title = "observe: none",
+           .x_label = "evaluation context",
+           .y_label = "mean return",
+           .categories = {{"0.1", "OOD-low"}, {"0.4", "ID"}, {"0.6", "ID"}, {"0.9", "OOD-high"}},
+           .series = {{.label = "sinusoidal",
+                       .y = {10, 200, 180, kNaN},
+                       .y_low = {5, 150, 170, kNaN},
+                       .y_high = {20, 250, 190, kNaN}},
+                      {.label = "static", .y = {-20, 150, 160, 40}, .color = "#000000"}}}}};
+  absl::StatusOr<GnuplotFigure> figure = report::BarChartFigure(chart);
   ASSERT_TRUE(figure.ok()) << figure.status();
   const Svg svg = ReadSvg(Render(*figure));
   EXPECT_EQ(svg.plots, 2 + 1);  // two series of bars, one of error bars
@@ -157,15 +157,15 @@ TEST_F(FigureRenderTest, RendersGroupedBars) {
 }
 
 TEST_F(FigureRenderTest, RendersAHeatmapWithItsNumbers) {
-  const coordinator::Heatmap heatmap{.name = "heatmap",
-                                     .title = "Relative to static",
-                                     .x_label = "observe mode",
-                                     .y_label = "schedule family",
-                                     .column_labels = {"none", "initial", "live"},
-                                     .row_labels = {"sinusoidal", "random_walk"},
-                                     .values = {{12.3, -40, 0}, {kNaN, 3, 25}},
-                                     .value_label = "difference"};
-  absl::StatusOr<GnuplotFigure> figure = coordinator::HeatmapFigure(heatmap);
+  const report::Heatmap heatmap{.name = "heatmap",
+                                .title = "Relative to static",
+                                .x_label = "observe mode",
+                                .y_label = "schedule family",
+                                .column_labels = {"none", "initial", "live"},
+                                .row_labels = {"sinusoidal", "random_walk"},
+                                .values = {{12.3, -40, 0}, {kNaN, 3, 25}},
+                                .value_label = "difference"};
+  absl::StatusOr<GnuplotFigure> figure = report::HeatmapFigure(heatmap);
   ASSERT_TRUE(figure.ok()) << figure.status();
   const Svg svg = ReadSvg(Render(*figure));
   EXPECT_EQ(svg.plots, 3);  // grey cells, coloured cells, numbers
@@ -175,10 +175,10 @@ TEST_F(FigureRenderTest, RendersAHeatmapWithItsNumbers) {
 }
 
 TEST_F(FigureRenderTest, DrawsTitlesAndLabelsLiterally) {
-  coordinator::LineChart chart = Curves();
+  report::LineChart chart = Curves();
   chart.title = R"(it's "quoted" \n x_1 y^2 @ & <b>)";
   chart.panels[0].lines[0].label = "a_b, c";
-  absl::StatusOr<GnuplotFigure> figure = coordinator::LineChartFigure(chart);
+  absl::StatusOr<GnuplotFigure> figure = report::LineChartFigure(chart);
   ASSERT_TRUE(figure.ok()) << figure.status();
   const Svg svg = ReadSvg(Render(*figure));
   EXPECT_THAT(svg.texts, Contains(R"(it's "quoted" \n x_1 y^2 @ &amp; &lt;b>)"));
@@ -186,7 +186,7 @@ TEST_F(FigureRenderTest, DrawsTitlesAndLabelsLiterally) {
 }
 
 TEST_F(FigureRenderTest, RendersPngAndPdf) {
-  absl::StatusOr<GnuplotFigure> figure = coordinator::LineChartFigure(Curves());
+  absl::StatusOr<GnuplotFigure> figure = report::LineChartFigure(Curves());
   ASSERT_TRUE(figure.ok()) << figure.status();
   const std::string png = Render(*figure, FigureFormat::kPng);
   EXPECT_TRUE(png.starts_with("\x89PNG\r\n\x1a\n"));
@@ -196,7 +196,7 @@ TEST_F(FigureRenderTest, RendersPngAndPdf) {
 }
 
 TEST_F(FigureRenderTest, MissingGnuplotIsAFailedPreconditionThatLeavesTheFiles) {
-  absl::StatusOr<GnuplotFigure> figure = coordinator::LineChartFigure(Curves());
+  absl::StatusOr<GnuplotFigure> figure = report::LineChartFigure(Curves());
   ASSERT_TRUE(figure.ok()) << figure.status();
   for (const std::string gnuplot : {"/nonexistent/gnuplot", "no-such-gnuplot-program"}) {
     const absl::StatusOr<RenderedFigure> rendered =
@@ -234,7 +234,7 @@ TEST_F(FigureRenderTest, AScriptThatWritesNoImageIsAnError) {
 
 TEST_F(FigureRenderTest, AnUnknownFormatStopsTheScript) {
   // A figure's own script refuses a format it does not know (run by hand with -e).
-  absl::StatusOr<GnuplotFigure> figure = coordinator::LineChartFigure(Curves());
+  absl::StatusOr<GnuplotFigure> figure = report::LineChartFigure(Curves());
   ASSERT_TRUE(figure.ok()) << figure.status();
   figure->script.insert(0, "format = 'jpeg'\n");
   const absl::StatusOr<RenderedFigure> rendered =

@@ -80,13 +80,5 @@ TEST(SweepViewTest, AScoreThatIsNotANumberIsShownAsAnErrorNotAsNoneYet) {
   EXPECT_THAT(SweepHeadline(sweep), HasSubstr("best: static (none) 410.0"));
 }
 
-TEST(SweepViewTest, OnlyCompletedFailedAndCancelledSweepsHaveEnded) {
-  EXPECT_FALSE(SweepEnded(v1::SWEEP_STATE_QUEUED));
-  EXPECT_FALSE(SweepEnded(v1::SWEEP_STATE_RUNNING));
-  EXPECT_TRUE(SweepEnded(v1::SWEEP_STATE_COMPLETED));
-  EXPECT_TRUE(SweepEnded(v1::SWEEP_STATE_FAILED));
-  EXPECT_TRUE(SweepEnded(v1::SWEEP_STATE_CANCELLED));
-}
-
 }  // namespace
 }  // namespace dcs::services::cli

@@ -59,9 +59,8 @@ TEST(WorkerCollectorTest, CountsByRoleAndStateAtScrapeTime) {
   auto registry = NewRegistry();
   ASSERT_NE(registry, nullptr);
   const absl::Time now = absl::Now();
-  const coordinator::WorkerInfo actor{.role = coordinator::WorkerRole::kActor, .address = "h:1"};
-  const coordinator::WorkerInfo learner{.role = coordinator::WorkerRole::kLearner,
-                                        .address = "h:2"};
+  const WorkerInfo actor{.role = WorkerRole::kActor, .address = "h:1"};
+  const WorkerInfo learner{.role = WorkerRole::kLearner, .address = "h:2"};
   ASSERT_TRUE(registry->Register(actor, now).ok());
   ASSERT_TRUE(registry->Register(actor, now).ok());
   // Silent for 10 minutes: LOST (but not forgotten) by the time of the scrape.
