@@ -61,16 +61,19 @@ RunHost::~RunHost() { Stop(); }
 
 void RunHost::Publish() {
   auto weights = std::make_shared<const actor::PolicyWeights>(session_->ActorWeights());
-  absl::MutexLock lock(&mu_);
-  rollout_ = session_->state().rollouts;
-  start_timesteps_ = session_->state().timesteps;
-  weights_ = std::move(weights);
-  published_at_ = absl::Now();
-  journals_ = session_->state().journals;
-  complete_ = session_->complete();
-  // The slots' parts are learnt from: freeing them releases the slots waiting for new work.
-  for (std::optional<actor::SlotRollout>& part : pending_) part.reset();
-  pending_count_ = 0;
+  {
+    absl::MutexLock lock(&mu_);
+    rollout_ = session_->state().rollouts;
+    start_timesteps_ = session_->state().timesteps;
+    weights_ = std::move(weights);
+    published_at_ = absl::Now();
+    journals_ = session_->state().journals;
+    complete_ = session_->complete();
+    // The slots' parts are learnt from: freeing them releases the slots waiting for new work.
+    for (std::optional<actor::SlotRollout>& part : pending_) part.reset();
+    pending_count_ = 0;
+  }
+  if (changed_) changed_();
 }
 
 absl::Status RunHost::CheckEpoch(int slot, int64_t epoch) {
@@ -211,9 +214,13 @@ absl::StatusOr<HostStep> RunHost::Step() {
 }
 
 void RunHost::Stop() {
-  // Under mu_: waiters re-check their conditions when it is released.
-  absl::MutexLock lock(&mu_);
-  if (!stop_.HasBeenNotified()) stop_.Notify();
+  {
+    // Under mu_: waiters re-check their conditions when it is released.
+    absl::MutexLock lock(&mu_);
+    if (stop_.HasBeenNotified()) return;
+    stop_.Notify();
+  }
+  if (changed_) changed_();
 }
 
 }  // namespace dcs::learner

@@ -140,6 +140,12 @@ class RunHost {
   // returns CANCELLED.
   void Stop();
 
+  // Calls `changed` whenever what GetSlotWork answers may have changed (a policy published,
+  // the host stopped), after the change and under no lock of the host: for callers that wait
+  // for work without holding a thread in GetSlotWork. REQUIRES: called at most once, before the
+  // host is shared with other threads.
+  void OnChange(std::function<void()> changed) { changed_ = std::move(changed); }
+
   // Whether the run has all its steps: resumed from the checkpoint of its end (its learner
   // stopped after storing it, before it could finish the run), it has nothing left to step.
   // Call from Step's thread.
@@ -169,6 +175,7 @@ class RunHost {
   const actor::SlotRolloutShape shape_;  // of each slot's part
   const absl::Time start_;
   const int64_t first_timesteps_;
+  std::function<void()> changed_;  // set before the host is shared; may be empty
 
   absl::Notification stop_;  // outlives evaluations_, whose threads watch it
 

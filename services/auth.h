@@ -66,6 +66,7 @@ const std::string& ClusterToken();
 
 // OK if the cluster has no token or the call presents it; else UNAUTHENTICATED saying whether
 // the token was missing or wrong (never the token). Compares in constant time.
+// Services call it in one place only, ServedCalls::Serve (services/served_calls.h).
 absl::Status Authenticate(const grpc::ServerContextBase& context);
 
 // Certificate files (PEM) for mutual TLS.

@@ -25,6 +25,7 @@
 #include "services/evaluation_grid_proto.h"
 #include "services/grpc_status.h"
 #include "services/log.h"
+#include "services/piece_reactors.h"
 #include "services/pieces.h"
 #include "services/run_proto.h"
 #include "services/time_proto.h"
@@ -33,86 +34,6 @@ namespace dcs::services {
 namespace {
 
 constexpr char kDefaultConfigName[] = "run.yaml";
-
-// A server stream writing `pieces` in order, or finishing at once with an error; from
-// construction, or from Start for a parked call's stream. Owned by gRPC from construction until
-// OnDone.
-template <typename Piece>
-class PiecesWriter final : public grpc::ServerWriteReactor<Piece> {
- public:
-  PiecesWriter() = default;  // writes nothing until Start
-  explicit PiecesWriter(absl::StatusOr<std::vector<Piece>> pieces) { Start(std::move(pieces)); }
-
-  // REQUIRES: called once, on a writer made without pieces.
-  void Start(absl::StatusOr<std::vector<Piece>> pieces) {
-    if (!pieces.ok()) {
-      this->Finish(ToGrpcStatus(pieces.status()));
-      return;
-    }
-    pieces_ = *std::move(pieces);
-    WriteNext();
-  }
-
-  void OnWriteDone(bool ok) override {
-    if (!ok) {
-      this->Finish(grpc::Status(grpc::StatusCode::CANCELLED, "the stream broke"));
-      return;
-    }
-    WriteNext();
-  }
-
-  void OnDone() override { delete this; }
-
- private:
-  void WriteNext() {
-    if (next_ == pieces_.size()) {
-      this->Finish(grpc::Status::OK);
-      return;
-    }
-    this->StartWrite(&pieces_[next_++]);
-  }
-
-  std::vector<Piece> pieces_;
-  size_t next_ = 0;
-};
-
-// A client stream of a header and a payload in pieces (services/pieces.h), handed whole to
-// `complete`. Owned by gRPC from construction until OnDone.
-template <typename Request>
-class JoiningReader final : public grpc::ServerReadReactor<Request> {
- public:
-  using Complete = std::function<absl::Status(PieceJoiner<Request>&)>;
-  using Count = std::function<void(const absl::Status&)>;
-
-  JoiningReader(PieceJoiner<Request> joiner, Complete complete, Count count)
-      : joiner_(std::move(joiner)), complete_(std::move(complete)), count_(std::move(count)) {
-    this->StartRead(&request_);
-  }
-
-  void OnReadDone(bool ok) override {
-    absl::Status status;
-    if (ok) {  // a piece
-      status = joiner_.Add(std::move(request_));
-      if (status.ok()) {
-        this->StartRead(&request_);
-        return;
-      }
-    } else {  // the client sent every piece
-      status = joiner_.started() ? complete_(joiner_)
-                                 : absl::InvalidArgumentError("the stream was empty");
-    }
-    count_(status);
-    this->Finish(ToGrpcStatus(status));
-  }
-
-  void OnDone() override { delete this; }
-
- private:
-  PieceJoiner<Request> joiner_;
-  const Complete complete_;
-  const Count count_;
-  Request request_;
-};
 
 // PutCheckpoint's stream: the pieces of one checkpoint and of its evaluation log's new part,
 // stored once the learner has sent them all. Owned by gRPC from construction until OnDone.
@@ -124,19 +45,24 @@ class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointR
                                            const v1::EvaluationLog&)>;
   using Count = std::function<void(const absl::Status&)>;
 
-  CheckpointReader(Store store, Count count) : store_(std::move(store)), count_(std::move(count)) {
+  // Borrows `calls` (must outlive the call), whose pool runs `store`.
+  CheckpointReader(ServedCalls& calls, Store store, Count count)
+      : calls_(calls), store_(std::move(store)), count_(std::move(count)) {
     StartRead(&request_);
   }
 
   void OnReadDone(bool ok) override {
-    // !ok: the learner sent every piece.
-    const absl::Status status = ok ? Add() : Complete();
-    if (ok && status.ok()) {
+    if (!ok) {  // the learner sent every piece
+      calls_.Offload([this] { return Complete(); },
+                     [this](const absl::Status& status) { End(status); });
+      return;
+    }
+    const absl::Status added = Add();
+    if (added.ok()) {
       StartRead(&request_);
       return;
     }
-    count_(status);
-    Finish(ToGrpcStatus(status));
+    End(added);
   }
 
   void OnDone() override { delete this; }
@@ -168,6 +94,12 @@ class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointR
     return store_(*key_, checkpoint_, first_evaluation_, log);
   }
 
+  void End(const absl::Status& status) {
+    count_(status);
+    Finish(ToGrpcStatus(status));
+  }
+
+  ServedCalls& calls_;
   const Store store_;
   const Count count_;
   v1::PutCheckpointRequest request_;
@@ -182,10 +114,7 @@ class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointR
 grpc::ServerUnaryReactor* CoordinatorService::SubmitRun(grpc::CallbackServerContext* context,
                                                         const v1::SubmitRunRequest* request,
                                                         v1::SubmitRunResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto submit = [&]() -> absl::Status {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     if (request->request_id().empty()) {
       return absl::InvalidArgumentError("request_id is empty: a client names each submission");
     }
@@ -213,195 +142,185 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitRun(grpc::CallbackServerCont
     *response->mutable_run() = RunToProto(record);
     parked_.Wake(kRunsTopic);
     return absl::OkStatus();
-  };
-  return Finish(context, submit());
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::GetRun(grpc::CallbackServerContext* context,
                                                      const v1::GetRunRequest* request,
                                                      v1::GetRunResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<v1::GetRunResponse> run = ReadRun(request->run_id());
-  if (run.ok()) *response = *std::move(run);
-  return Finish(context, run.status());
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
+    absl::StatusOr<v1::GetRunResponse> run = ReadRun(request->run_id());
+    if (run.ok()) *response = *std::move(run);
+    return run.status();
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ListRuns(grpc::CallbackServerContext* context,
                                                        const v1::ListRunsRequest* /*request*/,
                                                        v1::ListRunsResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<std::vector<coordinator::RunRecord>> runs = runs_.store->runs().ListRuns();
-  if (runs.ok()) {
-    for (const coordinator::RunRecord& run : *runs) *response->add_runs() = RunToProto(run);
-  }
-  return Finish(context, runs.status());
+  return calls_.Offloaded(context, [this, response]() -> absl::Status {
+    absl::StatusOr<std::vector<coordinator::RunRecord>> runs = runs_.store->runs().ListRuns();
+    if (runs.ok()) {
+      for (const coordinator::RunRecord& run : *runs) *response->add_runs() = RunToProto(run);
+    }
+    return runs.status();
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::CancelRun(grpc::CallbackServerContext* context,
                                                         const v1::CancelRunRequest* request,
                                                         v1::CancelRunResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<coordinator::RunRecord> run =
-      runs_.store->runs().CancelRun(request->run_id(), absl::Now());
-  if (run.ok()) {
-    Log(LogLevel::kInfo, "run cancelled", {{"run_id", run->id}});
-    *response->mutable_run() = RunToProto(*run);
-    watchers_.Notify(RunTopic(run->id));
-  }
-  return Finish(context, run.status());
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
+    absl::StatusOr<coordinator::RunRecord> run =
+        runs_.store->runs().CancelRun(request->run_id(), absl::Now());
+    if (run.ok()) {
+      Log(LogLevel::kInfo, "run cancelled", {{"run_id", run->id}});
+      *response->mutable_run() = RunToProto(*run);
+      watchers_.Notify(RunTopic(run->id));
+    }
+    return run.status();
+  });
 }
 
 grpc::ServerWriteReactor<v1::RunFile>* CoordinatorService::GetRunFiles(
     grpc::CallbackServerContext* context, const v1::GetRunFilesRequest* request) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Refuse<grpc::ServerWriteReactor<v1::RunFile>>(refused);
-  }
-  auto get = [&]() -> absl::StatusOr<std::vector<v1::RunFile>> {
-    DCS_ASSIGN_OR_RETURN(const coordinator::RunRecord run,
-                         runs_.store->runs().GetRun(request->run_id()));
-    DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunFile> files,
-                         coordinator::ReadRunFiles(
-                             coordinator::RunDirectory(runs_.data_dir, run.id)));
-    return RunFilesToPieces(files);
-  };
-  absl::StatusOr<std::vector<v1::RunFile>> pieces = get();
-  rejected_.Count(pieces.status());
-  return new PiecesWriter<v1::RunFile>(std::move(pieces));
+  return calls_.Serve<grpc::ServerWriteReactor<v1::RunFile>>(context, [&] {
+    auto get = [this, request]() -> absl::StatusOr<std::vector<v1::RunFile>> {
+      DCS_ASSIGN_OR_RETURN(const coordinator::RunRecord run,
+                           runs_.store->runs().GetRun(request->run_id()));
+      DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunFile> files,
+                           coordinator::ReadRunFiles(
+                               coordinator::RunDirectory(runs_.data_dir, run.id)));
+      return RunFilesToPieces(files);
+    };
+    return WritePiecesFromPool<v1::RunFile>(
+        calls_, get, [this](const absl::Status& status) { rejected_.Count(status); });
+  });
 }
 
 grpc::ServerWriteReactor<v1::BackupPiece>* CoordinatorService::BackupStore(
     grpc::CallbackServerContext* context, const v1::BackupStoreRequest* /*request*/) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Refuse<grpc::ServerWriteReactor<v1::BackupPiece>>(refused);
-  }
-  static std::atomic<int64_t> backups = 0;
-  // Written beside the store (its disk, its permissions), read whole, and removed.
-  const std::string path =
-      (std::filesystem::path(runs_.data_dir) / absl::StrCat("backup-", ++backups, ".db")).string();
-  auto back_up = [&]() -> absl::StatusOr<std::vector<v1::BackupPiece>> {
-    DCS_ASSIGN_OR_RETURN(const coordinator::BackupCounts counts, runs_.store->Backup(path));
-    absl::StatusOr<std::string> bytes = ReadFile(path);
-    std::error_code ignored;
-    std::filesystem::remove(path, ignored);
-    if (!bytes.ok()) return bytes.status();
-    v1::BackupPiece header;
-    header.set_size(static_cast<int64_t>(bytes->size()));
-    header.set_sha256(run::Sha256Hex(*bytes));
-    header.set_runs(counts.runs);
-    header.set_sweeps(counts.sweeps);
-    header.set_studies(counts.studies);
-    Log(LogLevel::kInfo, "store backed up",
-        {{"bytes", std::to_string(bytes->size())}, {"runs", std::to_string(counts.runs)}});
-    return CutIntoMessages(std::move(header), *bytes, &v1::BackupPiece::mutable_data);
-  };
-  absl::StatusOr<std::vector<v1::BackupPiece>> pieces = back_up();
-  rejected_.Count(pieces.status());
-  return new PiecesWriter<v1::BackupPiece>(std::move(pieces));
+  return calls_.Serve<grpc::ServerWriteReactor<v1::BackupPiece>>(context, [&] {
+    static std::atomic<int64_t> backups = 0;
+    // Written beside the store (its disk, its permissions), read whole, and removed.
+    const std::string path =
+        (std::filesystem::path(runs_.data_dir) / absl::StrCat("backup-", ++backups, ".db"))
+            .string();
+    auto back_up = [this, path]() -> absl::StatusOr<std::vector<v1::BackupPiece>> {
+      DCS_ASSIGN_OR_RETURN(const coordinator::BackupCounts counts, runs_.store->Backup(path));
+      absl::StatusOr<std::string> bytes = ReadFile(path);
+      std::error_code ignored;
+      std::filesystem::remove(path, ignored);
+      if (!bytes.ok()) return bytes.status();
+      v1::BackupPiece header;
+      header.set_size(static_cast<int64_t>(bytes->size()));
+      header.set_sha256(run::Sha256Hex(*bytes));
+      header.set_runs(counts.runs);
+      header.set_sweeps(counts.sweeps);
+      header.set_studies(counts.studies);
+      Log(LogLevel::kInfo, "store backed up",
+          {{"bytes", std::to_string(bytes->size())}, {"runs", std::to_string(counts.runs)}});
+      return CutIntoMessages(std::move(header), *bytes, &v1::BackupPiece::mutable_data);
+    };
+    return WritePiecesFromPool<v1::BackupPiece>(
+        calls_, back_up, [this](const absl::Status& status) { rejected_.Count(status); });
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerContext* context,
                                                          const v1::AcquireRunRequest* request,
                                                          v1::AcquireRunResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto acquire = [this, request, response]() -> absl::StatusOr<bool> {
-    DCS_ASSIGN_OR_RETURN(const std::optional<coordinator::LearnerLease> lease,
-                         runs_.store->runs().AcquireRun(request->holder(), request->address(),
-                                                        request->numerics(), absl::Now()));
-    if (!lease.has_value()) return false;
-    learner_leases_.Increment();
-    watchers_.Notify(RunTopic(lease->run.id));
-    Log(LogLevel::kInfo, "run leased",
-        {{"run_id", lease->run.id}, {"learner", request->holder()},
-         {"epoch", std::to_string(lease->key.epoch)},
-         {"checkpoint", lease->run.checkpoint.empty() ? "none" : lease->run.checkpoint}});
-    *response->mutable_lease() = LeaseToProto(lease->key);
-    response->set_config(lease->run.submission.config);
-    response->set_seed(lease->run.submission.seed);
-    *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
-    response->set_sweep_id(lease->run.sweep_id);
-    response->set_condition(lease->condition);
-    response->set_observe(lease->observe);
-    return true;
-  };
-  return AnswerOrPark(context, request->wait(), kRunsTopic, acquire);
+  return calls_.Serve<grpc::ServerUnaryReactor>(context, [&] {
+    auto acquire = [this, request, response]() -> absl::StatusOr<bool> {
+      DCS_ASSIGN_OR_RETURN(
+          const std::optional<coordinator::LearnerLease> lease,
+          runs_.store->runs().AcquireRun(request->holder(), request->address(),
+                                         request->numerics(), absl::Now()));
+      if (!lease.has_value()) return false;
+      learner_leases_.Increment();
+      watchers_.Notify(RunTopic(lease->run.id));
+      Log(LogLevel::kInfo, "run leased",
+          {{"run_id", lease->run.id}, {"learner", request->holder()},
+           {"epoch", std::to_string(lease->key.epoch)},
+           {"checkpoint", lease->run.checkpoint.empty() ? "none" : lease->run.checkpoint}});
+      *response->mutable_lease() = LeaseToProto(lease->key);
+      response->set_config(lease->run.submission.config);
+      response->set_seed(lease->run.submission.seed);
+      *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
+      response->set_sweep_id(lease->run.sweep_id);
+      response->set_condition(lease->condition);
+      response->set_observe(lease->observe);
+      return true;
+    };
+    return AnswerOrPark(context, request->wait(), kRunsTopic, acquire);
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::AcquireSlot(grpc::CallbackServerContext* context,
                                                           const v1::AcquireSlotRequest* request,
                                                           v1::AcquireSlotResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  std::vector<coordinator::LeaseKey> complete_learners;
-  for (const v1::Lease& learner : request->complete_learners()) {
-    absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(learner);
-    if (!key.ok()) return Finish(context, Annotate(key.status(), "complete_learners"));
-    complete_learners.push_back(*std::move(key));
-  }
-  auto acquire = [this, request, response,
-                  complete_learners = std::move(complete_learners)]() -> absl::StatusOr<bool> {
-    DCS_ASSIGN_OR_RETURN(const std::optional<coordinator::SlotLease> lease,
-                         runs_.store->runs().AcquireSlot(request->holder(), request->numerics(),
-                                                         complete_learners, absl::Now()));
-    if (!lease.has_value()) return false;
-    slot_leases_.Increment();
-    watchers_.Notify(RunTopic(lease->key.run_id));  // its actors' numerics
-    *response->mutable_lease() = LeaseToProto(lease->key);
-    response->set_learner_address(lease->learner_address);
-    response->set_learner_epoch(lease->learner_epoch);
-    response->set_config(lease->config);
-    response->set_seed(lease->seed);
-    *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
-    return true;
-  };
-  return AnswerOrPark(context, request->wait(), kSlotsTopic, std::move(acquire));
+  return calls_.Serve<grpc::ServerUnaryReactor>(context, [&] {
+    std::vector<coordinator::LeaseKey> complete_learners;
+    for (const v1::Lease& learner : request->complete_learners()) {
+      absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(learner);
+      if (!key.ok()) return calls_.Answer(context, Annotate(key.status(), "complete_learners"));
+      complete_learners.push_back(*std::move(key));
+    }
+    auto acquire = [this, request, response,
+                    complete_learners = std::move(complete_learners)]() -> absl::StatusOr<bool> {
+      DCS_ASSIGN_OR_RETURN(const std::optional<coordinator::SlotLease> lease,
+                           runs_.store->runs().AcquireSlot(request->holder(),
+                                                           request->numerics(),
+                                                           complete_learners, absl::Now()));
+      if (!lease.has_value()) return false;
+      slot_leases_.Increment();
+      watchers_.Notify(RunTopic(lease->key.run_id));  // its actors' numerics
+      *response->mutable_lease() = LeaseToProto(lease->key);
+      response->set_learner_address(lease->learner_address);
+      response->set_learner_epoch(lease->learner_epoch);
+      response->set_config(lease->config);
+      response->set_seed(lease->seed);
+      *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
+      return true;
+    };
+    return AnswerOrPark(context, request->wait(), kSlotsTopic, std::move(acquire));
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::RenewLease(grpc::CallbackServerContext* context,
                                                          const v1::RenewLeaseRequest* request,
                                                          v1::RenewLeaseResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
-  if (!key.ok()) return Finish(context, key.status());
-  *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
-  return Finish(context, runs_.store->runs().RenewLease(*key, absl::Now()));
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
+    absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
+    if (!key.ok()) return key.status();
+    *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
+    return runs_.store->runs().RenewLease(*key, absl::Now());
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ReleaseLease(grpc::CallbackServerContext* context,
                                                            const v1::ReleaseLeaseRequest* request,
                                                            v1::ReleaseLeaseResponse* /*response*/) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
-  if (!key.ok()) return Finish(context, key.status());
-  const absl::Status released = runs_.store->runs().ReleaseLease(*key, absl::Now());
-  if (released.ok()) watchers_.Notify(RunTopic(key->run_id));
-  return Finish(context, released);
+  return calls_.Offloaded(context, [this, request]() -> absl::Status {
+    absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
+    if (!key.ok()) return key.status();
+    const absl::Status released = runs_.store->runs().ReleaseLease(*key, absl::Now());
+    if (released.ok()) watchers_.Notify(RunTopic(key->run_id));
+    return released;
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ReportProgress(
     grpc::CallbackServerContext* context, const v1::ReportProgressRequest* request,
     v1::ReportProgressResponse* /*response*/) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
-  if (!key.ok()) return Finish(context, key.status());
-  const absl::Status reported =
-      runs_.store->runs().ReportProgress(*key, ProgressFromProto(request->progress()), absl::Now());
-  if (reported.ok()) watchers_.Notify(RunTopic(key->run_id));
-  return Finish(context, reported);
+  return calls_.Offloaded(context, [this, request]() -> absl::Status {
+    absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
+    if (!key.ok()) return key.status();
+    const absl::Status reported = runs_.store->runs().ReportProgress(
+        *key, ProgressFromProto(request->progress()), absl::Now());
+    if (reported.ok()) watchers_.Notify(RunTopic(key->run_id));
+    return reported;
+  });
 }
 
 absl::Status CoordinatorService::StoreCheckpoint(const coordinator::LeaseKey& key,
@@ -421,49 +340,46 @@ absl::Status CoordinatorService::StoreCheckpoint(const coordinator::LeaseKey& ke
 
 grpc::ServerReadReactor<v1::PutCheckpointRequest>* CoordinatorService::PutCheckpoint(
     grpc::CallbackServerContext* context, v1::PutCheckpointResponse* /*response*/) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Refuse<grpc::ServerReadReactor<v1::PutCheckpointRequest>>(refused);
-  }
-  return new CheckpointReader(
-      [this](const coordinator::LeaseKey& key, const run::PackedCheckpoint& checkpoint,
-             int64_t first, const v1::EvaluationLog& log_since) {
-        return StoreCheckpoint(key, checkpoint, first, log_since);
-      },
-      [this](const absl::Status& status) { rejected_.Count(status); });
+  return calls_.Serve<grpc::ServerReadReactor<v1::PutCheckpointRequest>>(context, [&] {
+    return new CheckpointReader(
+        calls_,
+        [this](const coordinator::LeaseKey& key, const run::PackedCheckpoint& checkpoint,
+               int64_t first, const v1::EvaluationLog& log_since) {
+          return StoreCheckpoint(key, checkpoint, first, log_since);
+        },
+        [this](const absl::Status& status) { rejected_.Count(status); });
+  });
 }
 
 grpc::ServerWriteReactor<v1::CheckpointPiece>* CoordinatorService::GetCheckpoint(
     grpc::CallbackServerContext* context, const v1::GetCheckpointRequest* request) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Refuse<grpc::ServerWriteReactor<v1::CheckpointPiece>>(refused);
-  }
-  auto get = [&]() -> absl::StatusOr<std::vector<v1::CheckpointPiece>> {
-    DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
-    if (key.slot != coordinator::kLearnerSlot) {
-      return absl::InvalidArgumentError("a run's checkpoints are for its learner lease");
-    }
-    // Only the lease's holder resumes the run.
-    DCS_RETURN_IF_ERROR(runs_.store->runs().RenewLease(key, absl::Now()));
-    // The learner hosts the run now (it asks as it loads it): its slots are worth taking.
-    parked_.Wake(kSlotsTopic);
-    DCS_ASSIGN_OR_RETURN(const run::PackedCheckpoint checkpoint,
-                         coordinator::LatestCheckpoint(
-                             coordinator::RunDirectory(runs_.data_dir, key.run_id)));
-    return CheckpointToPieces(checkpoint);
-  };
-  absl::StatusOr<std::vector<v1::CheckpointPiece>> pieces = get();
-  // NOT_FOUND is the answer for a run without a checkpoint yet, not a refusal.
-  if (!absl::IsNotFound(pieces.status())) rejected_.Count(pieces.status());
-  return new PiecesWriter<v1::CheckpointPiece>(std::move(pieces));
+  return calls_.Serve<grpc::ServerWriteReactor<v1::CheckpointPiece>>(context, [&] {
+    auto get = [this, request]() -> absl::StatusOr<std::vector<v1::CheckpointPiece>> {
+      DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
+      if (key.slot != coordinator::kLearnerSlot) {
+        return absl::InvalidArgumentError("a run's checkpoints are for its learner lease");
+      }
+      // Only the lease's holder resumes the run.
+      DCS_RETURN_IF_ERROR(runs_.store->runs().RenewLease(key, absl::Now()));
+      // The learner hosts the run now (it asks as it loads it): its slots are worth taking.
+      parked_.Wake(kSlotsTopic);
+      DCS_ASSIGN_OR_RETURN(const run::PackedCheckpoint checkpoint,
+                           coordinator::LatestCheckpoint(
+                               coordinator::RunDirectory(runs_.data_dir, key.run_id)));
+      return CheckpointToPieces(checkpoint);
+    };
+    return WritePiecesFromPool<v1::CheckpointPiece>(
+        calls_, get, [this](const absl::Status& status) {
+          // NOT_FOUND is the answer for a run without a checkpoint yet, not a refusal.
+          if (!absl::IsNotFound(status)) rejected_.Count(status);
+        });
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::FinishRun(grpc::CallbackServerContext* context,
                                                         const v1::FinishRunRequest* request,
                                                         v1::FinishRunResponse* /*response*/) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto finish = [&]() -> absl::Status {
+  return calls_.Offloaded(context, [this, request]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
     DCS_ASSIGN_OR_RETURN(const coordinator::RunState state, RunStateFromProto(request->state()));
     DCS_RETURN_IF_ERROR(runs_.store->runs().FinishRun(key, state, request->error(), absl::Now()));
@@ -472,147 +388,142 @@ grpc::ServerUnaryReactor* CoordinatorService::FinishRun(grpc::CallbackServerCont
         {{"run_id", key.run_id}, {"state", std::string(NameOf(coordinator::kRunStateNames, state))},
          {"error", request->error()}});
     return absl::OkStatus();
-  };
-  return Finish(context, finish());
+  });
 }
 
 grpc::ServerReadReactor<v1::SubmitEvaluationRequest>* CoordinatorService::SubmitEvaluation(
     grpc::CallbackServerContext* context, v1::SubmitEvaluationResponse* /*response*/) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Refuse<grpc::ServerReadReactor<v1::SubmitEvaluationRequest>>(refused);
-  }
-  auto submit = [this](PieceJoiner<v1::SubmitEvaluationRequest>& joined) -> absl::Status {
-    const v1::SubmitEvaluationRequest& request = joined.header();
-    DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request.lease()));
-    v1::PolicyWeights weights;  // checked here, so that actors are given what parses
-    DCS_RETURN_IF_ERROR(joined.Parse(weights));
-    DCS_RETURN_IF_ERROR(
-        runs_.store->evaluations().SubmitEvaluation(key,
-                                                    {.policy_version = request.policy_version(),
-                                                     .step = request.step(),
-                                                     .contexts = request.contexts(),
-                                                     .episodes = request.episodes(),
-                                                     .weights = std::move(joined.payload())},
-                                                    absl::Now()));
-    parked_.Wake(kEvaluationJobsTopic);
-    return absl::OkStatus();
-  };
-  return new JoiningReader<v1::SubmitEvaluationRequest>(
-      PieceJoiner<v1::SubmitEvaluationRequest>(&v1::SubmitEvaluationRequest::mutable_weights,
-                                               "the evaluation's policy"),
-      submit, [this](const absl::Status& status) { rejected_.Count(status); });
+  return calls_.Serve<grpc::ServerReadReactor<v1::SubmitEvaluationRequest>>(context, [&] {
+    auto submit = [this](PieceJoiner<v1::SubmitEvaluationRequest>& joined) -> absl::Status {
+      const v1::SubmitEvaluationRequest& request = joined.header();
+      DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request.lease()));
+      v1::PolicyWeights weights;  // checked here, so that actors are given what parses
+      DCS_RETURN_IF_ERROR(joined.Parse(weights));
+      DCS_RETURN_IF_ERROR(runs_.store->evaluations().SubmitEvaluation(
+          key,
+          {.policy_version = request.policy_version(),
+           .step = request.step(),
+           .contexts = request.contexts(),
+           .episodes = request.episodes(),
+           .weights = std::move(joined.payload())},
+          absl::Now()));
+      parked_.Wake(kEvaluationJobsTopic);
+      return absl::OkStatus();
+    };
+    return new JoiningReader<v1::SubmitEvaluationRequest>(
+        calls_,
+        PieceJoiner<v1::SubmitEvaluationRequest>(&v1::SubmitEvaluationRequest::mutable_weights,
+                                                 "the evaluation's policy"),
+        submit, [this](const absl::Status& status) { rejected_.Count(status); });
+  });
 }
 
 grpc::ServerReadReactor<v1::SubmitGridEvaluationRequest>*
 CoordinatorService::SubmitGridEvaluation(grpc::CallbackServerContext* context,
                                          v1::SubmitGridEvaluationResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Refuse<grpc::ServerReadReactor<v1::SubmitGridEvaluationRequest>>(refused);
-  }
-  auto submit = [this, response](PieceJoiner<v1::SubmitGridEvaluationRequest>& joined)
-      -> absl::Status {
-    const v1::SubmitGridEvaluationRequest& request = joined.header();
-    // The grid's features are resolved by the actors, against the run's environment.
-    DCS_ASSIGN_OR_RETURN(const int cells, GridCellCount(request.grid()));
-    v1::PolicyWeights weights;  // checked here, so that actors are given what parses
-    DCS_RETURN_IF_ERROR(joined.Parse(weights));
-    DCS_ASSIGN_OR_RETURN(const int64_t key, runs_.store->evaluations().SubmitGridEvaluation(
-                                                {.request_id = request.request_id(),
-                                                 .run_id = request.run_id(),
-                                                 .cells = cells,
-                                                 .episodes = request.episodes(),
-                                                 .grid = request.grid().SerializeAsString(),
-                                                 .weights = std::move(joined.payload())},
-                                                absl::Now()));
-    response->set_evaluation_key(key);
-    parked_.Wake(kEvaluationJobsTopic);
-    return absl::OkStatus();
-  };
-  return new JoiningReader<v1::SubmitGridEvaluationRequest>(
-      PieceJoiner<v1::SubmitGridEvaluationRequest>(
-          &v1::SubmitGridEvaluationRequest::mutable_weights, "the grid evaluation's policy"),
-      submit, [this](const absl::Status& status) { rejected_.Count(status); });
+  return calls_.Serve<grpc::ServerReadReactor<v1::SubmitGridEvaluationRequest>>(context, [&] {
+    auto submit = [this, response](PieceJoiner<v1::SubmitGridEvaluationRequest>& joined)
+        -> absl::Status {
+      const v1::SubmitGridEvaluationRequest& request = joined.header();
+      // The grid's features are resolved by the actors, against the run's environment.
+      DCS_ASSIGN_OR_RETURN(const int cells, GridCellCount(request.grid()));
+      v1::PolicyWeights weights;  // checked here, so that actors are given what parses
+      DCS_RETURN_IF_ERROR(joined.Parse(weights));
+      DCS_ASSIGN_OR_RETURN(const int64_t key, runs_.store->evaluations().SubmitGridEvaluation(
+                                                  {.request_id = request.request_id(),
+                                                   .run_id = request.run_id(),
+                                                   .cells = cells,
+                                                   .episodes = request.episodes(),
+                                                   .grid = request.grid().SerializeAsString(),
+                                                   .weights = std::move(joined.payload())},
+                                                  absl::Now()));
+      response->set_evaluation_key(key);
+      parked_.Wake(kEvaluationJobsTopic);
+      return absl::OkStatus();
+    };
+    return new JoiningReader<v1::SubmitGridEvaluationRequest>(
+        calls_,
+        PieceJoiner<v1::SubmitGridEvaluationRequest>(
+            &v1::SubmitGridEvaluationRequest::mutable_weights, "the grid evaluation's policy"),
+        submit, [this](const absl::Status& status) { rejected_.Count(status); });
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
     grpc::CallbackServerContext* context, const v1::GetEvaluationRequest* request,
     v1::GetEvaluationResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  // Answers with how far the evaluation is; waits (with a `wait`) until it is done.
-  auto progress = [this, request, response]() -> absl::StatusOr<bool> {
-    DCS_ASSIGN_OR_RETURN(
-        const coordinator::EvaluationProgress evaluation,
-        runs_.store->evaluations().GetEvaluation(request->run_id(), request->policy_version()));
-    response->Clear();
-    response->set_contexts(evaluation.contexts);
-    response->set_done(evaluation.done);
-    for (const coordinator::ContextReturns& result : evaluation.results) {
-      *response->add_results() = ContextReturnsToProto(result);
-    }
-    return evaluation.done == evaluation.contexts;
-  };
-  return AnswerOrPark(context, request->wait(),
-                      EvaluationTopic(request->run_id(), request->policy_version()), progress);
+  return calls_.Serve<grpc::ServerUnaryReactor>(context, [&] {
+    // Answers with how far the evaluation is; waits (with a `wait`) until it is done.
+    auto progress = [this, request, response]() -> absl::StatusOr<bool> {
+      DCS_ASSIGN_OR_RETURN(
+          const coordinator::EvaluationProgress evaluation,
+          runs_.store->evaluations().GetEvaluation(request->run_id(), request->policy_version()));
+      response->Clear();
+      response->set_contexts(evaluation.contexts);
+      response->set_done(evaluation.done);
+      for (const coordinator::ContextReturns& result : evaluation.results) {
+        *response->add_results() = ContextReturnsToProto(result);
+      }
+      return evaluation.done == evaluation.contexts;
+    };
+    return AnswerOrPark(context, request->wait(),
+                        EvaluationTopic(request->run_id(), request->policy_version()), progress);
+  });
 }
 
 grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::AcquireEvaluation(
     grpc::CallbackServerContext* context, const v1::AcquireEvaluationRequest* request) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Refuse<grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>>(refused);
-  }
-  // The grant's messages: a header without jobs when none is open.
-  auto acquire = [this, request]() -> absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> {
-    DCS_ASSIGN_OR_RETURN(std::optional<coordinator::EvaluationGrant> grant,
-                         runs_.store->evaluations().AcquireEvaluationJobs(
-                             request->holder(), request->numerics(), request->max_jobs(),
-                             AliveActors(), request->grid_cells(), absl::Now()));
-    v1::AcquireEvaluationResponse header;
-    if (!grant.has_value()) return std::vector{std::move(header)};
-    evaluation_leases_.Increment(static_cast<double>(grant->jobs.size()));
-    for (const coordinator::EvaluationJobKey& job : grant->jobs) {
-      *header.add_jobs() = EvaluationJobToProto(job);
-    }
-    header.set_config(std::move(grant->config));
-    header.set_episodes(grant->episodes);
-    if (!grant->grid.empty() && !header.mutable_grid()->ParseFromString(grant->grid)) {
-      return absl::DataLossError(absl::StrCat("the grid of the evaluation of ",
-                                              grant->jobs.front().run_id, " with key ",
-                                              grant->jobs.front().policy_version,
-                                              " does not parse"));
-    }
-    *header.mutable_lease_duration() = DurationToProto(runs_.lease_duration);
-    return CutIntoMessages(std::move(header), grant->weights,
-                           &v1::AcquireEvaluationResponse::mutable_weights);
-  };
-  // The last attempt's messages, which the answer writes: one with no jobs until an attempt
-  // (a server that stops expires a parked call without one).
-  auto messages = std::make_shared<std::vector<v1::AcquireEvaluationResponse>>(1);
-  auto* writer = new PiecesWriter<v1::AcquireEvaluationResponse>();
-  AnswerOrPark(
-      *context, request->wait(), kEvaluationJobsTopic,
-      [acquire, messages]() -> absl::StatusOr<bool> {
-        DCS_ASSIGN_OR_RETURN(*messages, acquire());
-        return !messages->front().jobs().empty();
-      },
-      [writer, messages](const absl::Status& status) {
-        if (status.ok()) {
-          writer->Start(std::move(*messages));
-        } else {
-          writer->Start(status);
-        }
-      });
-  return writer;
+  return calls_.Serve<grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>>(context, [&] {
+    // The grant's messages: a header without jobs when none is open.
+    auto acquire =
+        [this, request]() -> absl::StatusOr<std::vector<v1::AcquireEvaluationResponse>> {
+      DCS_ASSIGN_OR_RETURN(std::optional<coordinator::EvaluationGrant> grant,
+                           runs_.store->evaluations().AcquireEvaluationJobs(
+                               request->holder(), request->numerics(), request->max_jobs(),
+                               AliveActors(), request->grid_cells(), absl::Now()));
+      v1::AcquireEvaluationResponse header;
+      if (!grant.has_value()) return std::vector{std::move(header)};
+      evaluation_leases_.Increment(static_cast<double>(grant->jobs.size()));
+      for (const coordinator::EvaluationJobKey& job : grant->jobs) {
+        *header.add_jobs() = EvaluationJobToProto(job);
+      }
+      header.set_config(std::move(grant->config));
+      header.set_episodes(grant->episodes);
+      if (!grant->grid.empty() && !header.mutable_grid()->ParseFromString(grant->grid)) {
+        return absl::DataLossError(absl::StrCat("the grid of the evaluation of ",
+                                                grant->jobs.front().run_id, " with key ",
+                                                grant->jobs.front().policy_version,
+                                                " does not parse"));
+      }
+      *header.mutable_lease_duration() = DurationToProto(runs_.lease_duration);
+      return CutIntoMessages(std::move(header), grant->weights,
+                             &v1::AcquireEvaluationResponse::mutable_weights);
+    };
+    // The last attempt's messages, which the answer writes: one with no jobs until an attempt
+    // (a server that stops expires a parked call without one).
+    auto messages = std::make_shared<std::vector<v1::AcquireEvaluationResponse>>(1);
+    auto* writer = new PiecesWriter<v1::AcquireEvaluationResponse>();
+    AnswerOrPark(
+        *context, request->wait(), kEvaluationJobsTopic,
+        [acquire, messages]() -> absl::StatusOr<bool> {
+          DCS_ASSIGN_OR_RETURN(*messages, acquire());
+          return !messages->front().jobs().empty();
+        },
+        [writer, messages](const absl::Status& status) {
+          if (status.ok()) {
+            writer->Start(std::move(*messages));
+          } else {
+            writer->Start(status);
+          }
+        });
+    return writer;
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ReportEvaluation(
     grpc::CallbackServerContext* context, const v1::ReportEvaluationRequest* request,
     v1::ReportEvaluationResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto report = [&]() -> absl::Status {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     if (request->results().empty()) {
       return absl::InvalidArgumentError("the report holds no job's result");
     }
@@ -630,8 +541,7 @@ grpc::ServerUnaryReactor* CoordinatorService::ReportEvaluation(
       parked_.Wake(EvaluationTopic(delivered.job.run_id, delivered.job.policy_version));
     }
     return absl::OkStatus();
-  };
-  return Finish(context, report());
+  });
 }
 
 }  // namespace dcs::services

@@ -68,14 +68,6 @@ int CoordinatorService::AliveActors() const {
   }));
 }
 
-grpc::ServerUnaryReactor* CoordinatorService::Finish(grpc::CallbackServerContext* context,
-                                                     const absl::Status& status) {
-  rejected_.Count(status);
-  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-  reactor->Finish(ToGrpcStatus(status));
-  return reactor;
-}
-
 std::string CoordinatorService::EvaluationTopic(absl::string_view run_id,
                                                 int64_t policy_version) {
   return absl::StrCat("evaluation ", run_id, "@", policy_version);
@@ -101,7 +93,7 @@ void CoordinatorService::AnswerOrPark(const grpc::CallbackServerContext& context
   };
   const absl::Duration asked = DurationFromProto(wait);
   if (asked <= absl::ZeroDuration()) {
-    counted(attempt().status());
+    calls_.Offload([attempt = std::move(attempt)] { return attempt().status(); }, counted);
     return;
   }
   parked_.Park(
@@ -127,57 +119,52 @@ grpc::ServerUnaryReactor* CoordinatorService::AnswerOrPark(
 grpc::ServerUnaryReactor* CoordinatorService::RegisterWorker(
     grpc::CallbackServerContext* context, const v1::RegisterWorkerRequest* request,
     v1::RegisterWorkerResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<WorkerInfo> info = WorkerInfoFromProto(request->worker());
-  if (!info.ok()) return Finish(context, info.status());
-  const WorkerRole role = info->role;
-  const std::string address = info->address;
-  absl::StatusOr<std::string> id = registry_.Register(*std::move(info), absl::Now());
-  if (!id.ok()) return Finish(context, id.status());
+  return calls_.Inline(context, [&]() -> absl::Status {
+    absl::StatusOr<WorkerInfo> info = WorkerInfoFromProto(request->worker());
+    if (!info.ok()) return info.status();
+    const WorkerRole role = info->role;
+    const std::string address = info->address;
+    absl::StatusOr<std::string> id = registry_.Register(*std::move(info), absl::Now());
+    if (!id.ok()) return id.status();
 
-  (role == WorkerRole::kLearner ? learner_registrations_ : actor_registrations_).Increment();
-  Log(LogLevel::kInfo, "worker registered",
-      {{"worker_id", *id}, {"role", WorkerRoleName(role)}, {"address", address}});
-  response->set_worker_id(*id);
-  *response->mutable_heartbeat_interval() =
-      DurationToProto(registry_.options().heartbeat_interval);
-  return Finish(context, absl::OkStatus());
+    (role == WorkerRole::kLearner ? learner_registrations_ : actor_registrations_).Increment();
+    Log(LogLevel::kInfo, "worker registered",
+        {{"worker_id", *id}, {"role", WorkerRoleName(role)}, {"address", address}});
+    response->set_worker_id(*id);
+    *response->mutable_heartbeat_interval() =
+        DurationToProto(registry_.options().heartbeat_interval);
+    return absl::OkStatus();
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::Heartbeat(grpc::CallbackServerContext* context,
                                                         const v1::HeartbeatRequest* request,
                                                         v1::HeartbeatResponse* /*response*/) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  return Finish(context, registry_.Heartbeat(request->worker_id(), absl::Now()));
+  return calls_.Inline(context,
+                       [&] { return registry_.Heartbeat(request->worker_id(), absl::Now()); });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::UnregisterWorker(
     grpc::CallbackServerContext* context, const v1::UnregisterWorkerRequest* request,
     v1::UnregisterWorkerResponse* /*response*/) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::Status status = registry_.Unregister(request->worker_id(), absl::Now());
-  if (status.ok()) Log(LogLevel::kInfo, "worker left", {{"worker_id", request->worker_id()}});
-  return Finish(context, status);
+  return calls_.Inline(context, [&] {
+    absl::Status status = registry_.Unregister(request->worker_id(), absl::Now());
+    if (status.ok()) Log(LogLevel::kInfo, "worker left", {{"worker_id", request->worker_id()}});
+    return status;
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::GetClusterStatus(
     grpc::CallbackServerContext* context, const v1::GetClusterStatusRequest* /*request*/,
     v1::GetClusterStatusResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  *response->mutable_coordinator_build() = build_;
-  *response->mutable_coordinator_start_time() = TimeToProto(start_time_);
-  for (const coordinator::WorkerRecord& record : registry_.List(absl::Now())) {
-    *response->add_workers() = WorkerToProto(record);
-  }
-  return Finish(context, absl::OkStatus());
+  return calls_.Inline(context, [&] {
+    *response->mutable_coordinator_build() = build_;
+    *response->mutable_coordinator_start_time() = TimeToProto(start_time_);
+    for (const coordinator::WorkerRecord& record : registry_.List(absl::Now())) {
+      *response->add_workers() = WorkerToProto(record);
+    }
+    return absl::OkStatus();
+  });
 }
 
 }  // namespace dcs::services

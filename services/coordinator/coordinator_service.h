@@ -3,15 +3,18 @@
 #define DCS_SERVICES_COORDINATOR_COORDINATOR_SERVICE_H_
 
 // dcs.v1.CoordinatorService over the coordinator library: each method decodes the request,
-// calls the library, encodes the reply and converts the status. Workers' membership is in
-// coordinator_service.cc, runs, leases and the store's backups in coordinator_runs.cc, sweeps in
-// coordinator_sweeps.cc, watches of runs and sweeps in coordinator_watch.cc. The calls by which workers ask for work (AcquireRun, AcquireSlot,
-// AcquireEvaluation) and a learner for its evaluation (GetEvaluation) may wait for it: with a
-// `wait`, a call that finds nothing is parked (services/parked_calls.h) until the work may have
-// come (a run submitted, a run taken, an evaluation submitted, its last job reported) or its
-// wait is up. A watch streams only what changed: each handler that changes a run or a sweep says
-// so (Watchers::Notify), and the watch's stream looks at the store again (services/coordinator/
-// watchers.h). Thread-safe.
+// calls the library, encodes the reply and converts the status. Every call comes in through
+// ServedCalls (services/served_calls.h), which authenticates it; what touches the store or the
+// runs' directories runs on the service's work pool, never on gRPC's threads; membership
+// (memory only) is answered inline. Workers' membership is in coordinator_service.cc, runs,
+// leases and the store's backups in coordinator_runs.cc, sweeps in coordinator_sweeps.cc,
+// watches of runs and sweeps in coordinator_watch.cc. The calls by which workers ask for work
+// (AcquireRun, AcquireSlot, AcquireEvaluation) and a learner for its evaluation (GetEvaluation)
+// may wait for it: with a `wait`, a call that finds nothing is parked (services/parked_calls.h)
+// until the work may have come (a run submitted, a run taken, an evaluation submitted, its last
+// job reported) or its wait is up. A watch streams only what changed: each handler that changes
+// a run or a sweep says so (Watchers::Notify), and the watch's stream looks at the store again
+// (services/coordinator/watchers.h). Thread-safe.
 // Borrows the registry and the store (must outlive the service); owns its metrics'
 // registration.
 
@@ -31,12 +34,13 @@
 #include "dcs/v1/evaluation.pb.h"
 #include "dcs/v1/coordinator_service.grpc.pb.h"
 #include "run/run_checkpoint.h"
-#include "services/auth.h"
 #include "services/build_info.h"
 #include "services/coordinator/watchers.h"
 #include "services/grpc_status.h"
 #include "services/parked_calls.h"
 #include "services/refusal_counter.h"
+#include "services/served_calls.h"
+#include "services/work_pool.h"
 
 namespace dcs::services {
 
@@ -172,12 +176,6 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   void StopWatches();
 
  private:
-  // Finishes the call with `status`, counting a refusal under its reason.
-  grpc::ServerUnaryReactor* Finish(grpc::CallbackServerContext* context,
-                                   const absl::Status& status);
-  // A stream refused before it starts (an unauthenticated caller), counted under its reason.
-  template <typename StreamReactor>
-  StreamReactor* Refuse(const absl::Status& status);
   // What parked calls wait for (ParkedCalls topics): a queued run (AcquireRun), a free slot of
   // a run its learner hosts (AcquireSlot: woken when the learner fetches the run's checkpoint,
   // which it does as it loads the run), an open evaluation job (AcquireEvaluation), and one
@@ -206,8 +204,9 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   // a positive `wait`, until an attempt finds it, the call is parked under `topic` (tried
   // again at each Wake of it) for that long at most (ParkingDeadline), then answered as its
   // last attempt left it (GetEvaluation's says how far the evaluation is; an Acquire's holds
-  // nothing). `attempt` and `answer` run on the parked calls' thread, not the handler's: they
-  // must hold what they read by value or by pointer to the call's own request and response.
+  // nothing). `attempt` and `answer` run on the pool or the parked calls' thread, not the
+  // handler's: they must hold what they read by value or by pointer to the call's own request
+  // and response.
   void AnswerOrPark(const grpc::CallbackServerContext& context,
                     const google::protobuf::Duration& wait, std::string topic,
                     std::function<absl::StatusOr<bool>()> attempt,
@@ -238,29 +237,23 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   RefusalCounter rejected_;
   prometheus::Gauge& run_watchers_;
   prometheus::Gauge& sweep_watchers_;
-  // Every watch is removed from it by its call's end, before the service goes.
+  // Every watch is removed from it by its call's end, before the service goes; outlives the
+  // pool, whose work notifies it.
   Watchers watchers_;
-  // Last: destroyed first, answering the calls still parked while the rest is alive.
+  // Destroyed after the pool, whose work may wake parked calls, answering the calls still
+  // parked while the rest is alive.
   ParkedCalls parked_;
+  // Destroyed first, running the work queued while the rest is alive. The store is one
+  // connection behind a mutex, so more threads would only wait for it; these let a read wait
+  // for a commit while another call's files are written. A full queue refuses
+  // (RESOURCE_EXHAUSTED): 1024 calls wait already, seconds of work.
+  WorkPool pool_{{.threads = 4, .max_queued = 1024}};
+  ServedCalls calls_{pool_, &rejected_};
 };
 
 // When a call parked with `wait` is answered at the latest: `wait` from now (at most 10 s), and
 // early enough before its own deadline for the answer to reach the caller.
 absl::Time ParkingDeadline(const grpc::CallbackServerContext& context, absl::Duration wait);
-
-// Implementation details.
-
-template <typename StreamReactor>
-StreamReactor* CoordinatorService::Refuse(const absl::Status& status) {
-  // Finishes at once; owned by gRPC until OnDone.
-  class Refused final : public StreamReactor {
-   public:
-    explicit Refused(const absl::Status& status) { this->Finish(ToGrpcStatus(status)); }
-    void OnDone() override { delete this; }
-  };
-  rejected_.Count(status);
-  return new Refused(status);
-}
 
 }  // namespace dcs::services
 

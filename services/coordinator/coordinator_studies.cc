@@ -17,10 +17,7 @@ namespace dcs::services {
 grpc::ServerUnaryReactor* CoordinatorService::CreateStudy(grpc::CallbackServerContext* context,
                                                           const v1::CreateStudyRequest* request,
                                                           v1::CreateStudyResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto create = [&]() -> absl::Status {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(coordinator::StudyRecord study, StudyFromProto(request->study()));
     study.submission.request_id = request->request_id();
     DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord created,
@@ -29,17 +26,13 @@ grpc::ServerUnaryReactor* CoordinatorService::CreateStudy(grpc::CallbackServerCo
         {{"study_id", created.id}, {"name", created.submission.name}});
     *response->mutable_study() = StudyToProto(created);
     return absl::OkStatus();
-  };
-  return Finish(context, create());
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::GetStudy(grpc::CallbackServerContext* context,
                                                        const v1::GetStudyRequest* request,
                                                        v1::GetStudyResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto get = [&]() -> absl::Status {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study,
                          runs_.store->studies().GetStudy(request->study_id()));
     DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::StudyTrial> trials,
@@ -49,8 +42,7 @@ grpc::ServerUnaryReactor* CoordinatorService::GetStudy(grpc::CallbackServerConte
       *response->add_trials() = StudyTrialToProto(trial);
     }
     return absl::OkStatus();
-  };
-  return Finish(context, get());
+  });
 }
 
 namespace {
@@ -69,27 +61,20 @@ absl::Status RequireAskAndTell(coordinator::Store& store, const std::string& stu
 grpc::ServerUnaryReactor* CoordinatorService::AskTrial(grpc::CallbackServerContext* context,
                                                        const v1::AskTrialRequest* request,
                                                        v1::AskTrialResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto ask = [&]() -> absl::Status {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     DCS_RETURN_IF_ERROR(RequireAskAndTell(*runs_.store, request->study_id()));
     DCS_ASSIGN_OR_RETURN(
         const coordinator::StudyTrial trial,
         runs_.store->studies().AskTrial(request->study_id(), request->request_id(), absl::Now()));
     *response->mutable_trial() = StudyTrialToProto(trial);
     return absl::OkStatus();
-  };
-  return Finish(context, ask());
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::TellTrial(grpc::CallbackServerContext* context,
                                                         const v1::TellTrialRequest* request,
                                                         v1::TellTrialResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto tell = [&]() -> absl::Status {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     const std::optional<coordinator::TrialState> state =
         FindByName(coordinator::kTrialStateNames, request->state());
     if (!state.has_value()) {
@@ -102,25 +87,20 @@ grpc::ServerUnaryReactor* CoordinatorService::TellTrial(grpc::CallbackServerCont
                                                           *state, request->value(), absl::Now()));
     *response->mutable_trial() = StudyTrialToProto(trial);
     return absl::OkStatus();
-  };
-  return Finish(context, tell());
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ReportTrial(grpc::CallbackServerContext* context,
                                                           const v1::ReportTrialRequest* request,
                                                           v1::ReportTrialResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto report = [&]() -> absl::Status {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     DCS_RETURN_IF_ERROR(RequireAskAndTell(*runs_.store, request->study_id()));
     DCS_ASSIGN_OR_RETURN(const bool prune,
                          runs_.store->studies().ReportTrial(request->study_id(), request->number(),
                                                             request->step(), request->value()));
     response->set_prune(prune);
     return absl::OkStatus();
-  };
-  return Finish(context, report());
+  });
 }
 
 }  // namespace dcs::services

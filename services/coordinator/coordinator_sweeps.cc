@@ -28,10 +28,7 @@ constexpr char kDefaultSpecName[] = "sweep.yaml";
 grpc::ServerUnaryReactor* CoordinatorService::SubmitSweep(grpc::CallbackServerContext* context,
                                                           const v1::SubmitSweepRequest* request,
                                                           v1::SubmitSweepResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto submit = [&]() -> absl::Status {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     if (request->request_id().empty() && !request->validate_only()) {
       return absl::InvalidArgumentError("request_id is empty: a client names each submission");
     }
@@ -68,77 +65,70 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitSweep(grpc::CallbackServerCo
     *response->mutable_sweep() = SweepToProto(record);
     parked_.Wake(kRunsTopic);
     return absl::OkStatus();
-  };
-  return Finish(context, submit());
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::GetSweep(grpc::CallbackServerContext* context,
                                                        const v1::GetSweepRequest* request,
                                                        v1::GetSweepResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<v1::GetSweepResponse> sweep = ReadSweep(request->sweep_id());
-  if (sweep.ok()) *response = *std::move(sweep);
-  return Finish(context, sweep.status());
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
+    absl::StatusOr<v1::GetSweepResponse> sweep = ReadSweep(request->sweep_id());
+    if (sweep.ok()) *response = *std::move(sweep);
+    return sweep.status();
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::ListSweeps(
     grpc::CallbackServerContext* context, const v1::ListSweepsRequest* /*request*/,
     v1::ListSweepsResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps = runs_.store->sweeps().ListSweeps();
-  if (sweeps.ok()) {
-    for (const coordinator::SweepRecord& sweep : *sweeps) {
-      *response->add_sweeps() = SweepToProto(sweep);
+  return calls_.Offloaded(context, [this, response]() -> absl::Status {
+    absl::StatusOr<std::vector<coordinator::SweepRecord>> sweeps =
+        runs_.store->sweeps().ListSweeps();
+    if (sweeps.ok()) {
+      for (const coordinator::SweepRecord& sweep : *sweeps) {
+        *response->add_sweeps() = SweepToProto(sweep);
+      }
     }
-  }
-  return Finish(context, sweeps.status());
+    return sweeps.status();
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::CancelSweep(grpc::CallbackServerContext* context,
                                                           const v1::CancelSweepRequest* request,
                                                           v1::CancelSweepResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<coordinator::SweepRecord> sweep =
-      runs_.store->sweeps().CancelSweep(request->sweep_id(), absl::Now());
-  if (sweep.ok()) {
-    Log(LogLevel::kInfo, "sweep cancelled", {{"sweep_id", sweep->id}});
-    *response->mutable_sweep() = SweepToProto(*sweep);
-    RunsChanged();  // its runs, which their watches follow too
-  }
-  return Finish(context, sweep.status());
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
+    absl::StatusOr<coordinator::SweepRecord> sweep =
+        runs_.store->sweeps().CancelSweep(request->sweep_id(), absl::Now());
+    if (sweep.ok()) {
+      Log(LogLevel::kInfo, "sweep cancelled", {{"sweep_id", sweep->id}});
+      *response->mutable_sweep() = SweepToProto(*sweep);
+      RunsChanged();  // its runs, which their watches follow too
+    }
+    return sweep.status();
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::RetrySweep(grpc::CallbackServerContext* context,
                                                          const v1::RetrySweepRequest* request,
                                                          v1::RetrySweepResponse* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  absl::StatusOr<std::pair<coordinator::SweepRecord, int>> retried =
-      runs_.store->sweeps().RetrySweep(request->sweep_id(), absl::Now());
-  if (retried.ok()) {
-    Log(LogLevel::kInfo, "sweep retried",
-        {{"sweep_id", retried->first.id}, {"runs", std::to_string(retried->second)}});
-    *response->mutable_sweep() = SweepToProto(retried->first);
-    response->set_retried(retried->second);
-    RunsChanged();  // its runs, which their watches follow too
-  }
-  return Finish(context, retried.status());
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
+    absl::StatusOr<std::pair<coordinator::SweepRecord, int>> retried =
+        runs_.store->sweeps().RetrySweep(request->sweep_id(), absl::Now());
+    if (retried.ok()) {
+      Log(LogLevel::kInfo, "sweep retried",
+          {{"sweep_id", retried->first.id}, {"runs", std::to_string(retried->second)}});
+      *response->mutable_sweep() = SweepToProto(retried->first);
+      response->set_retried(retried->second);
+      RunsChanged();  // its runs, which their watches follow too
+    }
+    return retried.status();
+  });
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::GetSweepResults(
     grpc::CallbackServerContext* context, const v1::GetSweepResultsRequest* request,
     v1::SweepResults* response) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Finish(context, refused);
-  }
-  auto get = [&]() -> absl::Status {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
     DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord sweep,
                          runs_.store->sweeps().GetSweep(request->sweep_id()));
     DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::RunRecord> runs,
@@ -147,8 +137,7 @@ grpc::ServerUnaryReactor* CoordinatorService::GetSweepResults(
                          coordinator::CollectSweepResults(sweep, runs, completed_logs_,
                                                           request->scores_only()));
     return absl::OkStatus();
-  };
-  return Finish(context, get());
+  });
 }
 
 }  // namespace dcs::services

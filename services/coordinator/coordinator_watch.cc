@@ -160,42 +160,41 @@ absl::StatusOr<v1::GetSweepResponse> CoordinatorService::ReadSweep(
 
 grpc::ServerWriteReactor<v1::GetRunResponse>* CoordinatorService::WatchRun(
     grpc::CallbackServerContext* context, const v1::WatchRunRequest* request) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Refuse<grpc::ServerWriteReactor<v1::GetRunResponse>>(refused);
-  }
-  const std::string topic = RunTopic(request->run_id());
-  return new WatchWriter<v1::GetRunResponse>(
-      watchers_,
-      {.topics = {topic},
-       .min_interval = kRunWatchInterval,
-       .read = [this, run_id = request->run_id()] { return ReadRun(run_id); },
-       .follows = [topic](const v1::GetRunResponse&) { return std::vector{topic}; },
-       .ended = [](const v1::GetRunResponse& run) { return RunEnded(run.run().state()); },
-       .count_refusal = [this](const absl::Status& status) { rejected_.Count(status); }},
-      run_watchers_);
+  return calls_.Serve<grpc::ServerWriteReactor<v1::GetRunResponse>>(context, [&] {
+    const std::string topic = RunTopic(request->run_id());
+    return new WatchWriter<v1::GetRunResponse>(
+        watchers_,
+        {.topics = {topic},
+         .min_interval = kRunWatchInterval,
+         .read = [this, run_id = request->run_id()] { return ReadRun(run_id); },
+         .follows = [topic](const v1::GetRunResponse&) { return std::vector{topic}; },
+         .ended = [](const v1::GetRunResponse& run) { return RunEnded(run.run().state()); },
+         .count_refusal = [this](const absl::Status& status) { rejected_.Count(status); }},
+        run_watchers_);
+  });
 }
 
 grpc::ServerWriteReactor<v1::GetSweepResponse>* CoordinatorService::WatchSweep(
     grpc::CallbackServerContext* context, const v1::WatchSweepRequest* request) {
-  if (absl::Status refused = Authenticate(*context); !refused.ok()) {
-    return Refuse<grpc::ServerWriteReactor<v1::GetSweepResponse>>(refused);
-  }
-  const std::string topic = SweepTopic(request->sweep_id());
-  return new WatchWriter<v1::GetSweepResponse>(
-      watchers_,
-      {.topics = {topic},
-       .min_interval = kSweepWatchInterval,
-       .read = [this, sweep_id = request->sweep_id()] { return ReadSweep(sweep_id); },
-       // Its runs change without its writers knowing the sweep (a learner's progress).
-       .follows =
-           [topic](const v1::GetSweepResponse& sweep) {
-             std::vector<std::string> topics = {topic};
-             for (const v1::Run& run : sweep.runs()) topics.push_back(RunTopic(run.run_id()));
-             return topics;
-           },
-       .ended = [](const v1::GetSweepResponse& sweep) { return SweepEnded(sweep.sweep().state()); },
-       .count_refusal = [this](const absl::Status& status) { rejected_.Count(status); }},
-      sweep_watchers_);
+  return calls_.Serve<grpc::ServerWriteReactor<v1::GetSweepResponse>>(context, [&] {
+    const std::string topic = SweepTopic(request->sweep_id());
+    return new WatchWriter<v1::GetSweepResponse>(
+        watchers_,
+        {.topics = {topic},
+         .min_interval = kSweepWatchInterval,
+         .read = [this, sweep_id = request->sweep_id()] { return ReadSweep(sweep_id); },
+         // Its runs change without its writers knowing the sweep (a learner's progress).
+         .follows =
+             [topic](const v1::GetSweepResponse& sweep) {
+               std::vector<std::string> topics = {topic};
+               for (const v1::Run& run : sweep.runs()) topics.push_back(RunTopic(run.run_id()));
+               return topics;
+             },
+         .ended =
+             [](const v1::GetSweepResponse& sweep) { return SweepEnded(sweep.sweep().state()); },
+         .count_refusal = [this](const absl::Status& status) { rejected_.Count(status); }},
+        sweep_watchers_);
+  });
 }
 
 void CoordinatorService::RunsChanged() { watchers_.NotifyAll(); }

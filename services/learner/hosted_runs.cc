@@ -130,6 +130,16 @@ absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Find(const std::st
   return run->host;
 }
 
+void HostedRuns::OnRunChanged(std::function<void(const std::string& run_id)> changed) {
+  absl::MutexLock lock(&changed_mu_);
+  changed_ = std::move(changed);
+}
+
+void HostedRuns::Changed(const std::string& run_id) {
+  absl::MutexLock lock(&changed_mu_);
+  if (changed_) changed_(run_id);
+}
+
 void HostedRuns::Manage() {
   while (!stopping_.HasBeenNotified()) {
     const absl::Time round = absl::Now();
@@ -289,6 +299,7 @@ absl::StatusOr<std::shared_ptr<learner::RunHost>> HostedRuns::Load(Run& run) {
                                     .rpc_timeout = options_.rpc_timeout})));
     return absl::OkStatus();
   }));
+  host->OnChange([this, run_id = run.lease.run_id] { Changed(run_id); });
   return host;
 }
 
@@ -305,6 +316,7 @@ void HostedRuns::Train(Run& run) {
     run.host = *loaded;
     if (run.lost) run.host->Stop();
   }
+  Changed(run.lease.run_id);  // its slots' work is out
   learner::RunHost& host = **loaded;
   if (host.complete()) {
     // Its checkpoint holds its end, final evaluation included (RunHost::Step stores it once

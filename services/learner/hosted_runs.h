@@ -20,6 +20,7 @@
 #include <prometheus/registry.h>
 
 #include <atomic>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -71,6 +72,13 @@ class HostedRuns {
   // Stops taking runs and stops every run (its lease lapses, to go to another learner).
   void Stop();
 
+  // Calls `changed(run_id)` whenever what Find and the run's host answer for a run may have
+  // changed (the run loaded, a policy was published, its host stopped): for a service that
+  // waits for work without holding a thread in Find or GetSlotWork. From any thread, while
+  // holding a lock of this object's own (so `changed` must not call into it); null to stop,
+  // which returns once no call of the last `changed` is running.
+  void OnRunChanged(std::function<void(const std::string& run_id)> changed);
+
  private:
   struct Run;
 
@@ -93,6 +101,8 @@ class HostedRuns {
                              const v1::EvaluationLog& log);
   // Tells the coordinator the run ended in `state`: completed, or failed with `error`.
   void Finish(Run& run, v1::RunState state, const std::string& error);
+  // Tells the OnRunChanged listener, if any.
+  void Changed(const std::string& run_id);
 
   const HostedRunsOptions options_;
   // Shared with the hosts' evaluators (services/learner/remote_evaluation.h).
@@ -106,6 +116,9 @@ class HostedRuns {
   // is reaped.
   std::map<std::pair<std::string, int64_t>, std::shared_ptr<Run>> runs_ ABSL_GUARDED_BY(mu_);
   absl::Duration lease_duration_ ABSL_GUARDED_BY(mu_);  // the coordinator's, as it last said
+
+  absl::Mutex changed_mu_;  // never held while taking mu_ or a run's mu
+  std::function<void(const std::string& run_id)> changed_ ABSL_GUARDED_BY(changed_mu_);
 
   std::thread manager_;
 };

@@ -3,9 +3,10 @@
 // The cluster's bearer token and mutual TLS (services/auth.h) with real processes on loopback.
 //
 // Token: a local cluster started with a token comes up (its workers register, so the token
-// holds between services); every method of every DCS service refuses a call without the token
-// and one with a wrong token, UNAUTHENTICATED, and counts it; health stays open; the `dcs`
-// client is refused without the token and served with it.
+// holds between services); every method every process serves (as its /metrics lists them, so
+// a method or service added later is called too) refuses a call without the token and one with
+// a wrong token, UNAUTHENTICATED, and counts it; health stays open; the `dcs` client is refused
+// without the token and served with it.
 //
 // Mutual TLS: a cluster with certificates comes up; plaintext and a certificate of another CA
 // are refused; certificates renewed in place are taken up without a restart.
@@ -22,6 +23,7 @@
 
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -82,6 +84,30 @@ grpc::Status CallWithEmptyRequest(const std::string& address, const std::string&
   return status;
 }
 
+// The value of `label` in a series line of an exposition (`name{a="1",b="2"} 0`).
+std::string LabelValue(absl::string_view line, absl::string_view label) {
+  const std::string key = absl::StrCat(label, "=\"");
+  const size_t start = line.find(key);
+  if (start == absl::string_view::npos) return "";
+  const size_t begin = start + key.size();
+  return std::string(line.substr(begin, line.find('"', begin) - begin));
+}
+
+// The path of every method a process serves but health and reflection, which stay open: each
+// served method has a grpc_server_started_total series from the start (services/server.h).
+std::vector<std::string> ServedMethodPaths(const std::string& exposition) {
+  std::set<std::string> paths;
+  for (absl::string_view line : absl::StrSplit(exposition, '\n')) {
+    if (!absl::StartsWith(line, "grpc_server_started_total{")) continue;
+    const std::string service = LabelValue(line, "grpc_service");
+    if (service == "grpc.health.v1.Health" || absl::StartsWith(service, "grpc.reflection.")) {
+      continue;
+    }
+    paths.insert(absl::StrCat("/", service, "/", LabelValue(line, "grpc_method")));
+  }
+  return {paths.begin(), paths.end()};
+}
+
 // Every method's path of `service`.
 std::vector<std::string> MethodPaths(const google::protobuf::ServiceDescriptor& service) {
   std::vector<std::string> paths;
@@ -116,19 +142,29 @@ TEST(AuthTest, EveryServiceRefusesCallsWithoutTheClustersTokenAndCountsThem) {
   ASSERT_TRUE(cluster.ok()) << cluster.status();
   const auto& processes = (*cluster)->state().processes;
   ASSERT_EQ(processes.size(), 3u);
-  const services::cli::ClusterProcess& coordinator = processes[0];
-  const services::cli::ClusterProcess& learner = processes[1];
+  const services::cli::ClusterProcess& coordinator = processes[0];  // then the learner
+
+  // What the processes serve, as their /metrics say; the DCS services at least.
+  std::vector<std::vector<std::string>> served;
+  for (const services::cli::ClusterProcess& process : processes) {
+    absl::StatusOr<std::string> metrics =
+        testing::HttpGet(absl::StrCat("http://", process.metrics_address, "/metrics"));
+    ASSERT_TRUE(metrics.ok()) << process.name << ": " << metrics.status();
+    served.push_back(ServedMethodPaths(*metrics));
+  }
+  const google::protobuf::ServiceDescriptor* coordinator_service =
+      v1::GetRunRequest::descriptor()->file()->FindServiceByName("CoordinatorService");
+  const google::protobuf::ServiceDescriptor* learner_service =
+      v1::GetSlotWorkRequest::descriptor()->file()->FindServiceByName("LearnerService");
+  ASSERT_NE(coordinator_service, nullptr);
+  ASSERT_NE(learner_service, nullptr);
+  EXPECT_THAT(served[0], ::testing::IsSupersetOf(MethodPaths(*coordinator_service)));
+  EXPECT_THAT(served[1], ::testing::IsSupersetOf(MethodPaths(*learner_service)));
 
   int refused = 0;
-  for (const auto& [process, descriptor] :
-       {std::pair(coordinator,
-                  v1::GetRunRequest::descriptor()->file()->FindServiceByName("CoordinatorService")),
-        std::pair(learner, v1::GetSlotWorkRequest::descriptor()->file()->FindServiceByName(
-                               "LearnerService"))}) {
-    ASSERT_NE(descriptor, nullptr) << process.name;
-    const std::vector<std::string> methods = MethodPaths(*descriptor);
-    ASSERT_FALSE(methods.empty());
-    for (const std::string& method : methods) {
+  for (size_t i = 0; i < processes.size(); ++i) {
+    const services::cli::ClusterProcess& process = processes[i];
+    for (const std::string& method : served[i]) {
       const grpc::Status without = CallWithEmptyRequest(process.grpc_address, method, std::nullopt);
       EXPECT_EQ(without.error_code(), grpc::StatusCode::UNAUTHENTICATED) << method;
       EXPECT_THAT(without.error_message(), HasSubstr("has none")) << method;
@@ -150,7 +186,7 @@ TEST(AuthTest, EveryServiceRefusesCallsWithoutTheClustersTokenAndCountsThem) {
     absl::StatusOr<std::string> metrics =
         testing::HttpGet(absl::StrCat("http://", process.metrics_address, "/metrics"));
     ASSERT_TRUE(metrics.ok()) << metrics.status();
-    EXPECT_EQ(UnauthenticatedCalls(*metrics), 3.0 * static_cast<double>(methods.size()))
+    EXPECT_EQ(UnauthenticatedCalls(*metrics), 3.0 * static_cast<double>(served[i].size()))
         << process.name;
   }
   EXPECT_GT(refused, 0);
