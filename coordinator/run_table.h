@@ -130,13 +130,16 @@ class RunTable {
 
   // Extends a held lease to now + lease_duration. FAILED_PRECONDITION if the lease moved (its
   // epoch is newer), lapsed and went back to the queue, or its run ended (the message says
-  // which); NOT_FOUND for an unknown run or slot.
+  // which); NOT_FOUND for an unknown run or slot. Not synced (store.h): a reopened store gives
+  // every held lease a full duration.
   absl::Status RenewLease(const LeaseKey& key, absl::Time now);
 
-  // The holder gives a lease back (it stops stepping the slot, say). Errors as RenewLease.
+  // The holder gives a lease back (it stops stepping the slot, say). Errors as RenewLease. Not
+  // synced: a release the machine's crash loses lapses instead.
   absl::Status ReleaseLease(const LeaseKey& key, absl::Time now);
 
-  // The learner holding `key` (a learner lease) reports progress. Errors as RenewLease.
+  // The learner holding `key` (a learner lease) reports progress. Errors as RenewLease. Not
+  // synced: the learner reports again.
   absl::Status ReportProgress(const LeaseKey& key, const RunProgress& progress, absl::Time now);
 
   // The learner holding `key` ends its run: completed, or failed with `error`; every lease of
