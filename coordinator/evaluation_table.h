@@ -5,12 +5,12 @@
 // The store's evaluations (coordinator/store.h holds the whole store): policies handed over
 // for evaluation, as jobs for actors, and their results.
 //
-// A run's learner hands over its policy's evaluation (DESIGN.md §3); one job per evaluation
-// context goes to actors. Jobs are leased as a run's leases are (coordinator/run_table.h: a
-// deadline, an epoch raised by each grant, lapsed jobs back to the queue); their results are
-// kept, the policy they evaluated is dropped once every context is in. A grid evaluation (a
-// client's, `dcs eval --on-actors`) is an evaluation of its own kind: one job per cell of its
-// grid, under a negative policy version.
+// A run's learner hands over its policy's evaluation (docs/architecture.md §9); one job per
+// evaluation context goes to actors. Jobs are leased as a run's leases are
+// (coordinator/run_table.h: a deadline, an epoch raised by each grant, lapsed jobs back to the
+// queue); their results are kept, the policy they evaluated is dropped once every context is in. A
+// grid evaluation (a client's, `dcs eval --on-actors`) is an evaluation of its own kind: one job
+// per cell of its grid, under a negative policy version.
 //
 // Thread-safe: every call is one transaction on the store's one connection; it returns after
 // the transaction committed. Times are passed in (tests drive the clock).

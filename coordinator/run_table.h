@@ -4,15 +4,15 @@
 
 // The store's runs and their leases (coordinator/store.h holds the whole store).
 //
-// Leases (DESIGN.md §5). Each run has one learner lease (slot kLearnerSlot) and one lease per
-// env slot. A lease is free or held by a worker until a deadline; the holder renews it before
-// the deadline; a lapsed lease goes back to the queue (Store::ExpireLeases, which every Acquire
-// runs first). Each grant raises the lease's epoch, and every call a holder makes names the
+// Leases (docs/architecture.md §9). Each run has one learner lease (slot kLearnerSlot) and one
+// lease per env slot. A lease is free or held by a worker until a deadline; the holder renews it
+// before the deadline; a lapsed lease goes back to the queue (Store::ExpireLeases, which every
+// Acquire runs first). Each grant raises the lease's epoch, and every call a holder makes names the
 // epoch it was granted, so a worker that comes back after its lease moved is refused
-// (FAILED_PRECONDITION), never counted twice. When a run's learner lease is granted anew, its
-// slot leases are freed: they pointed at the old learner.
+// (FAILED_PRECONDITION), never counted twice. When a run's learner lease is granted anew, its slot
+// leases are freed: they pointed at the old learner.
 //
-// Numeric libraries (DESIGN.md §4): a run remembers the numeric fingerprint of the first
+// Numeric libraries (docs/architecture.md §8): a run remembers the numeric fingerprint of the first
 // learner that took it and of the first actor that stepped one of its slots; only workers
 // with the same fingerprint as their role's get its leases.
 //

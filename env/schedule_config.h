@@ -10,9 +10,9 @@
 //   period: 125
 //
 // Every magnitude may be given in absolute units or as a fraction of the schedule's range
-// (`<name>_frac`, as the reference builder takes them: spec/schedules.md §4), not both; what is
-// not given takes the builder's default. Intervals and periods are in environment steps.
-// Parameters per family (builder defaults in brackets; span = max - min):
+// (`<name>_frac`, as the reference builder takes them: docs/reference.md, "Parameters as fractions
+// of the range"), not both; what is not given takes the builder's default. Intervals and periods
+// are in environment steps. Parameters per family (builder defaults in brackets; span = max - min):
 //   identity (alias constant)   -
 //   sinusoidal          amplitude | amplitude_frac [0] (of span/2); period [0];
 //                       initial_direction random|down|up [random]
