@@ -18,6 +18,7 @@
 #include "report/sweep_index_html.h"
 #include "report/sweep_report.h"
 #include "services/cli/cluster_client.h"
+#include "services/cli/command_output.h"
 #include "services/cli/figure_render.h"
 #include "services/cli/run_client.h"
 #include "services/cli/study_client.h"
@@ -61,10 +62,12 @@ int ReportCommand(const GlobalFlags& flags, const ReportFlags& report_flags) {
       DCS_ASSIGN_OR_RETURN(const v1::StudyReport report,
                            FetchStudyReport(flags, results, report_flags.top,
                                             report_flags.options, &trials));
+      if (report_flags.format == report::ReportFormat::kJson) return CommandJson(report) + "\n";
       return report::FormatStudyReport(report, report_flags.format, report_flags.top);
     }
     DCS_ASSIGN_OR_RETURN(const v1::SweepReport report,
                          report::BuildSweepReport(results, report_flags.options));
+    if (report_flags.format == report::ReportFormat::kJson) return CommandJson(report) + "\n";
     return report::FormatReport(report, report_flags.format);
   }();
   if (!text.ok()) return FailCommand(text.status());

@@ -4,21 +4,14 @@
 #include <algorithm>
 #include <vector>
 
-#include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "absl/strings/strip.h"
 #include "common/text_table.h"
-#include "dcs/proto_json.h"
+#include "services/cli/command_output.h"
 #include "services/time_proto.h"
 
 namespace dcs::services::cli {
 namespace {
-
-// "WORKER_ROLE_LEARNER" -> "learner".
-std::string EnumWord(const std::string& name, absl::string_view prefix) {
-  return absl::AsciiStrToLower(absl::StripPrefix(name, prefix));
-}
 
 // "0.4s" under a minute, else whole seconds such as "2m5s".
 std::string Age(absl::Time now, const google::protobuf::Timestamp& then) {
@@ -37,14 +30,14 @@ std::string FormatClusterStatus(const v1::GetClusterStatusResponse& status,
                                 const std::string& coordinator_address, absl::Time now,
                                 OutputFormat format) {
   if (format == OutputFormat::kJson) {
-    return ProtoToJson(status);
+    return CommandJson(status);
   }
   std::vector<std::vector<std::string>> rows = {
       {"ROLE", "ID", "ADDRESS", "STATE", "LAST HEARTBEAT", "HOST", "PID", "VERSION"}};
   for (const v1::Worker& worker : status.workers()) {
-    rows.push_back({EnumWord(v1::WorkerRole_Name(worker.info().role()), "WORKER_ROLE_"),
+    rows.push_back({EnumWordOf(worker.info().role()),
                     worker.worker_id(), worker.info().address(),
-                    EnumWord(v1::WorkerState_Name(worker.state()), "WORKER_STATE_"),
+                    EnumWordOf(worker.state()),
                     Age(now, worker.last_heartbeat_time()) + " ago", worker.info().hostname(),
                     absl::StrCat(worker.info().pid()), worker.info().build().version()});
   }

@@ -14,11 +14,11 @@
 #include "common/status_macros.h"
 #include "common/text_table.h"
 #include "coordinator/study_table.h"
-#include "dcs/proto_json.h"
 #include "dcs/v1/study.pb.h"
 #include "report/study_figures.h"
 #include "run/search_space_yaml.h"
 #include "services/cli/cluster_client.h"
+#include "services/cli/command_output.h"
 #include "services/cli/figure_render.h"
 #include "services/cli/run_client.h"
 #include "services/cli/study_client.h"
@@ -85,7 +85,7 @@ std::string TrialJson(const StudyTrial& trial, const run::SearchSpace& space) {
       params[parameter.name].set_string_value(run::ChoiceOf(*choices, value->second));
     }
   }
-  return ProtoToJsonLine(line);
+  return CommandJsonLine(line);
 }
 
 // The study's space, to name its parameters' values.

@@ -1,4 +1,5 @@
 // Copyright 2026 The DCS Authors.
+#include "services/cli/command_output.h"
 #include "services/cli/summarize_command.h"
 
 #include <iostream>
@@ -8,7 +9,6 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "common/text_table.h"
-#include "dcs/proto_json.h"
 #include "report/runs_summary.h"
 #include "services/exit_codes.h"
 
@@ -24,7 +24,7 @@ int RunSummarize(const std::vector<std::string>& dirs, const GlobalFlags& global
   absl::StatusOr<v1::RunsSummary> summary = report::SummarizeRuns(dirs);
   if (!summary.ok()) return FailCommand(summary.status());
   if (global.output == OutputFormat::kJson) {
-    std::cout << ProtoToJson(*summary) << std::endl;
+    std::cout << CommandJson(*summary) << std::endl;
     return kExitOk;
   }
   std::vector<std::vector<std::string>> rows = {{"RUN", "SEED", "STEPS", "LAST", "BEST-ANYTIME"}};

@@ -13,8 +13,8 @@
 #include "absl/strings/str_cat.h"
 #include "common/atomic_file.h"
 #include "common/text_table.h"
-#include "dcs/proto_json.h"
 #include "services/cli/cluster_client.h"
+#include "services/cli/command_output.h"
 #include "services/cli/detach.h"
 #include "services/cli/run_client.h"
 #include "services/cli/sweep_view.h"
@@ -67,7 +67,7 @@ int WatchSweepCommand(const GlobalFlags& flags, const std::string& sweep_id) {
   }
   if (!last.ok()) return FailCommand(last.status());
   if (last->sweep().state() != v1::SWEEP_STATE_COMPLETED) {
-    std::cerr << "dcs: " << sweep_id << " " << SweepStateName(last->sweep().state())
+    std::cerr << "dcs: " << sweep_id << " " << EnumWordOf(last->sweep().state())
               << (last->sweep().failed() > 0 ? "; `dcs retry " + sweep_id + "` reruns its "
                                                 "failed runs"
                                               : "")
@@ -91,7 +91,7 @@ int SubmitCommand(const GlobalFlags& flags, const SubmitFlags& submit) {
                                                 stem, submit.dry_run, flags.timeout);
   if (!sweep.ok()) return FailCommand(sweep.status());
   if (flags.output == OutputFormat::kJson) {
-    std::cout << ProtoToJson(*sweep) << std::endl;
+    std::cout << CommandJson(*sweep) << std::endl;
   } else if (submit.dry_run) {
     std::vector<std::vector<std::string>> rows = {{"CONDITION", "FAMILY", "MODE"}};
     for (const v1::Trial& trial : sweep->trials()) {
@@ -121,13 +121,13 @@ int ListSweepsCommand(const GlobalFlags& flags) {
   if (flags.output == OutputFormat::kJson) {
     v1::ListSweepsResponse response;
     for (const v1::Sweep& sweep : *sweeps) *response.add_sweeps() = sweep;
-    std::cout << ProtoToJson(response) << std::endl;
+    std::cout << CommandJson(response) << std::endl;
     return kExitOk;
   }
   std::vector<std::vector<std::string>> rows = {
       {"SWEEP", "NAME", "STATE", "TRIALS", "SEEDS", "DONE", "RUNNING", "QUEUED", "FAILED"}};
   for (const v1::Sweep& sweep : *sweeps) {
-    rows.push_back({sweep.sweep_id(), sweep.name(), SweepStateName(sweep.state()),
+    rows.push_back({sweep.sweep_id(), sweep.name(), EnumWordOf(sweep.state()),
                     absl::StrCat(sweep.trials_size()), absl::StrCat(sweep.seeds()),
                     absl::StrCat(sweep.completed(), "/", sweep.runs()),
                     absl::StrCat(sweep.running()), absl::StrCat(sweep.queued()),
@@ -140,9 +140,9 @@ int ListSweepsCommand(const GlobalFlags& flags) {
 // Prints the sweep a cancel or retry left, as JSON or as "<id> <state>".
 int PrintSweepState(const GlobalFlags& flags, const v1::Sweep& sweep) {
   if (flags.output == OutputFormat::kJson) {
-    std::cout << ProtoToJson(sweep) << std::endl;
+    std::cout << CommandJson(sweep) << std::endl;
   } else {
-    std::cout << sweep.sweep_id() << " " << SweepStateName(sweep.state()) << std::endl;
+    std::cout << sweep.sweep_id() << " " << EnumWordOf(sweep.state()) << std::endl;
   }
   return kExitOk;
 }
