@@ -18,7 +18,7 @@
 #include "absl/strings/string_view.h"
 #include "absl/time/time.h"
 #include "services/auth.h"
-#include "services/cli/status_format.h"
+#include "services/cli/command_output.h"
 
 namespace dcs::services::cli {
 
@@ -41,7 +41,14 @@ int FailCommand(const absl::Status& status);
 struct CliCommand {
   CLI::App* app;            // owned by the parent CLI::App
   std::function<int()> run;  // returns the exit code (services/exit_codes.h)
+  // The formats of -o it prints its data in; `dcs` refuses another before it runs. Table
+  // alone for a command that prints no data, or only words for people.
+  std::vector<OutputFormat> formats = {OutputFormat::kTable};
 };
+
+inline const std::vector<OutputFormat> kEveryFormat = {OutputFormat::kTable, OutputFormat::kJson,
+                                                       OutputFormat::kCsv};
+inline const std::vector<OutputFormat> kTableOrJson = {OutputFormat::kTable, OutputFormat::kJson};
 
 // What each command file provides: adds its commands to `dcs`. `flags` outlives them.
 using AddCommandsFunction = std::vector<CliCommand> (*)(CLI::App& dcs, const GlobalFlags& flags);

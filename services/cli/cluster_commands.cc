@@ -17,6 +17,7 @@
 #include "services/auth.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/local_cluster.h"
+#include "services/cli/status_format.h"
 #include "services/command_line.h"
 #include "services/exit_codes.h"
 #include "services/signals.h"
@@ -151,7 +152,7 @@ std::vector<CliCommand> AddClusterCommands(CLI::App& dcs, const GlobalFlags& fla
   return {
       {up, [&flags, up_flags] { return RunUp(flags, *up_flags); }},
       {down, [&flags, down_grace] { return RunDown(flags, *down_grace); }},
-      {status, [&flags] { return PrintStatus(flags, CoordinatorAddress(flags)); }},
+      {status, [&flags] { return PrintStatus(flags, CoordinatorAddress(flags)); }, kEveryFormat},
       {health,
        [&flags, health_service, health_wait] {
          return RunHealth(flags, *health_service, *health_wait);

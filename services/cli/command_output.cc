@@ -1,15 +1,23 @@
 // Copyright 2026 The DCS Authors.
 #include "services/cli/command_output.h"
 
+#include <google/protobuf/struct.pb.h>
+
 #include <algorithm>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/strip.h"
+#include "absl/strings/str_join.h"
 #include "absl/strings/string_view.h"
+#include "common/text_table.h"
 #include "dcs/proto_json.h"
+#include "report/gnuplot_figure.h"
 
 namespace dcs::services::cli {
 namespace {
@@ -134,6 +142,15 @@ class JsonRewriter {
   std::string out_;
 };
 
+// A header's cell as a CSV column's or a JSON key's name: "LAST HEARTBEAT" -> "last_heartbeat".
+std::string Key(absl::string_view header) {
+  std::string key = absl::AsciiStrToLower(header);
+  for (char& c : key) {
+    if (!absl::ascii_isalnum(static_cast<unsigned char>(c))) c = '_';
+  }
+  return key;
+}
+
 }  // namespace
 
 std::string EnumWord(const google::protobuf::EnumValueDescriptor& value) {
@@ -145,11 +162,39 @@ std::string EnumWord(const google::protobuf::EnumValueDescriptor& value) {
 }
 
 std::string CommandJson(const google::protobuf::Message& message) {
-  return JsonRewriter(ProtoToJson(message)).Rewrite(*message.GetDescriptor());
+  return JsonRewriter(ProtoToJsonLine(message)).Rewrite(*message.GetDescriptor());
 }
 
-std::string CommandJsonLine(const google::protobuf::Message& message) {
-  return JsonRewriter(ProtoToJsonLine(message)).Rewrite(*message.GetDescriptor());
+std::string FormatRows(const std::vector<std::vector<std::string>>& rows, OutputFormat format) {
+  if (format == OutputFormat::kTable) return RenderTable(rows);
+  if (rows.empty()) return "";
+  std::vector<std::string> keys;
+  for (const std::string& cell : rows[0]) keys.push_back(Key(cell));
+  std::string text;
+  if (format == OutputFormat::kCsv) {
+    for (size_t i = 0; i < rows.size(); ++i) {
+      absl::StrAppend(&text, absl::StrJoin(i == 0 ? keys : rows[i], ",",
+                                           [](std::string* out, const std::string& cell) {
+                                             absl::StrAppend(out, report::CsvField(cell));
+                                           }),
+                      "\n");
+    }
+    return text;
+  }
+  for (size_t i = 1; i < rows.size(); ++i) {
+    google::protobuf::Struct row;
+    for (size_t j = 0; j < rows[i].size() && j < keys.size(); ++j) {
+      google::protobuf::Value& value = (*row.mutable_fields())[keys[j]];
+      double number = 0;
+      if (absl::SimpleAtod(rows[i][j], &number) && std::isfinite(number)) {
+        value.set_number_value(number);
+      } else {
+        value.set_string_value(rows[i][j]);
+      }
+    }
+    absl::StrAppend(&text, CommandJson(row), "\n");
+  }
+  return text;
 }
 
 }  // namespace dcs::services::cli

@@ -344,8 +344,9 @@ absl::Status Evaluate(const EvalFlags& flags, const GlobalFlags& global) {
     std::cerr << "dcs: wrote " << rendered.path << " and " << flags.out << "/cells.csv"
               << std::endl;
   }
-  std::cout << (global.output == OutputFormat::kJson ? CommandJson(grid) + "\n"
-                                                      : CellRows(grid, false));
+  std::cout << (global.output == OutputFormat::kJson
+                    ? CommandJson(grid) + "\n"
+                    : CellRows(grid, /*csv=*/global.output == OutputFormat::kCsv));
   return absl::OkStatus();
 }
 

@@ -85,7 +85,7 @@ std::string TrialJson(const StudyTrial& trial, const run::SearchSpace& space) {
       params[parameter.name].set_string_value(run::ChoiceOf(*choices, value->second));
     }
   }
-  return CommandJsonLine(line);
+  return CommandJson(line);
 }
 
 // The study's space, to name its parameters' values.
@@ -179,7 +179,7 @@ absl::Status Trials(const std::string& study_id, const GlobalFlags& flags, Study
                                                 : absl::StrFormat("%.6g", value->second));
     }
   }
-  std::cout << RenderTable(rows) << std::endl;
+  std::cout << FormatRows(rows, flags.output) << std::flush;
   return absl::OkStatus();
 }
 
@@ -301,12 +301,13 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
     return [store, &flags, command] { return RunOn(*store, flags, command); };
   };
   return {{create, on_studies([=](StudyClient& s) { return Create(*create_flags, s); })},
-          {ask, on_studies([=](StudyClient& s) { return Ask(*study_id, s); })},
+          {ask, on_studies([=](StudyClient& s) { return Ask(*study_id, s); }), kTableOrJson},
           {tell, on_studies([=](StudyClient& s) { return Tell(*trial_flags, s); })},
           {report, on_studies([=](StudyClient& s) { return Report(*trial_flags, s); })},
-          {list, on_studies([=, &flags](StudyClient& s) { return Trials(*study_id, flags, s); })},
+          {list, on_studies([=, &flags](StudyClient& s) { return Trials(*study_id, flags, s); }),
+           kEveryFormat},
           {plot, on_studies([=](StudyClient& s) { return Plot(*plot_flags, s); })},
-          {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); })}};
+          {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); }), kTableOrJson}};
 }
 
 }  // namespace dcs::services::cli

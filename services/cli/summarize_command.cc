@@ -33,6 +33,10 @@ int RunSummarize(const std::vector<std::string>& dirs, const GlobalFlags& global
                     absl::StrFormat("%.1f", run.last()),
                     absl::StrFormat("%.1f", run.best_anytime())});
   }
+  if (global.output == OutputFormat::kCsv) {
+    std::cout << FormatRows(rows, global.output) << std::flush;
+    return kExitOk;
+  }
   std::cout << RenderTable(rows) << "\n"
             << "avg_combined IQM [Q1, Q3] over " << summary->runs_size() << " runs\n"
             << "  last          " << FormatScoreSummary(summary->last()) << "\n"
@@ -48,7 +52,8 @@ std::vector<CliCommand> AddSummarizeCommand(CLI::App& dcs, const GlobalFlags& fl
       "summarize", "Scores of finished runs (one condition, several seeds) and their IQM [Q1, Q3]");
   summarize->add_option("runs", *run_dirs, "the runs' directories (as dcs train --out)")
       ->required();
-  return {{summarize, [run_dirs, &flags] { return RunSummarize(*run_dirs, flags); }}};
+  return {
+      {summarize, [run_dirs, &flags] { return RunSummarize(*run_dirs, flags); }, kEveryFormat}};
 }
 
 }  // namespace dcs::services::cli

@@ -24,15 +24,19 @@ namespace dcs::services::cli {
 namespace {
 
 // Follows the sweep until it ends: on a terminal, the progress view redrawn in place whenever
-// it changes; otherwise its headline whenever a run starts or ends. Ctrl-C detaches (the sweep
-// goes on). Exit: 0 completed, 1 failed or cancelled, 130 detached.
+// it changes; otherwise its headline (with -o json, the GetSweepResponse) whenever a run starts
+// or ends. Ctrl-C detaches (the sweep goes on). Exit: 0 completed, 1 failed or cancelled, 130
+// detached.
 int WatchSweepCommand(const GlobalFlags& flags, const std::string& sweep_id) {
-  const bool terminal = isatty(STDOUT_FILENO) == 1;
+  const bool json = flags.output == OutputFormat::kJson;
+  const bool terminal = !json && isatty(STDOUT_FILENO) == 1;
   const DetachOnInterrupt detach;
   std::string shown;
   int shown_lines = 0;
   auto show = [&](const v1::GetSweepResponse& sweep) {
-    const std::string view = terminal ? SweepProgressView(sweep) : SweepHeadline(sweep);
+    const std::string view = json       ? CommandJson(sweep)
+                             : terminal ? SweepProgressView(sweep)
+                                        : SweepHeadline(sweep);
     // A terminal's view is redrawn whenever it changes; plain lines only when a run moved.
     const v1::Sweep& counts = sweep.sweep();
     const std::string key =
@@ -133,7 +137,7 @@ int ListSweepsCommand(const GlobalFlags& flags) {
                     absl::StrCat(sweep.running()), absl::StrCat(sweep.queued()),
                     absl::StrCat(sweep.failed())});
   }
-  std::cout << RenderTable(rows) << std::flush;
+  std::cout << FormatRows(rows, flags.output) << std::flush;
   return kExitOk;
 }
 
@@ -194,11 +198,12 @@ std::vector<CliCommand> AddSweepCommands(CLI::App& dcs, const GlobalFlags& flags
   retry->add_option("sweep", *sweep_id, "the sweep's id")->required();
 
   return {
-      {submit, [&flags, submit_flags] { return SubmitCommand(flags, *submit_flags); }},
-      {sweeps, [&flags] { return ListSweepsCommand(flags); }},
-      {watch, [&flags, sweep_id] { return WatchSweepCommand(flags, *sweep_id); }},
-      {cancel, [&flags, sweep_id] { return CancelSweepCommand(flags, *sweep_id); }},
-      {retry, [&flags, sweep_id] { return RetrySweepCommand(flags, *sweep_id); }},
+      {submit, [&flags, submit_flags] { return SubmitCommand(flags, *submit_flags); },
+       kTableOrJson},
+      {sweeps, [&flags] { return ListSweepsCommand(flags); }, kEveryFormat},
+      {watch, [&flags, sweep_id] { return WatchSweepCommand(flags, *sweep_id); }, kTableOrJson},
+      {cancel, [&flags, sweep_id] { return CancelSweepCommand(flags, *sweep_id); }, kTableOrJson},
+      {retry, [&flags, sweep_id] { return RetrySweepCommand(flags, *sweep_id); }, kTableOrJson},
   };
 }
 

@@ -118,7 +118,7 @@ std::vector<CliCommand> AddTrainCommand(CLI::App& dcs, const GlobalFlags& flags)
                   "submit the run to the cluster at --addr (default: the local cluster of "
                   "`dcs up`), follow it (Ctrl-C detaches; the run goes on), then download it "
                   "into --out");
-  return {{train, [train_flags, &flags] { return RunTrain(*train_flags, flags); }}};
+  return {{train, [train_flags, &flags] { return RunTrain(*train_flags, flags); }, kTableOrJson}};
 }
 
 }  // namespace dcs::services::cli

@@ -138,9 +138,10 @@ TEST(FormatClusterStatusTest, JsonIsTheCommandsJson) {
       FormatClusterStatus(status, "127.0.0.1:50051", kNow, OutputFormat::kJson);
   EXPECT_THAT(json, HasSubstr("\"worker_id\""));
   EXPECT_THAT(json, HasSubstr("\"coordinator_build\""));
-  EXPECT_THAT(json, HasSubstr("\"state\": \"lost\""));
-  EXPECT_THAT(json, HasSubstr("\"role\": \"learner\""));
-  EXPECT_THAT(json, ::testing::ContainsRegex("\"pid\": [0-9]+,"));
+  EXPECT_THAT(json, HasSubstr("\"state\":\"lost\""));
+  EXPECT_THAT(json, HasSubstr("\"role\":\"learner\""));
+  EXPECT_THAT(json, ::testing::ContainsRegex("\"pid\":[0-9]+,"));
+  EXPECT_EQ(json.find('\n'), json.size() - 1) << "one line";
 
   google::protobuf::Value parsed;
   const auto result = google::protobuf::util::JsonStringToMessage(json, &parsed);

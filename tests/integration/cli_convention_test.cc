@@ -1,0 +1,127 @@
+// Copyright 2026 The DCS Authors.
+//
+// The convention every `dcs` command follows (README, The dcs command line): each command that
+// prints data prints it as JSON Lines with -o json, and refuses a format it cannot print.
+
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
+
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "common/atomic_file.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "services/exit_codes.h"
+#include "tests/integration/cluster_processes.h"
+#include "tests/integration/test_util.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::integration {
+namespace {
+
+using ::testing::HasSubstr;
+
+// `dcs args...` with its stdout alone: what a script reads.
+RunResult DcsStdout(const std::vector<std::string>& args) {
+  std::vector<std::string> shell = {"-c", "exec \"$0\" \"$@\" 2>/dev/null", BinaryPath("dcs")};
+  shell.insert(shell.end(), args.begin(), args.end());
+  return RunProgram("/bin/sh", shell, absl::Minutes(5));
+}
+
+// Runs `args` with -o json and expects each line of its stdout, and at least one, to be a JSON
+// value; returns them.
+std::vector<google::protobuf::Value> JsonLines(std::vector<std::string> args) {
+  args.insert(args.end(), {"-o", "json"});
+  const RunResult result = DcsStdout(args);
+  const std::string command = absl::StrJoin(args, " ");
+  EXPECT_EQ(result.exit_code, 0) << command << ": " << result.output;
+  std::vector<google::protobuf::Value> values;
+  for (const std::string& line : Lines(result.output)) {
+    google::protobuf::Value& value = values.emplace_back();
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(line, &value).ok())
+        << command << ": not JSON: " << line;
+  }
+  EXPECT_FALSE(values.empty()) << command << " printed nothing";
+  return values;
+}
+
+const google::protobuf::Value& Field(const google::protobuf::Value& value,
+                                     const std::string& name) {
+  static const google::protobuf::Value kAbsent;
+  const auto& fields = value.struct_value().fields();
+  const auto it = fields.find(name);
+  return it == fields.end() ? kAbsent : it->second;
+}
+
+// A cluster that ran a small sweep, and a study in a store: every command that prints data is
+// run with -o json against them.
+TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
+  const std::string dir = testing::MakeTempDir();
+  const std::string spec = dir + "/small.yaml";
+  ASSERT_TRUE(WriteFileAtomically(spec, EightRunSweepSpec("small", 512, 256)).ok());
+  ClusterProcesses cluster(absl::Seconds(1));
+  StartCoordinatorLearnerAndActors(cluster);
+  const std::string addr = "--addr=" + cluster.coordinator_address();
+  const std::vector<google::protobuf::Value> submitted =
+      JsonLines({"submit", spec, "--watch", addr});
+  ASSERT_FALSE(submitted.empty());
+  EXPECT_EQ(Field(submitted[0], "sweep_id").string_value(), "sweep-1");
+
+  JsonLines({"submit", spec, "--dry-run", addr});
+  const std::vector<google::protobuf::Value> status = JsonLines({"status", addr});
+  ASSERT_FALSE(status.empty());
+  EXPECT_EQ(Field(status[0], "workers").list_value().values_size(), 3);
+  const std::vector<google::protobuf::Value> runs = JsonLines({"runs", addr});
+  ASSERT_FALSE(runs.empty());
+  ASSERT_EQ(Field(runs[0], "runs").list_value().values_size(), 8);
+  for (const google::protobuf::Value& run : Field(runs[0], "runs").list_value().values()) {
+    EXPECT_EQ(Field(run, "state").string_value(), "completed");
+    EXPECT_TRUE(Field(run, "seed").has_number_value()) << "a 64-bit integer as a number";
+  }
+  const std::vector<google::protobuf::Value> sweeps = JsonLines({"sweeps", addr});
+  ASSERT_FALSE(sweeps.empty());
+  EXPECT_EQ(Field(Field(sweeps[0], "sweeps").list_value().values(0), "state").string_value(),
+            "completed");
+  JsonLines({"report", "sweep-1", addr});
+  const std::string run_dir = dir + "/run-1";
+  JsonLines({"runs", "watch", "run-1", "--out", run_dir, addr});
+  JsonLines({"summarize", run_dir});
+  JsonLines({"eval", run_dir, "--grid", "length=0.3:1.2:2", "--episodes", "1"});
+
+  JsonLines({"env", "trace", "--actions", "0,1"});
+  JsonLines({"env", "rollout", "--episodes", "1"});
+
+  const std::string store = dir + "/studies.db";
+  ASSERT_TRUE(WriteFileAtomically(dir + "/space.yaml",
+                                  "parameters:\n  - {name: x, type: float, low: 0, high: 1}\n")
+                  .ok());
+  ASSERT_EQ(DcsStdout({"study", "create", "--space", dir + "/space.yaml", "--store", store})
+                .exit_code,
+            0);
+  JsonLines({"study", "ask", "study-1", "--store", store});
+  ASSERT_EQ(DcsStdout({"study", "tell", "study-1", "0", "0.5", "--store", store}).exit_code, 0);
+  JsonLines({"study", "trials", "study-1", "--store", store});
+  JsonLines({"study", "best", "study-1", "--store", store});
+}
+
+// A format a command cannot print is a usage error naming what it prints, before it runs.
+TEST(CliConventionTest, AFormatACommandCannotPrintIsRefused) {
+  const std::string dir = testing::MakeTempDir();
+  const RunResult up = RunProgram(BinaryPath("dcs"), {"up", "--data-dir", dir, "-o", "json"});
+  EXPECT_EQ(up.exit_code, services::kExitUsage) << up.output;
+  EXPECT_THAT(up.output, HasSubstr("-o json: `dcs up` prints table"));
+  const RunResult submit =
+      RunProgram(BinaryPath("dcs"), {"submit", dir + "/none.yaml", "-o", "csv"});
+  EXPECT_EQ(submit.exit_code, services::kExitUsage) << submit.output;
+  EXPECT_THAT(submit.output, HasSubstr("-o csv: `dcs submit` prints table or json"));
+  const RunResult trace =
+      RunProgram(BinaryPath("dcs"), {"env", "trace", "--actions", "0,1", "-o", "csv"});
+  EXPECT_EQ(trace.exit_code, 0) << trace.output;
+  EXPECT_THAT(trace.output, HasSubstr("t,action,x,x_dot,theta,theta_dot,reward,"));
+}
+
+}  // namespace
+}  // namespace dcs::integration
