@@ -53,12 +53,12 @@ inline const std::vector<OutputFormat> kTableOrJson = {OutputFormat::kTable, Out
 // What each command file provides: adds its commands to `dcs`. `flags` outlives them.
 using AddCommandsFunction = std::vector<CliCommand> (*)(CLI::App& dcs, const GlobalFlags& flags);
 
-// Comma-separated finite numbers ("0.35,0.75"). INVALID_ARGUMENT naming `flag` and the bad
-// entry.
+// Comma-separated finite numbers ("0.35,0.75"). A UsageError (services/exit_codes.h) naming
+// `flag` and the bad entry.
 absl::StatusOr<std::vector<double>> ParseNumberList(absl::string_view text,
                                                     absl::string_view flag);
 
-// name=value assignments of a repeatable flag (`--set length=1.3`), by name. INVALID_ARGUMENT
+// name=value assignments of a repeatable flag (`--set length=1.3`), by name. A UsageError
 // naming `flag` for one without '=', a value that is not a finite number, or a name given
 // twice.
 absl::StatusOr<std::map<std::string, double>> ParseAssignments(

@@ -143,7 +143,8 @@ std::vector<CliCommand> AddClusterCommands(CLI::App& dcs, const GlobalFlags& fla
   auto health_service = std::make_shared<std::string>();
   auto health_wait = std::make_shared<absl::Duration>(absl::ZeroDuration());
   CLI::App* health = dcs.add_subcommand(
-      "health", "Ask a server (--addr) whether it is SERVING; exit 0 if so, 1 if not");
+      "health", "Ask a server (--addr) whether it is SERVING; exit 0 if so, 1 if it answers "
+                "NOT_SERVING, 69 if it does not answer");
   health->add_option("--service", *health_service,
                      "a service name such as dcs.v1.CoordinatorService (default: the server)");
   AddDurationOption(*health, "--wait", health_wait.get(),

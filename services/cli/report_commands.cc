@@ -62,11 +62,9 @@ int ReportCommand(const GlobalFlags& flags, ReportFlags report_flags) {
   if (report_flags.format_option->count() == 0) {
     report_flags.format = from_output;
   } else if (flags.output != OutputFormat::kTable && report_flags.format != from_output) {
-    PrintError("dcs", absl::StrCat("report: -o ", NameOf(kOutputFormatNames, flags.output),
-                                   " and --format ",
-                                   NameOf(report::kReportFormatNames, report_flags.format),
-                                   " disagree; give one"));
-    return kExitUsage;
+    return FailCommand(UsageError(absl::StrCat(
+        "-o ", NameOf(kOutputFormatNames, flags.output), " and --format ",
+        NameOf(report::kReportFormatNames, report_flags.format), " disagree; give one")));
   }
   auto text = [&]() -> absl::StatusOr<std::string> {
     DCS_ASSIGN_OR_RETURN(const v1::SweepResults results,

@@ -42,11 +42,11 @@ absl::StatusOr<run::RunRequest> CheckRunRequest(const TrainFlags& flags,
                                                 const GlobalFlags& global) {
   if (flags.resume && flags.config.empty()) {
     if (flags.out.empty()) {
-      return absl::InvalidArgumentError("--resume needs --out (the run's directory) or --config");
+      return UsageError("--resume needs --out (the run's directory) or --config");
     }
     return run::StoredRun(flags.out);
   }
-  if (flags.config.empty()) return absl::InvalidArgumentError("--config is required");
+  if (flags.config.empty()) return UsageError("--config is required");
   absl::StatusOr<std::string> text = ReadFile(flags.config);
   if (!text.ok()) {
     return absl::NotFoundError(absl::StrCat("cannot read the run config ", flags.config));
@@ -84,8 +84,9 @@ int RunTrainOnCluster(const TrainFlags& flags, const GlobalFlags& global,
 
 int RunTrain(const TrainFlags& flags, const GlobalFlags& global) {
   if (flags.cluster && flags.resume) {
-    return FailCommand(absl::InvalidArgumentError(
-        "--resume is for runs in this process; a cluster resumes its runs itself (dcs runs)"));
+    return FailCommand(
+        UsageError("--resume is for runs in this process; a cluster resumes its runs itself "
+                   "(dcs runs)"));
   }
   absl::StatusOr<run::RunRequest> request = CheckRunRequest(flags, global);
   if (!request.ok()) return FailCommand(request.status());

@@ -1,10 +1,12 @@
 // Copyright 2026 The DCS Authors.
 //
-// The convention every `dcs` command follows (README, The dcs command line): each command that
-// prints data prints it as JSON Lines with -o json, and refuses a format it cannot print.
+// The convention every `dcs` command follows: each command that prints data prints it as JSON
+// Lines with -o json, and refuses a format it cannot print; each exit code of README's table
+// (services/exit_codes.h) comes from the failures it names.
 
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
+#include <signal.h>
 
 #include <string>
 #include <vector>
@@ -14,9 +16,13 @@
 #include "common/atomic_file.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "services/cli/child_process.h"
+#include "services/cli/local_cluster.h"
 #include "services/exit_codes.h"
 #include "tests/integration/cluster_processes.h"
 #include "tests/integration/test_util.h"
+#include "tests/testing/net.h"
+#include "tests/testing/slowdown.h"
 #include "tests/testing/temp_dir.h"
 
 namespace dcs::integration {
@@ -121,6 +127,73 @@ TEST(CliConventionTest, AFormatACommandCannotPrintIsRefused) {
       RunProgram(BinaryPath("dcs"), {"env", "trace", "--actions", "0,1", "-o", "csv"});
   EXPECT_EQ(trace.exit_code, 0) << trace.output;
   EXPECT_THAT(trace.output, HasSubstr("t,action,x,x_dot,theta,theta_dot,reward,"));
+}
+
+// `dcs args...` exits with `code`, printing one line that holds `message`.
+void ExpectExit(int code, const std::vector<std::string>& args, const std::string& message) {
+  const RunResult result = RunProgram(BinaryPath("dcs"), args);
+  const std::string command = absl::StrJoin(args, " ");
+  EXPECT_EQ(result.exit_code, code) << command << ": " << result.output;
+  EXPECT_THAT(result.output, HasSubstr(message)) << command;
+}
+
+// Starts `dcs args...`, waits until its output holds `text`, then sends it SIGINT; returns its
+// exit code.
+int InterruptedExit(const std::vector<std::string>& args, const std::string& text) {
+  const std::string output = testing::MakeTempDir() + "/output";
+  absl::StatusOr<services::cli::ChildProcess> dcs = services::cli::ChildProcess::Start(
+      {.path = BinaryPath("dcs"), .args = args, .output_path = output});
+  EXPECT_TRUE(dcs.ok()) << dcs.status();
+  if (!dcs.ok()) return -1;
+  const absl::Time deadline = absl::Now() + testing::Patient(absl::Minutes(1));
+  while (ReadFile(output).value_or("").find(text) == std::string::npos && absl::Now() < deadline) {
+    absl::SleepFor(absl::Milliseconds(50));
+  }
+  ::kill(dcs->pid(), SIGINT);
+  const std::optional<int> status = dcs->Wait(testing::Patient(absl::Seconds(30)));
+  EXPECT_TRUE(status.has_value()) << ReadFile(output).value_or("");
+  return status.has_value() && WIFEXITED(*status) ? WEXITSTATUS(*status) : -1;
+}
+
+// README's table of exit codes, each from a command that should give it.
+TEST(CliConventionTest, EachExitCodeOfTheTableComesFromWhatItNames) {
+  const std::string dir = testing::MakeTempDir();
+  const std::string data_dir = dir + "/cluster";
+  const std::string local = "--data-dir=" + data_dir;
+  ASSERT_EQ(RunProgram(BinaryPath("dcs"), {"up", "--detach", "--actors=1", local}).exit_code, 0);
+  const absl::StatusOr<services::cli::ClusterState> cluster =
+      services::cli::ReadClusterState(data_dir);
+  ASSERT_TRUE(cluster.ok()) << cluster.status();
+  const std::string long_spec = dir + "/long.yaml";
+  ASSERT_TRUE(WriteFileAtomically(long_spec, EightRunSweepSpec("long", 10'000'000, 512)).ok());
+  const std::string bad_spec = dir + "/bad.yaml";
+  ASSERT_TRUE(WriteFileAtomically(bad_spec, "seeds: 2\nenv: cartpole\nconditions: []\n").ok());
+  const std::string bad_config = dir + "/coordinator.yaml";
+  ASSERT_TRUE(WriteFileAtomically(bad_config, "lissten: 127.0.0.1:0\n").ok());
+
+  ExpectExit(services::kExitOk, {"submit", long_spec, local}, "sweep-1");
+  ExpectExit(services::kExitFailure, {"up", "--detach", local}, "already runs");
+  ExpectExit(services::kExitUsage, {"train"}, "--config is required");
+  ExpectExit(services::kExitUsage, {"status", "--bogus"}, "--bogus");
+  ExpectExit(services::kExitUsage, {"sweeps", "-o", "yaml"}, "'yaml' is not one of");
+  ExpectExit(services::kExitDataError, {"submit", bad_spec, "--dry-run", local}, "bad.yaml");
+  ExpectExit(services::kExitNoInput, {"submit", dir + "/missing.yaml", local}, "missing.yaml");
+  ExpectExit(services::kExitNoInput, {"runs", "get", "run-99", local}, "run-99");
+  const std::string nobody = absl::StrCat("127.0.0.1:", testing::PickFreePort());
+  ExpectExit(services::kExitUnavailable, {"health", "--addr", nobody, "--timeout=2s"},
+             "UNAVAILABLE");
+  // Another directory: the cluster's token is not used.
+  ExpectExit(services::kExitNoPermission,
+             {"status", "--addr", cluster->coordinator_address, "--data-dir", dir},
+             "requires a token");
+  const RunResult config =
+      RunProgram(BinaryPath("dcs-coordinator"), {"--config", bad_config});
+  EXPECT_EQ(config.exit_code, services::kExitConfig) << config.output;
+  EXPECT_THAT(config.output, HasSubstr("unknown key 'lissten'"));
+  EXPECT_EQ(InterruptedExit({"runs", "watch", "run-1", local}, "eval@"),
+            services::kExitInterrupted);
+
+  ExpectExit(services::kExitOk, {"down", local}, "cluster stopped");
 }
 
 }  // namespace
