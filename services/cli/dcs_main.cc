@@ -43,13 +43,6 @@ constexpr AddCommandsFunction kCommandFiles[] = {
     AddSummarizeCommand, AddStudyCommands, AddPolicyCommands, AddBackupCommand,
 };
 
-// "dcs runs cancel": the command's names from the program's on.
-std::string CommandPath(const CLI::App& command) {
-  const CLI::App* parent = command.get_parent();
-  return parent == nullptr ? command.get_name()
-                           : absl::StrCat(CommandPath(*parent), " ", command.get_name());
-}
-
 int Main(int argc, char** argv) {
   ConfigureLogging({.component = "dcs"});
   CLI::App app("dcs: dynamic context scheduling for reinforcement learning, as a service", "dcs");

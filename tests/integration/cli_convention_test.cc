@@ -174,7 +174,10 @@ TEST(CliConventionTest, EachExitCodeOfTheTableComesFromWhatItNames) {
   ExpectExit(services::kExitOk, {"submit", long_spec, local}, "sweep-1");
   ExpectExit(services::kExitFailure, {"up", "--detach", local}, "already runs");
   ExpectExit(services::kExitUsage, {"train"}, "--config is required");
-  ExpectExit(services::kExitUsage, {"status", "--bogus"}, "--bogus");
+  ExpectExit(services::kExitUsage, {"status", "--adr", "x"},
+             "unknown flag --adr for `dcs status`; did you mean --addr?");
+  ExpectExit(services::kExitUsage, {"runs", "cancle", "run-1"},
+             "unknown command 'cancle' for `dcs runs`; did you mean cancel?");
   ExpectExit(services::kExitUsage, {"sweeps", "-o", "yaml"}, "'yaml' is not one of");
   ExpectExit(services::kExitDataError, {"submit", bad_spec, "--dry-run", local}, "bad.yaml");
   ExpectExit(services::kExitNoInput, {"submit", dir + "/missing.yaml", local}, "missing.yaml");
