@@ -1,5 +1,5 @@
 # One image for every DCS program: dcs-coordinator, dcs-learner, dcs-actor, and the dcs client
-# with dcs-train beside it (shared/spec/operations.md §3.1). Two stages: the sources built with
+# with dcs-train beside it. Two stages: the sources built with
 # Debian 12's -dev packages, then a slim runtime with only the libraries the programs load, run
 # as a non-root user under tini. Without arguments it runs the coordinator; docker-compose.yml
 # runs each program from it.

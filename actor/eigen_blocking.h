@@ -6,11 +6,11 @@
 // cache sizes Eigen reads from the CPU, and a product cut into other blocks sums in another
 // order: the same binary would give other bits on a CPU with other caches. PinEigenBlocking
 // replaces the sizes read from the CPU by constants, for the whole process, so that a product
-// gives the same bits on every x86-64-v3 CPU, Intel or AMD (DESIGN.md §4). Every DCS function
-// that multiplies matrices by matrices with Eigen calls it first (the learner's passes,
-// learner/actor_critic.cc); matrix-vector products (actors' inference) block by constants of
-// their own. The instruction set, the other choice that shapes Eigen's kernels, is fixed when
-// DCS is compiled (x86-64-v3: CMakeLists.txt); Eigen runs on the caller's thread only.
+// gives the same bits on every x86-64-v3 CPU, Intel or AMD (docs/architecture.md §8). Every DCS
+// function that multiplies matrices by matrices with Eigen calls it first (the learner's passes,
+// learner/actor_critic.cc); matrix-vector products (actors' inference) block by constants of their
+// own. The instruction set, the other choice that shapes Eigen's kernels, is fixed when DCS is
+// compiled (x86-64-v3: CMakeLists.txt); Eigen runs on the caller's thread only.
 //
 // Thread-safe: the first call pins, on whichever thread; later calls only check that it did.
 

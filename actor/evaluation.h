@@ -2,13 +2,12 @@
 #ifndef DCS_ACTOR_EVALUATION_H_
 #define DCS_ACTOR_EVALUATION_H_
 
-// The paper's evaluation protocol (spec/schedules.md §9): the deterministic policy on static
-// contexts (no pool, no schedule) in three splits, ID, OOD-low and OOD-high, a fixed number of
-// episodes per context; per context the mean and standard deviation of the episode return; per
-// split the mean and the minimum of the context means; avg_combined, the mean of every context's
-// mean. Episode i of context c resets from StreamSeed(seed, "eval", {c}) and i whatever the
-// checkpoint or worker, so every evaluation of a run sees the same episodes.
-// Thread-compatible.
+// The paper's evaluation protocol (docs/reference.md, "Evaluation protocol"): the deterministic
+// policy on static contexts (no pool, no schedule) in three splits, ID, OOD-low and OOD-high, a
+// fixed number of episodes per context; per context the mean and standard deviation of the episode
+// return; per split the mean and the minimum of the context means; avg_combined, the mean of every
+// context's mean. Episode i of context c resets from StreamSeed(seed, "eval", {c}) and i whatever
+// the checkpoint or worker, so every evaluation of a run sees the same episodes. Thread-compatible.
 
 #include <array>
 #include <chrono>

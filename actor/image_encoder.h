@@ -7,7 +7,7 @@
 // products only, each image alone. Their summation order is fixed when the program is compiled
 // (Eigen's matrix-matrix products block by the cache sizes of the CPU they run on unless pinned:
 // actor/eigen_blocking.h), so an encoding is the same on any x86-64-v3 machine running the same
-// binary (DESIGN.md §4), and does not depend on the other images of a batch.
+// binary (docs/architecture.md §8), and does not depend on the other images of a batch.
 //
 // Activations stay channel last ([height * width][channels], as the image comes), so the
 // receptive field of a convolution's output is `kernel` runs of kernel * channels contiguous

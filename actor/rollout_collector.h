@@ -3,10 +3,10 @@
 #define DCS_ACTOR_ROLLOUT_COLLECTOR_H_
 
 // Collects rollouts from a vector of scheduled environments with a policy, as
-// Stable-Baselines3's collect_rollouts does (spec/ppo.md §5): each step the policy samples an
-// action per slot; the environment gets it clipped to the action bounds (continuous) while the
-// rollout keeps the unclipped sample; episode starts are flagged; a step cut by the time limit
-// and not terminated records its final observation for the learner to bootstrap.
+// Stable-Baselines3's collect_rollouts does (common/on_policy_algorithm.py): each step the policy
+// samples an action per slot; the environment gets it clipped to the action bounds (continuous)
+// while the rollout keeps the unclipped sample; episode starts are flagged; a step cut by the time
+// limit and not terminated records its final observation for the learner to bootstrap.
 //
 // It also keeps, per slot, a journal of the running episode (its number, the global step of its
 // reset, the actions so far): with deterministic environments that is all a resumed run needs to

@@ -2,8 +2,9 @@
 #ifndef DCS_ACTOR_SPLIT_H_
 #define DCS_ACTOR_SPLIT_H_
 
-// The evaluation protocol's splits of evaluation contexts (spec/schedules.md §9): inside the
-// training range (ID), below it (OOD-low) and above it (OOD-high). Thread-safe (constants).
+// The evaluation protocol's splits of evaluation contexts (docs/reference.md, "Evaluation
+// protocol"): inside the training range (ID), below it (OOD-low) and above it (OOD-high).
+// Thread-safe (constants).
 
 #include <iterator>
 

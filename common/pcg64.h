@@ -4,7 +4,7 @@
 
 // numpy's PCG64 bit generator (numpy 1.24, `numpy/random/src/pcg64/`): a 128-bit LCG with the
 // XSL-RR 64-bit output, seeded from a SeedSequence exactly as numpy.random.PCG64(seed_seq) is, and
-// numpy's buffered 32-bit output. Bit-exact with numpy; shared/spec/envs.md, Appendix A.
+// numpy's buffered 32-bit output. Bit-exact with numpy (numpy/random/_pcg64.pyx).
 // Thread-compatible; a value type (48 bytes), cheap to copy: a copy continues the same stream.
 
 #include <cstdint>

@@ -2,8 +2,8 @@
 #ifndef DCS_COMMON_PINNED_KERNELS_H_
 #define DCS_COMMON_PINNED_KERNELS_H_
 
-// The numeric kernels every DCS process that trains or updates pins (DESIGN.md §4), and the
-// environment that starts such a program with them. Free of libtorch, so that what starts a
+// The numeric kernels every DCS process that trains or updates pins (docs/architecture.md §8), and
+// the environment that starts such a program with them. Free of libtorch, so that what starts a
 // trainer (the `dcs` client, `dcs up`, the tests) can set them and `dcs version` can show them;
 // learner/torch_runtime.h applies them inside the trainer. Thread-safe (constants and a pure
 // function).
@@ -30,7 +30,7 @@ struct KernelVariable {
 // sets them (PinnedKernelEnvironment), and a trainer started without them runs itself again
 // with them (learner::PinNumericKernels), paying libtorch's start-up twice.
 // OpenBLAS's pthread build also splits a product between threads, which changes its sums, so it
-// is pinned to the caller's thread (DESIGN.md §4: one thread per run).
+// is pinned to the caller's thread (docs/architecture.md §8: one thread per run).
 // The deployments (docker-compose.yml, deploy/kubernetes) set them for the learner too, and
 // tests/deploy/pinned_kernels.py reads this table to check them: keep one {"NAME", "value"} a
 // line.

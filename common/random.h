@@ -4,10 +4,11 @@
 
 // The one random-number generator of DCS: numpy.random.Generator(PCG64(seed)) draws (numpy 1.24),
 // bit-exact for random(), uniform() and integers() so that seeds reproduce Gymnasium's and the
-// reference schedules' streams (shared/spec/envs.md Appendix A, schedules.md §2), plus the seed
-// derivations every randomness source goes through: named counter-based streams (DESIGN.md §4)
-// and the reference schedules' per-episode generator. Random is thread-compatible and a value
-// type: a copy continues the same stream independently. The free functions are thread-safe.
+// reference schedules' streams (numpy's default_rng; docs/reference.md, "Schedule families"), plus
+// the seed derivations every randomness source goes through: named counter-based streams
+// (docs/architecture.md §6) and the reference schedules' per-episode generator. Random is
+// thread-compatible and a value type: a copy continues the same stream independently. The free
+// functions are thread-safe.
 
 #include <cassert>
 #include <cstdint>
@@ -95,13 +96,14 @@ class Random {
 // the stable hash that turns a stream name into a seed word. Never change it: run seeds persist.
 uint64_t Fnv1a64(absl::string_view name);
 
-// The seed of a named, counter-based stream (DESIGN.md §4), e.g. StreamSeed(run_seed, "slot",
-// {i}) or StreamSeed(run_seed, "eval", {context, episode}): SeedSequence({seed, Fnv1a64(name),
-// indices...}). Equal inputs give equal seeds; changing any input gives an unrelated stream.
+// The seed of a named, counter-based stream (docs/architecture.md §6), e.g. StreamSeed(run_seed,
+// "slot", {i}) or StreamSeed(run_seed, "eval", {context, episode}): SeedSequence({seed,
+// Fnv1a64(name), indices...}). Equal inputs give equal seeds; changing any input gives an unrelated
+// stream.
 SeedSequence StreamSeed(uint64_t seed, absl::string_view name,
                         std::initializer_list<uint64_t> indices = {});
 
-// The reference schedules' per-episode generator (schedules.md §2):
+// The reference schedules' per-episode generator (docs/reference.md, "Schedule families"):
 // default_rng(SeedSequence([base_seed, episode, worker]).generate_state(1, uint32)[0]).
 // A schedule without a seed uses base_seed 0.
 Random EpisodeRandom(uint64_t base_seed, uint64_t episode, uint64_t worker);

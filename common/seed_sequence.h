@@ -6,7 +6,7 @@
 // entropy: it hashes a list of integers into a 128-bit pool and expands the pool into as many
 // well-mixed 32- or 64-bit words as a bit generator needs. Bit-exact with numpy, so seeds given to
 // the reference implementation (Gymnasium, the reference schedules) give the same streams here.
-// The algorithm is spelled out in shared/spec/envs.md, Appendix A. Thread-safe: an immutable
+// The algorithm is numpy's (numpy/random/bit_generator.pyx). Thread-safe: an immutable
 // value type.
 
 #include <array>

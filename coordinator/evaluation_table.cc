@@ -269,7 +269,7 @@ absl::StatusOr<std::optional<EvaluationGrant>> EvaluationTable::AcquireEvaluatio
     }
     PinNumerics(db, "actor_numerics", number, numerics);
     return grant;
-  });
+  }, internal::Commit::kUnsynced);
 }
 
 absl::StatusOr<std::vector<bool>> EvaluationTable::ReportEvaluationJobs(
@@ -291,7 +291,7 @@ absl::StatusOr<std::vector<bool>> EvaluationTable::ReportEvaluationJobs(
       delivered_before.push_back(duplicate);
     }
     return delivered_before;
-  });
+  }, internal::Commit::kUnsynced);
 }
 
 absl::StatusOr<EvaluationProgress> EvaluationTable::GetEvaluation(absl::string_view run_id,

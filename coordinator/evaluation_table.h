@@ -5,12 +5,12 @@
 // The store's evaluations (coordinator/store.h holds the whole store): policies handed over
 // for evaluation, as jobs for actors, and their results.
 //
-// A run's learner hands over its policy's evaluation (DESIGN.md §3); one job per evaluation
-// context goes to actors. Jobs are leased as a run's leases are (coordinator/run_table.h: a
-// deadline, an epoch raised by each grant, lapsed jobs back to the queue); their results are
-// kept, the policy they evaluated is dropped once every context is in. A grid evaluation (a
-// client's, `dcs eval --on-actors`) is an evaluation of its own kind: one job per cell of its
-// grid, under a negative policy version.
+// A run's learner hands over its policy's evaluation (docs/architecture.md §9); one job per
+// evaluation context goes to actors. Jobs are leased as a run's leases are
+// (coordinator/run_table.h: a deadline, an epoch raised by each grant, lapsed jobs back to the
+// queue); their results are kept, the policy they evaluated is dropped once every context is in. A
+// grid evaluation (a client's, `dcs eval --on-actors`) is an evaluation of its own kind: one job
+// per cell of its grid, under a negative policy version.
 //
 // Thread-safe: every call is one transaction on the store's one connection; it returns after
 // the transaction committed. Times are passed in (tests drive the clock).
@@ -116,7 +116,9 @@ class EvaluationTable {
   // evaluation spreads over the cluster while each actor takes its part in one call. A run's
   // own evaluations go before grid evaluations, however old: a learner may be waiting for its
   // result, and they are a few jobs each; a grid waits for an actor at most as long as the
-  // runs' evaluations keep every actor busy. nullopt if there is none.
+  // runs' evaluations keep every actor busy. nullopt if there is none. Not synced (store.h):
+  // a job's epoch fences no one out (any holder it was granted to may deliver its result, the
+  // same whoever computes it), so a grant the machine's crash loses is granted again, harmlessly.
   absl::StatusOr<std::optional<EvaluationGrant>> AcquireEvaluationJobs(absl::string_view holder,
                                                                        absl::string_view numerics,
                                                                        int max_jobs, int actors,
@@ -128,7 +130,9 @@ class EvaluationTable {
   // it, also after its lease lapsed and the job went to another: its result is the same whoever
   // computes it, and the first delivery is kept. Errors name the job: NOT_FOUND for an unknown
   // one; FAILED_PRECONDITION for an epoch it was never granted at; INVALID_ARGUMENT for a
-  // number of returns other than the evaluation's episodes or a non-finite one.
+  // number of returns other than the evaluation's episodes or a non-finite one. Not synced
+  // (store.h): results the machine's crash loses are computed again, to the same returns, once
+  // their jobs' leases lapse.
   absl::StatusOr<std::vector<bool>> ReportEvaluationJobs(absl::Span<const JobResult> results);
 
   // Where the evaluation of `policy_version` of `run_id` stands (a grid evaluation's: its

@@ -2,7 +2,7 @@
 #ifndef DCS_COORDINATOR_IQM_H_
 #define DCS_COORDINATOR_IQM_H_
 
-// The paper's across-seed statistics (spec/schedules.md §9.3), after Agarwal et al. (2021):
+// The paper's across-seed statistics (docs/reference.md, "Scores"), after Agarwal et al. (2021):
 // the interquartile mean (IQM) with the first and third quartiles, "IQM [Q1, Q3]", and a
 // stratified bootstrap confidence interval for the IQM. Thread-safe: pure functions, but for a
 // process-wide cache of bootstrap draws (internal::BootstrapDraws::Shared).

@@ -17,7 +17,7 @@ using Kind = ParzenDimension::Kind;
 
 const double kLogSqrt2Pi = 0.5 * std::log(2 * std::numbers::pi);
 
-// The dimension's kind, bounds and value mapping (§5.2), without kernels.
+// The dimension's kind, bounds and value mapping, without kernels.
 ParzenDimension Layout(const run::Distribution& distribution) {
   ParzenDimension d;
   if (const auto* f = std::get_if<run::FloatDistribution>(&distribution)) {
@@ -64,7 +64,7 @@ std::pair<double, double> Cell(const ParzenDimension& d, double value) {
   return {value - d.step / 2, value + d.step / 2};
 }
 
-// Bandwidths of the observation kernels centred at `mus` (§5.3), before the magic clip.
+// Bandwidths of the observation kernels centred at `mus`, before the magic clip.
 std::vector<double> NeighbourSigmas(const std::vector<double>& mus, double low, double high,
                                     bool endpoints) {
   const size_t n = mus.size();

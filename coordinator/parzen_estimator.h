@@ -2,16 +2,16 @@
 #ifndef DCS_COORDINATOR_PARZEN_ESTIMATOR_H_
 #define DCS_COORDINATOR_PARZEN_ESTIMATOR_H_
 
-// TPE's Parzen estimator (shared/spec/tpe.md §5–6, Optuna 4.9): a mixture of product kernels, one
-// per observation plus a prior kernel, over some parameters of a search space (one in independent
-// sampling, a group in multivariate sampling).
+// TPE's Parzen estimator (Optuna 4.9, optuna/samplers/_tpe/parzen_estimator.py): a mixture of
+// product kernels, one per observation plus a prior kernel, over some parameters of a search space
+// (one in independent sampling, a group in multivariate sampling).
 //
 // Each numerical parameter has a working space: its value, or ln(value) for a log range, with
-// bounds widened by half a step for grids and integers (§5.2). A kernel there is a normal truncated
+// bounds widened by half a step for grids and integers. A kernel there is a normal truncated
 // to the bounds: continuous, or discrete (the mass of the value's grid cell) for grids and
-// integers. A categorical parameter's kernel is a row of choice probabilities (§5.4). Bandwidths
+// integers. A categorical parameter's kernel is a row of choice probabilities. Bandwidths
 // follow the univariate neighbour rule, or the Scott-like rule of Optuna's multivariate TPE, then
-// the magic clip (§5.3).
+// the magic clip.
 //
 // An estimator is immutable once fitted; thread-compatible.
 

@@ -4,7 +4,7 @@
 
 // Pruners decide, when a trial reports an intermediate value (for a multi-stage schedule, its
 // objective at a stage boundary), whether to stop it early, with Optuna 4.9's rules
-// (shared/spec/tpe.md §11). Pure functions of the study's trials: what a pruner must remember
+// (Optuna 4.9's optuna/pruners/). Pure functions of the study's trials: what a pruner must remember
 // (the rungs each trial reached in successive halving) is passed in and returned, and the caller
 // stores it. Thread-safe.
 

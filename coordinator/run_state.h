@@ -3,7 +3,7 @@
 #define DCS_COORDINATOR_RUN_STATE_H_
 
 // The life of a run in the coordinator, as one table of states and one of the moves between
-// them (spec/operations.md §5.3: every transition goes through one function):
+// them (every transition goes through one function):
 //
 //   queued ──▶ running ──▶ completed | failed
 //     ▲           │

@@ -180,7 +180,7 @@ absl::Status RunTable::RenewLease(const LeaseKey& key, absl::Time now) {
     update.bind(3, key.slot);
     update.exec();
     return absl::OkStatus();
-  });
+  }, internal::Commit::kUnsynced);
 }
 
 absl::Status RunTable::ReleaseLease(const LeaseKey& key, absl::Time now) {
@@ -198,7 +198,7 @@ absl::Status RunTable::ReleaseLease(const LeaseKey& key, absl::Time now) {
     update.bind(2, key.slot);
     update.exec();
     return absl::OkStatus();
-  });
+  }, internal::Commit::kUnsynced);
 }
 
 absl::Status RunTable::ReportProgress(const LeaseKey& key, const RunProgress& progress,
@@ -227,7 +227,7 @@ absl::Status RunTable::ReportProgress(const LeaseKey& key, const RunProgress& pr
     update.bind(8, *RunNumber(key.run_id));
     update.exec();
     return absl::OkStatus();
-  });
+  }, internal::Commit::kUnsynced);
 }
 
 absl::Status RunTable::FinishRun(const LeaseKey& key, RunState state, absl::string_view error,

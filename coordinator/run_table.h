@@ -4,15 +4,15 @@
 
 // The store's runs and their leases (coordinator/store.h holds the whole store).
 //
-// Leases (DESIGN.md §5). Each run has one learner lease (slot kLearnerSlot) and one lease per
-// env slot. A lease is free or held by a worker until a deadline; the holder renews it before
-// the deadline; a lapsed lease goes back to the queue (Store::ExpireLeases, which every Acquire
-// runs first). Each grant raises the lease's epoch, and every call a holder makes names the
+// Leases (docs/architecture.md §9). Each run has one learner lease (slot kLearnerSlot) and one
+// lease per env slot. A lease is free or held by a worker until a deadline; the holder renews it
+// before the deadline; a lapsed lease goes back to the queue (Store::ExpireLeases, which every
+// Acquire runs first). Each grant raises the lease's epoch, and every call a holder makes names the
 // epoch it was granted, so a worker that comes back after its lease moved is refused
-// (FAILED_PRECONDITION), never counted twice. When a run's learner lease is granted anew, its
-// slot leases are freed: they pointed at the old learner.
+// (FAILED_PRECONDITION), never counted twice. When a run's learner lease is granted anew, its slot
+// leases are freed: they pointed at the old learner.
 //
-// Numeric libraries (DESIGN.md §4): a run remembers the numeric fingerprint of the first
+// Numeric libraries (docs/architecture.md §8): a run remembers the numeric fingerprint of the first
 // learner that took it and of the first actor that stepped one of its slots; only workers
 // with the same fingerprint as their role's get its leases.
 //
@@ -130,13 +130,16 @@ class RunTable {
 
   // Extends a held lease to now + lease_duration. FAILED_PRECONDITION if the lease moved (its
   // epoch is newer), lapsed and went back to the queue, or its run ended (the message says
-  // which); NOT_FOUND for an unknown run or slot.
+  // which); NOT_FOUND for an unknown run or slot. Not synced (store.h): a reopened store gives
+  // every held lease a full duration.
   absl::Status RenewLease(const LeaseKey& key, absl::Time now);
 
-  // The holder gives a lease back (it stops stepping the slot, say). Errors as RenewLease.
+  // The holder gives a lease back (it stops stepping the slot, say). Errors as RenewLease. Not
+  // synced: a release the machine's crash loses lapses instead.
   absl::Status ReleaseLease(const LeaseKey& key, absl::Time now);
 
-  // The learner holding `key` (a learner lease) reports progress. Errors as RenewLease.
+  // The learner holding `key` (a learner lease) reports progress. Errors as RenewLease. Not
+  // synced: the learner reports again.
   absl::Status ReportProgress(const LeaseKey& key, const RunProgress& progress, absl::Time now);
 
   // The learner holding `key` ends its run: completed, or failed with `error`; every lease of

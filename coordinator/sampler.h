@@ -2,11 +2,12 @@
 #ifndef DCS_COORDINATOR_SAMPLER_H_
 #define DCS_COORDINATOR_SAMPLER_H_
 
-// A study's samplers (shared/spec/tpe.md): given the search space and the study's trials so far,
-// the values of a new trial's parameters. Samplers keep no state between trials: a trial's values
-// are a function of the sampler's seed, the trial's number and the other trials, drawn from the
-// named stream StreamSeed(seed, "trial", {number}) (DESIGN.md §4). So a study whose coordinator
-// restarts resumes its sampler exactly, and trials may be asked in any order. Thread-safe (const).
+// A study's samplers (Optuna 4.9's TPESampler and RandomSampler): given the search space and the
+// study's trials so far, the values of a new trial's parameters. Samplers keep no state between
+// trials: a trial's values are a function of the sampler's seed, the trial's number and the other
+// trials, drawn from the named stream StreamSeed(seed, "trial", {number}) (docs/architecture.md
+// §6). So a study whose coordinator restarts resumes its sampler exactly, and trials may be asked
+// in any order. Thread-safe (const).
 
 #include <cstdint>
 #include <map>
@@ -56,9 +57,9 @@ class Sampler {
                                       int64_t number) const = 0;
 };
 
-// Uniform sampling (§10): each active parameter uniform over its working space (log ranges
-// log-uniform, grids and integers uniform over their cells), a categorical uniform over its
-// choices.
+// Uniform sampling (Optuna's RandomSampler): each active parameter uniform over its working space
+// (log ranges log-uniform, grids and integers uniform over their cells), a categorical uniform over
+// its choices.
 std::unique_ptr<Sampler> MakeRandomSampler(uint64_t seed);
 
 // One parameter drawn as the random sampler draws it.

@@ -2,7 +2,7 @@
 #ifndef DCS_COORDINATOR_STORE_H_
 #define DCS_COORDINATOR_STORE_H_
 
-// The coordinator's durable state in one SQLite file (WAL, synchronous=FULL, schema versioned
+// The coordinator's durable state in one SQLite file (WAL, schema versioned
 // by PRAGMA user_version with forward-only migrations: coordinator/store_schema.h). A Store
 // owns the file's one connection and hands out a table per concern, all over that connection:
 //
@@ -15,7 +15,13 @@
 //
 // and itself does what spans them: lapsed leases of every kind, counts for metrics, backups.
 // Every call is one transaction and returns after it committed, so whatever a caller
-// acknowledges on the strength of a call survives a crash.
+// acknowledges on the strength of a call survives the coordinator's crash, and the machine's:
+// a commit is synced to the disk before the call returns. The frequent calls of workers are
+// not synced (their tables say which), since the cluster redoes them if a crash of the machine
+// loses them: a lease's renewal and release, a learner's progress, evaluation jobs' grants and
+// results.
+// They cost no wait for the disk, and a crash loses them only with the unsynced calls after
+// them (internal::Commit, coordinator/store_connection.h).
 //
 // Thread-safe: the connection is behind one mutex, and each call holds it for its transaction.
 // The tables belong to the Store and live as long as it does.

@@ -31,6 +31,22 @@ namespace dcs::coordinator::internal {
 // that is not a database; else INTERNAL.
 absl::Status StoreError(const std::string& path, const SQLite::Exception& error);
 
+// How a transaction's commit reaches the disk (SQLite's `synchronous`, WAL mode).
+enum class Commit {
+  // Synced before the call returns (FULL): what it wrote survives a crash of the machine.
+  kSynced,
+  // Written to the WAL, not waited for (NORMAL): it survives the coordinator's crash, and a
+  // crash of the machine may lose it, with the other unsynced commits since the last synced
+  // one, but never one before (the WAL replays a prefix of the commits) and never one a synced
+  // commit followed. For what the cluster redoes on its own when it is lost: a lease's renewal
+  // (a reopened store gives every held lease a full duration anyway), a release (the lease
+  // lapses), a learner's progress (it reports again), evaluation jobs' results (their leases
+  // lapse, and the jobs run again to the same returns). Never for what hands out a lease whose
+  // epoch fences out a former holder (a run's, a slot's): that holds only if the store never
+  // grants the same epoch twice.
+  kUnsynced,
+};
+
 class StoreConnection {
  public:
   // Takes over `db`, opened and migrated. Leases granted from now on last `lease_duration`.
@@ -42,10 +58,11 @@ class StoreConnection {
   absl::Duration lease_duration() const { return lease_duration_; }
 
   // Runs `body(db)` in one BEGIN IMMEDIATE transaction and returns what it returns (a Status
-  // or a StatusOr), committing if that is OK and rolling back otherwise. SQLite's errors
-  // (thrown by SQLiteCpp) roll back too and become StoreError.
+  // or a StatusOr), committing as `commit` says if that is OK and rolling back otherwise.
+  // SQLite's errors (thrown by SQLiteCpp) roll back too and become StoreError.
   template <typename Body>
-  auto Transaction(Body body) -> decltype(body(std::declval<SQLite::Database&>()));
+  auto Transaction(Body body, Commit commit = Commit::kSynced)
+      -> decltype(body(std::declval<SQLite::Database&>()));
 
   // Runs `body(db)` with the mutex held and no transaction open (SQLite's online backup opens
   // its own), so that no call's transaction interleaves with it.
@@ -67,6 +84,7 @@ class StoreConnection {
   const absl::Duration lease_duration_;
   int64_t leases_lapsed_ ABSL_GUARDED_BY(mu_) = 0;
   int64_t leases_lapsing_ ABSL_GUARDED_BY(mu_) = 0;  // by the open transaction
+  Commit synchronous_ ABSL_GUARDED_BY(mu_) = Commit::kSynced;  // the connection's setting
 };
 
 // Rolls back the open transaction of `db`, if one is still open: after some errors (a full disk
@@ -75,11 +93,16 @@ class StoreConnection {
 void RollBackIfActive(SQLite::Database& db) noexcept;
 
 template <typename Body>
-auto StoreConnection::Transaction(Body body)
+auto StoreConnection::Transaction(Body body, Commit commit)
     -> decltype(body(std::declval<SQLite::Database&>())) {
   absl::MutexLock lock(&mu_);
   leases_lapsing_ = 0;
   try {
+    if (commit != synchronous_) {  // set between transactions: SQLite reads it at the commit
+      db_->exec(commit == Commit::kSynced ? "PRAGMA synchronous = FULL"
+                                          : "PRAGMA synchronous = NORMAL");
+      synchronous_ = commit;
+    }
     db_->exec("BEGIN IMMEDIATE");
     try {
       auto result = body(*db_);

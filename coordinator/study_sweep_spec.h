@@ -4,9 +4,9 @@
 
 // A study sweep: a sweep spec (run/sweep_spec_yaml.h) with a `study:` block, which makes it a
 // search over its one condition's run config, as the paper's multi-stage search is
-// (shared/spec/schedules.md §8). The coordinator asks the study's sampler for a trial, trains the
-// trial's run config with each of the sweep's seeds, tells the sampler the objective, and keeps
-// `parallel` trials training at once (coordinator/study_sweep.h). An example:
+// (docs/reference.md, "Multi-stage schedules"). The coordinator asks the study's sampler for a
+// trial, trains the trial's run config with each of the sweep's seeds, tells the sampler the
+// objective, and keeps `parallel` trials training at once (coordinator/study_sweep.h). An example:
 //
 //   name: cartpole_multistage_search
 //   seeds: 4                      # every trial trains with each of these seeds

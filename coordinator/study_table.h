@@ -38,7 +38,7 @@ inline constexpr EnumName<SamplerKind> kSamplerKindNames[] = {{SamplerKind::kTpe
 static_assert(InEnumOrder(kSamplerKindNames));
 
 // A study as created: a search space, an objective's direction and a sampler
-// (shared/spec/tpe.md).
+// (Optuna 4.9's).
 struct StudySubmission {
   std::string request_id;  // client-chosen; a repeated id returns the study it created
   std::string name;

@@ -3,9 +3,9 @@
 #define DCS_COORDINATOR_TPE_SAMPLER_H_
 
 // The Tree-structured Parzen Estimator, with Optuna 4.9's semantics and defaults
-// (shared/spec/tpe.md §2–9): random trials until `startup_trials` have finished; then the finished
-// trials split into the best gamma(n) ("below") and the rest ("above"), a Parzen estimator is
-// fitted to each, `ei_candidates` candidates are drawn from the below one, and the first that
+// (optuna/samplers/_tpe/sampler.py): random trials until `startup_trials` have finished; then the
+// finished trials split into the best gamma(n) ("below") and the rest ("above"), a Parzen estimator
+// is fitted to each, `ei_candidates` candidates are drawn from the below one, and the first that
 // maximises ln l(x) - ln g(x) is taken.
 //
 // Conditional spaces: by default each parameter is sampled on its own (independent TPE), its
@@ -45,7 +45,7 @@ std::unique_ptr<Sampler> MakeTpeSampler(uint64_t seed, Direction direction,
 // The size of the "below" set for n finished trials: min(ceil(n / 10), 25).
 int Gamma(int n);
 
-// The below/above split of `history` (§4): the best `below` complete trials, then pruned trials by
+// The below/above split of `history`: the best `below` complete trials, then pruned trials by
 // (deepest step, last value) while places remain; running trials above. Both in trial order.
 struct Split {
   std::vector<const StudyTrial*> below;
@@ -53,7 +53,7 @@ struct Split {
 };
 Split SplitTrials(const std::vector<const StudyTrial*>& history, int below, Direction direction);
 
-// The groups of parameters that always occur together in `finished` trials (§8), each in the
+// The groups of parameters that always occur together in `finished` trials, each in the
 // space's order, the groups ordered by their first parameter.
 std::vector<std::vector<std::string>> GroupParameters(
     const run::SearchSpace& space, const std::vector<const StudyTrial*>& finished);

@@ -3,9 +3,9 @@
 #define DCS_COORDINATOR_TRUNCATED_NORMAL_H_
 
 // The standard normal distribution in log space, as TPE's Parzen estimators need it
-// (shared/spec/tpe.md §7): densities of kernels truncated far in a tail must stay finite and
-// accurate, so masses are computed as logarithms, with the tail-safe forms Optuna uses. Pure
-// functions; thread-safe.
+// (optuna/samplers/_tpe/_truncnorm.py): densities of kernels truncated far in a tail must stay
+// finite and accurate, so masses are computed as logarithms, with the tail-safe forms Optuna uses.
+// Pure functions; thread-safe.
 
 namespace dcs::coordinator {
 

@@ -159,7 +159,7 @@ StepResult BipedalWalker::Step(std::span<const float, kActionSize> action,
   return result;
 }
 
-// BipedalWalker.step (spec/envs.md §2.5), environment arithmetic in double.
+// BipedalWalker.step (gymnasium/envs/box2d/bipedal_walker.py), environment arithmetic in double.
 StepResult BipedalWalker::Advance(std::span<const float, kActionSize> action,
                                   std::span<float, kObservationSize> observation) {
   const std::array<double, kNumFeatures>& f = features_;

@@ -2,12 +2,13 @@
 #ifndef DCS_ENV_BIPEDAL_WALKER_H_
 #define DCS_ENV_BIPEDAL_WALKER_H_
 
-// Gymnasium's BipedalWalker-v3 (1.4.0, spec/envs.md §2) on Box2D 2.4.1, with CARL's 20 walker
-// context features (contexts.md §4.1), the reference implementation's COM_X payload (§4.2)
-// and a HARDCORE switch. Observation: 24 float32 values (hull angle, angular velocity, velocity,
-// joint angles and speeds, foot contacts, ten lidar fractions); action: 4 floats (hip, knee,
-// hip, knee), meant in [-1, 1]: the sign picks the motor direction, |a| clipped to 1 scales its
-// torque. Reward: forward progress minus head tilt and torque cost, -100 on a fall.
+// Gymnasium's BipedalWalker-v3 (1.4.0, gymnasium/envs/box2d/bipedal_walker.py) on Box2D 2.4.1, with
+// CARL's 20 walker context features (docs/reference.md, "Context features and payloads"), the
+// reference implementation's COM_X payload and a HARDCORE switch. Observation: 24 float32 values
+// (hull angle, angular velocity, velocity, joint angles and speeds, foot contacts, ten lidar
+// fractions); action: 4 floats (hip, knee, hip, knee), meant in [-1, 1]: the sign picks the motor
+// direction, |a| clipped to 1 scales its torque. Reward: forward progress minus head tilt and
+// torque cost, -100 on a fall.
 //
 // When a feature change takes effect (a schedule may move any feature mid-episode):
 // - at the next Step: GRAVITY_X/Y, FRICTION (terrain fixtures and the friction of existing
@@ -24,7 +25,7 @@
 // and returns its observation; the payload is then attached, as the reference's wrapper does
 // after the base reset, so it acts from the first agent step. With a numpy-exact Random seeded
 // as Gymnasium seeds it, a seed gives Gymnasium's terrain and initial push (Box2D 2.4 trajectories
-// differ numerically from Gymnasium's 2.3 ones; envs.md §0.3).
+// differ numerically from Gymnasium's 2.3 ones).
 //
 // Deviations from the sources, all deliberate: TERRAIN_HEIGHT defaults to Gymnasium's 400/30/4
 // (CARL says 600/30/4 = 5; the base environment is BipedalWalker-v3 exactly); parameters are
@@ -104,10 +105,10 @@ class BipedalWalker final {
   // the evaluation grid up to +-1.7); normalisation bounds equal the physical ones.
   static const ContextSpace& Features();
 
-  // The coverage diagnostic's four projections (spec/schedules.md §11) over Gymnasium's declared
-  // bounds (contexts.md §9): "inter_leg" hip 1 vs hip 2 angle (30^2), "joints" the hip and knee
-  // angles of both legs (12^4), "posture" hull and both hip angles (15^3), "leg1_phase" hip 1
-  // angle vs speed (30^2).
+  // The coverage diagnostic's four projections (docs/reference.md, "Coverage") over Gymnasium's
+  // declared bounds (docs/reference.md, "Coverage"): "inter_leg" hip 1 vs hip 2 angle (30^2),
+  // "joints" the hip and knee angles of both legs (12^4), "posture" hull and both hip angles
+  // (15^3), "leg1_phase" hip 1 angle vs speed (30^2).
   static const std::vector<StateProjection>& CoverageProjections();
 
   // OK if every value is valid for its feature and the integer features (TERRAIN_LENGTH,
@@ -130,7 +131,7 @@ class BipedalWalker final {
   StepResult Step(std::span<const float, kActionSize> action,
                   std::span<float, kObservationSize> observation);
 
-  // Draws the scene as Gymnasium's human render does (envs.md §2.8): sky, clouds, terrain fill
+  // Draws the scene as Gymnasium's human render does: sky, clouds, terrain fill
   // and edges, hardcore obstacles, the lidar ray `lidar_ray` in red if it is in [0, 10), legs,
   // hull and payload, and the start flag, for the camera at the current scroll. Meant for a
   // VIEWPORT_W x VIEWPORT_H canvas (600 x 400 by default); another size keeps the scale,

@@ -2,13 +2,13 @@
 #ifndef DCS_ENV_BIPEDAL_WALKER_HEURISTIC_H_
 #define DCS_ENV_BIPEDAL_WALKER_HEURISTIC_H_
 
-// Gymnasium's hand-written BipedalWalker controller (BipedalWalkerHeuristics, spec/envs.md
-// §2.9): a three-phase gait (stand on one leg, put the other down, push off) with PD targets
-// on the joints, head stabilisation and vertical damping. It "has no notion of balance" and
-// falls often: Gymnasium's mean return is about 102.6 +- 125.1 on normal terrain. The check
-// that a walker port walks, and a baseline policy. Drive it as Gymnasium does: reset, take a
-// zero action first, then Act on each step's observation (the reset observation is unused).
-// Thread-compatible; one instance per episode stream.
+// Gymnasium's hand-written BipedalWalker controller (BipedalWalkerHeuristics in
+// bipedal_walker.py): a three-phase gait (stand on one leg, put the other down, push off) with PD
+// targets on the joints, head stabilisation and vertical damping. It "has no notion of balance" and
+// falls often: Gymnasium's mean return is about 102.6 +- 125.1 on normal terrain. The check that a
+// walker port walks, and a baseline policy. Drive it as Gymnasium does: reset, take a zero action
+// first, then Act on each step's observation (the reset observation is unused). Thread-compatible;
+// one instance per episode stream.
 
 #include <array>
 #include <span>

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
 //
-// BipedalWalker::Render: Gymnasium's BipedalWalker.render (spec/envs.md §2.8) on env::Canvas.
+// BipedalWalker::Render: Gymnasium's BipedalWalker.render on env::Canvas.
 
 #include "env/bipedal_walker.h"
 

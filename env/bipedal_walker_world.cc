@@ -109,7 +109,7 @@ void WalkerWorld::AddObstacle(const std::array<b2Vec2, 4>& vertices, double fric
   obstacles_.push_back({vertices});
 }
 
-// BipedalWalker._generate_terrain, statement by statement (spec/envs.md §2.4), with CARL's
+// BipedalWalker._generate_terrain, statement by statement, with CARL's
 // features in place of the module constants.
 void WalkerWorld::GenerateTerrain(double friction, Random& random) {
   enum State : int64_t { kGrass, kStump, kStairs, kPit, kNumStates };
@@ -263,7 +263,7 @@ void WalkerWorld::CreateWalker(double motors_torque, Random& random) {
     hip.bodyB = upper;
     hip.localAnchorA = Vec(0, g.leg_down);
     hip.localAnchorB = Vec(0, g.leg_h / 2);
-    // pybox2d sets bodyB.angle - bodyA.angle when both bodies are given (envs.md §0.3 item 1).
+    // pybox2d sets bodyB.angle - bodyA.angle when both bodies are given.
     hip.referenceAngle = upper->GetAngle() - hull_->GetAngle();
     hip.enableMotor = true;
     hip.enableLimit = true;

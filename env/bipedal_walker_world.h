@@ -2,12 +2,12 @@
 #ifndef DCS_ENV_BIPEDAL_WALKER_WORLD_H_
 #define DCS_ENV_BIPEDAL_WALKER_WORLD_H_
 
-// The Box2D side of BipedalWalker-v3 (spec/envs.md §2), apart from the environment adapter as
-// in envpool's split: one b2World reused across episodes, holding the terrain (normal or
-// hardcore), the hull with an optional payload fixture (contexts.md §4.2), two legs of two
-// segments with motorised hip and knee joints, the contact flags and the ten lidar rays. It
-// takes plain parameters and knows nothing of observations, rewards or context features
-// (env/bipedal_walker.h adapts it).
+// The Box2D side of BipedalWalker-v3 (gymnasium/envs/box2d/bipedal_walker.py), apart from the
+// environment adapter as in envpool's split: one b2World reused across episodes, holding the
+// terrain (normal or hardcore), the hull with an optional payload fixture (docs/reference.md,
+// "Context features and payloads"), two legs of two segments with motorised hip and knee joints,
+// the contact flags and the ten lidar rays. It takes plain parameters and knows nothing of
+// observations, rewards or context features (env/bipedal_walker.h adapts it).
 //
 // One deliberate difference from Gymnasium's world: the terrain is one static body at the origin
 // holding every terrain fixture (Gymnasium makes a body per edge and obstacle, all at the
@@ -98,8 +98,8 @@ class WalkerWorld final : private b2ContactListener {
 
   // Gymnasium's motor control: joint j gets speed speed_j * sign(a_j) (speed_hip for joints 0
   // and 2, speed_knee for 1 and 3) and maximum torque motors_torque * clip(|a_j|, 0, 1); then
-  // every walker body that is asleep is woken, as pybox2d 2.3's setters do (envs.md §0.3 item
-  // 2). REQUIRES: Build was called; finite actions.
+  // every walker body that is asleep is woken, as pybox2d 2.3's setters do.
+  // REQUIRES: Build was called; finite actions.
   void SetMotors(std::span<const float, 4> action, double speed_hip, double speed_knee,
                  double motors_torque);
   // One world step of `dt` seconds with 180 velocity and 60 position iterations.

@@ -83,7 +83,7 @@ Car::Car(b2World& world, double init_angle, double init_x, double init_y) : worl
     joint_def.localAnchorA.Set(static_cast<float>(wx * kCarSize),
                                static_cast<float>(wy * kCarSize));
     joint_def.localAnchorB.Set(0, 0);
-    joint_def.referenceAngle = 0;  // pybox2d would compute it; equal angles make it 0 (§0.3)
+    joint_def.referenceAngle = 0;  // pybox2d would compute it; equal angles make it 0
     joint_def.enableMotor = true;
     joint_def.enableLimit = true;
     joint_def.maxMotorTorque = static_cast<float>(180 * 900 * kCarSize * kCarSize);

@@ -2,10 +2,11 @@
 #ifndef DCS_ENV_CAR_DYNAMICS_H_
 #define DCS_ENV_CAR_DYNAMICS_H_
 
-// The car of Gymnasium's CarRacing-v3 (spec/envs.md §3.3 and §3.6, car_dynamics.py): a hull of
+// The car of Gymnasium's CarRacing-v3 (gymnasium/envs/box2d/car_dynamics.py): a hull of
 // four polygons, four wheels on motorised, limited revolute joints, and the wheel model that
 // turns engine, brake and tyre slip into forces applied to the wheels' centres. Plus DCS's
-// payload (contexts.md §5.2): a 16-gon body welded to the hull at a hull-local point.
+// payload (docs/reference.md, "Context features and payloads"): a 16-gon body welded to the hull at
+// a hull-local point.
 //
 // The car's bodies belong to the b2World given at construction, which must outlive the Car;
 // the Car destroys only its payload body (when it is replaced), never the rest (destroy the
@@ -95,7 +96,7 @@ class Car {
   void Gas(double g);
   void Brake(double b);
 
-  // The wheel model for one time step of `dt` seconds (spec/envs.md §3.6): steering servo,
+  // The wheel model for one time step of `dt` seconds (Car.step): steering servo,
   // engine, brake, tyre forces applied to the wheels. Call before b2World::Step.
   void Step(double dt, const CarParams& params);
 

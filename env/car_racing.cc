@@ -39,7 +39,7 @@ struct CarRacing::State final : public b2ContactListener {
   void BeginContact(b2Contact* contact) override { Contact(contact, true); }
   void EndContact(b2Contact* contact) override { Contact(contact, false); }
 
-  // Gymnasium's FrictionDetector._contact (spec/envs.md §3.5), with fixture tags for its body
+  // Gymnasium's FrictionDetector._contact, with fixture tags for its body
   // user data (tiles and wheels).
   void Contact(b2Contact* contact, bool begin) {
     const uintptr_t u1 = contact->GetFixtureA()->GetUserData().pointer;

@@ -2,21 +2,22 @@
 #ifndef DCS_ENV_CAR_RACING_H_
 #define DCS_ENV_CAR_RACING_H_
 
-// Gymnasium's CarRacing-v3 (1.4.0, spec/envs.md §3) on Box2D 2.4.1, with DCS's context features:
-// the paper's payload (COM_X, COM_Y; contexts.md §5.2) and a few physical parameters of the car.
-// Observation: the 96x96 RGB picture (uint8, H x W x RGB, row 0 at the top). Reward: +1000/N
-// for each newly visited of the N track tiles, -0.1 per step; -100 (and termination) for
-// leaving the playfield; termination when every tile has been visited; truncation at 1000
-// steps. The reset performs Gymnasium's internal first step, whose tile credit is paid in the
-// first real step. Reset draws from `Random` exactly as Gymnasium draws from its np_random, so a
-// numpy-exact generator seeded as Gymnasium seeds gives Gymnasium's track.
+// Gymnasium's CarRacing-v3 (1.4.0, gymnasium/envs/box2d/car_racing.py) on Box2D 2.4.1, with DCS's
+// context features: the paper's payload (COM_X, COM_Y; docs/reference.md, "Context features and
+// payloads") and a few physical parameters of the car. Observation: the 96x96 RGB picture (uint8, H
+// x W x RGB, row 0 at the top). Reward: +1000/N for each newly visited of the N track tiles, -0.1
+// per step; -100 (and termination) for leaving the playfield; termination when every tile has been
+// visited; truncation at 1000 steps. The reset performs Gymnasium's internal first step, whose tile
+// credit is paid in the first real step. Reset draws from `Random` exactly as Gymnasium draws from
+// its np_random, so a numpy-exact generator seeded as Gymnasium seeds gives Gymnasium's track.
 //
 // Context features (Features()); every change takes effect at the next Step:
 //   COM_X, COM_Y     payload position in the hull frame, m. The car points along its local +y
 //                    axis, so COM_X is LATERAL (positive to the driver's right) and COM_Y is
 //                    LONGITUDINAL (positive forward). This is the reference implementation's
 //                    mapping; the paper calls COM_X "longitudinal" and COM_Y "lateral"
-//                    (contexts.md §5.3): in reports, label the axes by their body-frame meaning.
+//                    (docs/reference.md, "Context features and payloads"): in reports, label the
+//                    axes by their body-frame meaning.
 //   PAYLOAD_MASS     kg (default 1.0, the paper's); 0 removes the payload.
 //   PAYLOAD_RADIUS   m (default 0.5, the paper's).
 //                    A change of any payload feature re-creates the payload body (a 16-gon
@@ -38,11 +39,11 @@
 // reset (Gymnasium reuses one; a fresh one makes an episode a function of its seed alone); the
 // picture is drawn without anti-aliasing into a supersampled canvas and box-filtered (see
 // env/car_racing_render.h), with a block font for the score; no skid marks (Gymnasium draws
-// none in the observation either). From the reference payload mechanism (contexts.md §5.2):
-// the payload exists from the reset's internal step on (the reference attaches it after
-// reset), its mass is exactly PAYLOAD_MASS (the reference's density makes its 16-gon 2.5%
-// lighter), and the 16-gon is built from four convex pieces (Box2D 2.4.1 polygons have at most
-// 8 vertices; mass, centre and inertia are those of the 16-gon).
+// none in the observation either). From the reference payload mechanism (docs/reference.md,
+// "Context features and payloads"): the payload exists from the reset's internal step on (the
+// reference attaches it after reset), its mass is exactly PAYLOAD_MASS (the reference's density
+// makes its 16-gon 2.5% lighter), and the 16-gon is built from four convex pieces (Box2D 2.4.1
+// polygons have at most 8 vertices; mass, centre and inertia are those of the 16-gon).
 //
 // CarRacing and CarRacingDiscrete are thread-compatible and movable (the Box2D world lives on
 // the heap). A moved-from object may only be destroyed or assigned to.

@@ -2,7 +2,7 @@
 #ifndef DCS_ENV_CAR_RACING_RENDER_H_
 #define DCS_ENV_CAR_RACING_RENDER_H_
 
-// CarRacing-v3's picture (spec/envs.md §3.8): Gymnasium's 1000x800 top-down view centred on the
+// CarRacing-v3's picture (CarRacing.render): Gymnasium's 1000x800 top-down view centred on the
 // car (background, grass patches, road tiles and kerbs, wheels with stripes, hull, payload),
 // flipped so the car points up, with the indicator bar and the score along the bottom; and the
 // 96x96 observation made from it.

@@ -2,7 +2,7 @@
 #ifndef DCS_ENV_CAR_RACING_TRACK_H_
 #define DCS_ENV_CAR_RACING_TRACK_H_
 
-// CarRacing-v3's track generator (spec/envs.md §3.4, Gymnasium car_racing.py L307-495), pure:
+// CarRacing-v3's track generator (Gymnasium car_racing.py L307-495), pure:
 // random checkpoints, the traced centre line, the closed-loop extraction and glue check, the
 // red/white kerb flags, and the road and kerb quads in Gymnasium's draw order. Every draw and
 // every floating-point expression follows Gymnasium's order, so a Random seeded as Gymnasium

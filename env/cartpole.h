@@ -2,10 +2,11 @@
 #ifndef DCS_ENV_CARTPOLE_H_
 #define DCS_ENV_CARTPOLE_H_
 
-// Gymnasium's CartPole-v1 (1.4.0, spec/envs.md §1) with CARL's context features (contexts.md
-// §3.1): float64 explicit-Euler physics, strict termination bounds (|x| > 2.4,
-// |theta| > 12 degrees), reward 1 per step up to and including the first terminating step and
-// 0 after it, truncation at 500 steps, and a float32 observation [x, x_dot, theta, theta_dot].
+// Gymnasium's CartPole-v1 (1.4.0, gymnasium/envs/classic_control/cartpole.py) with CARL's context
+// features (docs/reference.md, "Context features and payloads"): float64 explicit-Euler physics,
+// strict termination bounds (|x| > 2.4, |theta| > 12 degrees), reward 1 per step up to and
+// including the first terminating step and 0 after it, truncation at 500 steps, and a float32
+// observation [x, x_dot, theta, theta_dot].
 //
 // Context features may change at any time (a schedule moves them mid-episode): a new value
 // takes effect at the next physics step, and the derived total mass and pole mass-length are
@@ -69,8 +70,8 @@ class CartPole final {
   // CARL's CartPole features, with the paper's sensor bounds for the length (0.05, 2.0) m.
   static const ContextSpace& Features();
 
-  // The coverage diagnostic's projection (spec/schedules.md §11): "state", the four observation
-  // dimensions in 12 bins each over the paper's physically plausible ranges.
+  // The coverage diagnostic's projection (docs/reference.md, "Coverage"): "state", the four
+  // observation dimensions in 12 bins each over the paper's physically plausible ranges.
   static const std::vector<StateProjection>& CoverageProjections();
 
   // OK if every value is valid for its feature and initial_state_lower <= initial_state_upper.
@@ -95,7 +96,7 @@ class CartPole final {
 
   const CartPoleState& state() const { return state_; }
 
-  // Draws the scene as Gymnasium's render does (spec/envs.md §1.5): a 600x400 frame, 125 px
+  // Draws the scene as Gymnasium's render does: a 600x400 frame, 125 px
   // per metre, the cart in black on its track, the pole in brown and the axle in lilac.
   static constexpr int kRenderWidth = 600;
   static constexpr int kRenderHeight = 400;

@@ -26,9 +26,9 @@ struct ContextFeature {
   double lower = 0;
   double upper = 0;
   // Normalisation ("sensor") bounds, always finite: an observed value x is shown to the policy
-  // as clip((x - mid) / half, -5, 5) with mid and half of this interval (schedules.md §6.2).
-  // Deliberately wider than any training or evaluation range, so the evaluation grid is not
-  // encoded in the input.
+  // as clip((x - mid) / half, -5, 5) with mid and half of this interval (docs/reference.md,
+  // "Observation modes and normalisation"). Deliberately wider than any training or evaluation
+  // range, so the evaluation grid is not encoded in the input.
   double normalization_lower = -1;
   double normalization_upper = 1;
 };

@@ -3,7 +3,7 @@
 #define DCS_ENV_CONTEXT_POOL_H_
 
 // Context pools: the finite set of values an episode's initial context c_0 is drawn from, one
-// draw at every reset (spec/schedules.md §7). Immutable; thread-safe.
+// draw at every reset (docs/reference.md, "Pools"). Immutable; thread-safe.
 //
 // Pool-N over [lo, hi] follows the paper's recursive midpoint insertion: pool-1 is the midpoint,
 // pool-3 adds the two extremes, pool-5 inserts the midpoints between neighbours, and so on

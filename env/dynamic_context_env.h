@@ -2,7 +2,7 @@
 #ifndef DCS_ENV_DYNAMIC_CONTEXT_ENV_H_
 #define DCS_ENV_DYNAMIC_CONTEXT_ENV_H_
 
-// The dynamic-context wrapper (the paper's DynamicCARLEnv; spec/schedules.md §5-6): one
+// The dynamic-context wrapper (the paper's DynamicCARLEnv; docs/reference.md, "Step timing"): one
 // environment slot whose context features start each episode from a pool and move within it
 // along schedules, with the context shown to the policy in one of three modes.
 //

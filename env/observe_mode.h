@@ -2,9 +2,9 @@
 #ifndef DCS_ENV_OBSERVE_MODE_H_
 #define DCS_ENV_OBSERVE_MODE_H_
 
-// What a policy is shown of its environment's context (spec/schedules.md §6;
-// env/dynamic_context_env.h): nothing (the paper's "blind"), the episode's initial values, or
-// the live values (the paper's "observed"). Thread-safe (constants).
+// What a policy is shown of its environment's context (docs/reference.md, "Observation modes and
+// normalisation"; env/dynamic_context_env.h): nothing (the paper's "blind"), the episode's initial
+// values, or the live values (the paper's "observed"). Thread-safe (constants).
 
 #include "common/enum_names.h"
 

@@ -1,7 +1,7 @@
 // Copyright 2026 The DCS Authors.
 //
 // The factory, and the families built from others: Identity, Sequential composite and the
-// Levy walk (spec/schedules.md §3.1, 3.11, 3.12).
+// Levy walk (docs/reference.md, "Schedule families").
 
 #include "env/schedule.h"
 

@@ -10,9 +10,9 @@
 //   v = schedule.Next(k, v);                         // before physics step k + 1, k = 1, 2, ...
 // `initial` is the feature's episode-initial value (drawn from the pool); `k` counts the
 // scheduled calls of the episode: the first transition of an episode makes none, so call k
-// precedes the (k + 1)-th transition (spec/schedules.md §5.3). Event times (jumps, switches,
-// cycles) compare with k. Every returned value is within [min_value, max_value], except that
-// Identity and the first-call skip return the current value unchanged.
+// precedes the (k + 1)-th transition (docs/reference.md, "Step timing"). Event times (jumps,
+// switches, cycles) compare with k. Every returned value is within [min_value, max_value], except
+// that Identity and the first-call skip return the current value unchanged.
 //
 // Randomness: each Reset starts a fresh generator derived from (spec.seed, episode, slot), so
 // an episode's trajectory depends on nothing but those three numbers.

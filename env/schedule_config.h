@@ -10,10 +10,11 @@
 //   period: 125
 //
 // Every magnitude may be given in absolute units or as a fraction of the schedule's range
-// (`<name>_frac`, as the reference builder takes them: spec/schedules.md §4), not both; what is
-// not given takes the builder's default. Intervals and periods are in environment steps.
-// Parameters per family, each with its allowed range and the builder's default in brackets
-// (span = max - min). Kinds of value that need no range of their own:
+// (`<name>_frac`, as the reference builder takes them: docs/reference.md, "Parameters as
+// fractions of the range"), not both; what is not given takes the builder's default. Intervals
+// and periods are in environment steps. Parameters per family, each with its allowed range and
+// the builder's default in brackets (span = max - min). Kinds of value that need no range of
+// their own:
 //   magnitude      a number >= 0, absolute or as `<name>_frac` (>= 0, times the scale given)
 //   magnitude range  [lo, hi] of magnitudes with 0 <= lo <= hi
 //   interval       [lo, hi] in whole steps with 1 <= lo <= hi: each one drawn from U{lo..hi}

@@ -1,7 +1,7 @@
 // Copyright 2026 The DCS Authors.
 //
 // The families that drift step by step: Continuous Incrementer, Random Walk, Ornstein-Uhlenbeck
-// and Phased OU (spec/schedules.md §3.2, 3.4, 3.5, 3.10). All four skip their first call.
+// and Phased OU (docs/reference.md, "Schedule families"). All four skip their first call.
 
 #include "env/schedule_internal.h"
 

@@ -1,7 +1,7 @@
 // Copyright 2026 The DCS Authors.
 //
 // The families that hold the value and change it at random times: Sudden Jump (the paper's
-// Stochastic Jumps) and Piecewise Constant (spec/schedules.md §3.3, 3.6).
+// Stochastic Jumps) and Piecewise Constant (docs/reference.md, "Schedule families").
 
 #include "env/schedule_internal.h"
 

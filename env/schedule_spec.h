@@ -4,10 +4,10 @@
 
 // A schedule's specification: plain data that says how one context feature moves within an
 // episode. The families and their rules are those of the reference implementation
-// (dynamicCARL, spec/schedules.md §3), with the paper's names. Every magnitude here is in the
-// feature's absolute units and every interval or period in environment steps;
-// env/schedule_config.h builds a spec from a config that may give magnitudes as fractions of
-// the range instead. The state machine that runs a spec is env/schedule.h.
+// (dynamicCARL, docs/reference.md, "Schedule families"), with the paper's names. Every magnitude
+// here is in the feature's absolute units and every interval or period in environment steps;
+// env/schedule_config.h builds a spec from a config that may give magnitudes as fractions of the
+// range instead. The state machine that runs a spec is env/schedule.h.
 //
 // Field defaults are those of the reference factories (make_sinusoidal, ...) where they have
 // one; configs get the builder's defaults instead (env/schedule_config.h).

@@ -1,7 +1,7 @@
 // Copyright 2026 The DCS Authors.
 //
 // The periodic families: Sinusoidal, Sinusoidal Jump and Cosine Annealing with warm restarts
-// (spec/schedules.md §3.7-3.9).
+// (docs/reference.md, "Schedule families").
 
 #include <cmath>
 #include <numbers>

@@ -2,9 +2,9 @@
 #ifndef DCS_ENV_STAGED_SCHEDULE_H_
 #define DCS_ENV_STAGED_SCHEDULE_H_
 
-// Multi-stage schedules (the paper's §multi-stage; spec/schedules.md §8): training is split into
-// stages of fixed lengths in environment steps of the run, each with its own schedule (a
-// one-stage schedule is the ordinary single-schedule case; `constant` is Identity).
+// Multi-stage schedules (the paper's §multi-stage; docs/reference.md, "Multi-stage schedules"):
+// training is split into stages of fixed lengths in environment steps of the run, each with its own
+// schedule (a one-stage schedule is the ordinary single-schedule case; `constant` is Identity).
 //
 // When a stage change takes effect: an episode runs the stage in force when it started, the
 // stage whose span of the run's global environment steps contains the step count at its

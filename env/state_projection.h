@@ -3,11 +3,11 @@
 #define DCS_ENV_STATE_PROJECTION_H_
 
 // A discretised view of an environment's observation, as the paper's coverage diagnostic cuts
-// the state space into cells (spec/schedules.md §11): some observation dimensions, each cut into
-// `bins` equal bins over [low, high]. A value outside the range falls into the bin at its end,
+// the state space into cells (docs/reference.md, "Coverage"): some observation dimensions, each cut
+// into `bins` equal bins over [low, high]. A value outside the range falls into the bin at its end,
 // as the reference tracker's `digitize(v) - 1` clamped to [0, bins - 1]. Each environment with
-// vector observations declares the paper's projections (`Env::CoverageProjections()`).
-// Plain data and pure functions; thread-safe.
+// vector observations declares the paper's projections (`Env::CoverageProjections()`). Plain data
+// and pure functions; thread-safe.
 
 #include <cstdint>
 #include <span>

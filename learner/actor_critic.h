@@ -2,7 +2,7 @@
 #ifndef DCS_LEARNER_ACTOR_CRITIC_H_
 #define DCS_LEARNER_ACTOR_CRITIC_H_
 
-// Stable-Baselines3's ActorCriticPolicy in libtorch (spec/ppo.md §3): separate policy and
+// Stable-Baselines3's ActorCriticPolicy in libtorch (common/policies.py): separate policy and
 // value MLPs with tanh (default [64, 64] each) on the features, a linear action head
 // (categorical logits, or a Gaussian mean with a state-independent log-std) and a linear
 // value head; orthogonal initialisation with SB3's gains (sqrt 2 for the feature extractor
@@ -88,12 +88,12 @@ class ActorCriticImpl : public torch::nn::Module {
   actor::PolicyWeights ExportActor() const;
 
   // Every parameter under its name in the state_dict of Stable-Baselines3's policy of the same
-  // architecture (spec/ppo.md §3), as detached copies in SB3's order: MlpPolicy's; or, for
-  // image policies, MultiInputPolicy's, whose Dict observation has the image under `image_key`
-  // and the context under `context_key`. Its CombinedExtractor, shared by actor and critic,
-  // appears under the three prefixes SB3's state_dict lists it by (features_extractor,
-  // pi_features_extractor, vf_features_extractor), as the same tensors. The context branch,
-  // DCS's addition, is extractors.<context_key> as a Sequential of Linear and ReLU.
+  // architecture (SB3's common/policies.py), as detached copies in SB3's order: MlpPolicy's; or,
+  // for image policies, MultiInputPolicy's, whose Dict observation has the image under `image_key`
+  // and the context under `context_key`. Its CombinedExtractor, shared by actor and critic, appears
+  // under the three prefixes SB3's state_dict lists it by (features_extractor,
+  // pi_features_extractor, vf_features_extractor), as the same tensors. The context branch, DCS's
+  // addition, is extractors.<context_key> as a Sequential of Linear and ReLU.
   std::vector<std::pair<std::string, torch::Tensor>> Sb3Parameters(
       absl::string_view image_key, absl::string_view context_key) const;
 

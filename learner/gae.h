@@ -3,7 +3,7 @@
 #define DCS_LEARNER_GAE_H_
 
 // Generalised advantage estimation with episode boundaries, exactly as Stable-Baselines3's
-// RolloutBuffer.compute_returns_and_advantage (spec/ppo.md §6), in float32 as its buffers are.
+// RolloutBuffer.compute_returns_and_advantage (common/buffers.py), in float32 as its buffers are.
 // Thread-safe (a pure function).
 //
 // Buffers are time-major, [num_steps][num_envs]: element t * num_envs + e is step t of env e.
@@ -14,7 +14,7 @@
 //   last_gae    = delta + gamma * lambda * nonterminal * last_gae
 //   advantages[t][e] = last_gae;  returns[t][e] = last_gae + values[t][e]
 // A time-limit cut is bootstrapped before this, by adding gamma * V(final observation) to the
-// reward of the truncated step (spec/ppo.md §5, item 6).
+// reward of the truncated step (SB3's collect_rollouts, common/on_policy_algorithm.py).
 
 #include <cstdint>
 #include <span>

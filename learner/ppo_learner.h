@@ -2,12 +2,12 @@
 #ifndef DCS_LEARNER_PPO_LEARNER_H_
 #define DCS_LEARNER_PPO_LEARNER_H_
 
-// PPO as Stable-Baselines3 implements it (spec/ppo.md), behind a torch-free interface:
-// Update() takes one rollout, computes values and log-probabilities of the collected actions,
-// bootstraps time-limit cuts, runs GAE, then n_epochs of minibatch updates (advantages
+// PPO as Stable-Baselines3 implements it (stable_baselines3/ppo/ppo.py), behind a torch-free
+// interface: Update() takes one rollout, computes values and log-probabilities of the collected
+// actions, bootstraps time-limit cuts, runs GAE, then n_epochs of minibatch updates (advantages
 // normalised per minibatch, clipped surrogate, unclipped MSE value loss, entropy bonus, global
-// gradient-norm clipping, Adam with eps 1e-5). The parameters and Adam's state are libtorch's;
-// the passes are Eigen products on them (learner/actor_critic.h, learner/nature_cnn.h).
+// gradient-norm clipping, Adam with eps 1e-5). The parameters and Adam's state are libtorch's; the
+// passes are Eigen products on them (learner/actor_critic.h, learner/nature_cnn.h).
 //
 // Deterministic: initial weights come from StreamSeed(seed, "init") and minibatch orders from
 // StreamSeed(seed, "minibatch", {update, epoch}); with libtorch pinned to one thread and the

@@ -2,7 +2,7 @@
 #ifndef DCS_LEARNER_PPO_LOSS_H_
 #define DCS_LEARNER_PPO_LOSS_H_
 
-// Stable-Baselines3's PPO loss on one minibatch (spec/ppo.md §3), and its gradient with
+// Stable-Baselines3's PPO loss on one minibatch (ppo/ppo.py, train), and its gradient with
 // respect to the network's outputs, computed sample by sample in plain C++. The network's
 // own backward pass (learner/actor_critic.h) takes the gradient from there: on networks this
 // small, recording the loss's few dozen tensor operations for autograd cost more than the

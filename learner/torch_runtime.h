@@ -6,9 +6,9 @@
 // trains or updates calls PinNumericKernels first thing in main, then PinTorchThreads. Not
 // thread-safe: call from main before any torch work.
 //
-// DESIGN.md §4: with libtorch pinned to one thread per run and its numeric kernels pinned to
-// one choice, the same sweep gives the same report bit for bit however many learners share a
-// machine, on any x86-64 machine with AVX2 and FMA, Intel or AMD.
+// docs/architecture.md §8: with libtorch pinned to one thread per run and its numeric kernels
+// pinned to one choice, the same sweep gives the same report bit for bit however many learners
+// share a machine, on any x86-64 machine with AVX2 and FMA, Intel or AMD.
 
 #include <string>
 #include <vector>

@@ -3,7 +3,8 @@
 #define DCS_COORDINATOR_ANOVA_H_
 
 // One-way analysis of variance, as the paper tests whether conditions differ in coverage
-// (spec/schedules.md §11, Appendix A.9): do k groups of N values in all share one mean?
+// (docs/reference.md, "Coverage"; the paper's Appendix D): do k groups of N values in all share one
+// mean?
 //   F = (SSB / (k - 1)) / (SSW / (N - k)),  p = P(F(k - 1, N - k) > F),
 // SSB = sum over groups of n_i (mean_i - mean)^2, SSW = sum of (x - mean_i)^2 within groups;
 // scipy.stats.f_oneway's statistic and p-value. Thread-safe (pure function).

@@ -3,7 +3,7 @@
 #define DCS_COORDINATOR_CORRELATION_H_
 
 // Pearson's correlation with its two-sided p-value, as the paper relates coverage to score
-// (spec/schedules.md Appendix A: r = 0.21, p = 0.003): r = cov(x, y) / (sd(x) sd(y)), and
+// (the paper's Appendix D: r = 0.21, p = 0.003): r = cov(x, y) / (sd(x) sd(y)), and
 //   p = P(|T| >= |t|),  t = r sqrt((n - 2) / (1 - r^2)),  T ~ Student's t with n - 2 degrees of
 // freedom (Boost.Math), which is scipy.stats.pearsonr's p-value. Thread-safe (pure function).
 

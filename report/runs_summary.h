@@ -3,7 +3,7 @@
 #define DCS_REPORT_RUNS_SUMMARY_H_
 
 // One row of the paper's tables from finished runs of one condition (`dcs summarize`): each
-// run's two scores, last and best-anytime avg_combined (spec/schedules.md §9.3), read from its
+// run's two scores, last and best-anytime avg_combined (docs/reference.md, "Scores"), read from its
 // evaluation log (run/evaluation_log.h), and across the runs IQM [Q1, Q3] with a 95%
 // stratified-bootstrap interval (coordinator/iqm.h; 10,000 resamples from seed 0, so the same
 // runs give the same interval). Thread-safe (pure functions over files).

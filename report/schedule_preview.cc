@@ -20,7 +20,7 @@ PreviewCurve Curve(std::string label, std::string family, Params params) {
   return {std::move(label), {.family = std::move(family), .params = std::move(params)}};
 }
 
-// The figure's curves: the paper's presets where it has them (spec/schedules.md §10), else
+// The figure's curves: the paper's presets where it has them (docs/reference.md, "Presets"), else
 // the builder's defaults next to one contrasting setting.
 std::vector<PreviewPanel> AllFamilyPanels() {
   using V = std::vector<double>;

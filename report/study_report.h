@@ -3,12 +3,12 @@
 #define DCS_REPORT_STUDY_REPORT_H_
 
 // A study sweep's report (dcs/v1/report.proto StudyReport), as the paper reports its multi-stage
-// search (spec/schedules.md §8, Appendix A.2): the trials ranked by the search's objective; the
-// stage modes the best trials chose (the paper's heatmap); and, once the best were retrained
-// with new seeds, how the ranking held (the paper's rank-shift figure: search rank against
-// retrain rank, with Spearman's and Kendall's rank correlations) and their scores as the paper's
-// Table 3 (IQM [Q1, Q3] with bootstrap intervals of the last and the best-anytime avg_combined).
-// Thread-safe (pure functions).
+// search (docs/reference.md, "Multi-stage schedules"; the paper's Table 3, Appendix E): the trials
+// ranked by the search's objective; the stage modes the best trials chose (the paper's heatmap);
+// and, once the best were retrained with new seeds, how the ranking held (the paper's rank-shift
+// figure: search rank against retrain rank, with Spearman's and Kendall's rank correlations) and
+// their scores as the paper's Table 3 (IQM [Q1, Q3] with bootstrap intervals of the last and the
+// best-anytime avg_combined). Thread-safe (pure functions).
 
 #include <string>
 #include <vector>

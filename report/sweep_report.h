@@ -2,8 +2,8 @@
 #ifndef DCS_REPORT_SWEEP_REPORT_H_
 #define DCS_REPORT_SWEEP_REPORT_H_
 
-// A sweep's report (dcs/v1/report.proto): the paper's tables (spec/schedules.md §9.3,
-// Appendix A) from a sweep's finished runs. Each run gives one score, read at one checkpoint
+// A sweep's report (dcs/v1/report.proto): the paper's tables (docs/reference.md, "Scores",
+// Appendix F) from a sweep's finished runs. Each run gives one score, read at one checkpoint
 // (last or best) and one split (avg_combined or a split's mean); per condition and observation
 // mode, IQM [Q1, Q3] of the scores across seeds, a bootstrap interval of the IQM over seeds
 // (coordinator/iqm.h) and rliable's probability of improvement over the static baseline

@@ -2,15 +2,15 @@
 #ifndef DCS_RUN_COVERAGE_H_
 #define DCS_RUN_COVERAGE_H_
 
-// The coverage diagnostic of a run (spec/schedules.md §11): which cells of the environment's
-// state projections (env/state_projection.h) the training observations fall in, per window of
-// RunSpec::Coverage::window environment steps and over the whole run. The learner counts them
-// from every rollout it learns from (each step's s_t, reset observations included; step k of
+// The coverage diagnostic of a run (docs/reference.md, "Coverage"): which cells of the
+// environment's state projections (env/state_projection.h) the training observations fall in, per
+// window of RunSpec::Coverage::window environment steps and over the whole run. The learner counts
+// them from every rollout it learns from (each step's s_t, reset observations included; step k of
 // the run, counting from 1, is in window (k - 1) / window), so a run in one process and the same
 // run through the cluster count the same cells. The counts are part of the run's state
 // (run/run_checkpoint.h): a run resumed from a checkpoint counts on exactly.
 //
-// The paper's figures (Appendix A.8): per window, the cells visited within it, about 6.5 % of
+// The paper's figures (Appendix D): per window, the cells visited within it, about 6.5 % of
 // CartPole's 12^4 in the first 50k steps and under 1 % after; over the run, the cells visited at
 // all. Plain data and pure functions; thread-compatible.
 

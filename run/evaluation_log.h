@@ -3,7 +3,7 @@
 #define DCS_RUN_EVALUATION_LOG_H_
 
 // A run's evaluation log: its evaluations in order with the paper's two per-run scores, last and
-// best-anytime (spec/schedules.md §9.3), written to the run's output directory as
+// best-anytime (docs/reference.md, "Scores"), written to the run's output directory as
 //   evaluations.csv   one row per evaluation and context:
 //                     step,updates,split,value,episodes,mean,std,seconds
 //   evaluations.json  a dcs.v1.EvaluationLog (proto/dcs/v1/evaluation.proto) as JSON
@@ -29,7 +29,7 @@ namespace dcs::run {
 
 // The log of `evaluations` of the run `spec`. `complete`: the last evaluation is the one at the
 // end of training. Best-anytime is the highest avg_combined; with `stage_boundaries` (a
-// multi-stage run) only evaluations at a boundary or the end are candidates (§8).
+// multi-stage run) only evaluations at a boundary or the end are candidates.
 v1::EvaluationLog MakeEvaluationLog(const RunSpec& spec,
                                     const std::vector<actor::EvaluationResult>& evaluations,
                                     const std::vector<int64_t>& stage_boundaries, bool complete);

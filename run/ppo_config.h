@@ -2,8 +2,8 @@
 #ifndef DCS_RUN_PPO_CONFIG_H_
 #define DCS_RUN_PPO_CONFIG_H_
 
-// PPO's hyperparameters, defaulting to Stable-Baselines3's (spec/ppo.md §2-3), which the paper
-// used untuned; and the shape of the policy a learner trains. Thread-safe (plain data).
+// PPO's hyperparameters, defaulting to Stable-Baselines3's (ppo/ppo.py, common/policies.py), which
+// the paper used untuned; and the shape of the policy a learner trains. Thread-safe (plain data).
 
 #include <cstddef>
 #include <optional>

@@ -7,7 +7,7 @@
 // moments, update count), the counters, each environment slot's running episode (to replay it),
 // the evaluations so far and, if the run counts it, its coverage (run/coverage.h).
 //
-// Layout, in the run's output directory (spec/operations.md §7.3):
+// Layout, in the run's output directory:
 //   checkpoints/<timesteps>/learner.bin   PpoLearner::SaveState
 //   checkpoints/<timesteps>/run.yaml      counters, journals, evaluations, coverage
 //   checkpoints/<timesteps>/MANIFEST      sha256 of both, written after them

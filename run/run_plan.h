@@ -24,7 +24,8 @@ namespace dcs::run {
 struct RunPlan {
   int feature = 0;  // the varied feature's index
   // Training slot 0's options (slot i differs in `slot` only): the context, the pool with the
-  // reference's round-robin selection (spec/schedules.md §7), the stages, the observation mode.
+  // reference's round-robin selection (docs/reference.md, "Pools"), the stages, the observation
+  // mode.
   env::DynamicContextOptions slot;
   std::vector<actor::EvaluationContext> evaluation_contexts;
   // The global steps where a stage ends and the next begins (empty for a single stage).
@@ -37,8 +38,8 @@ struct RunPlan {
 absl::StatusOr<RunPlan> PlanRun(const RunSpec& spec, const env::ContextSpace& space);
 
 // The steps at which the run evaluates, ascending: every multiple of `eval_freq` and every stage
-// boundary below `total_timesteps` (spec/schedules.md §8 and §9). The run also evaluates at its
-// end, whatever step that falls on.
+// boundary below `total_timesteps` (docs/reference.md, "Multi-stage schedules"). The run also
+// evaluates at its end, whatever step that falls on.
 std::vector<int64_t> EvaluationSteps(const RunSpec& spec, const RunPlan& plan);
 
 // The policy's shapes for `Env` with `context_size` observed context values.

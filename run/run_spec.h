@@ -22,8 +22,8 @@
 
 namespace dcs::run {
 
-// The coverage diagnostic (spec/schedules.md §11; run/coverage.h), off unless asked for: the
-// cells of the environment's state projections that training visits, per window of `window`
+// The coverage diagnostic (docs/reference.md, "Coverage"; run/coverage.h), off unless asked for:
+// the cells of the environment's state projections that training visits, per window of `window`
 // environment steps and over the run. Declared outside RunSpec (as RunSpec::Coverage): a class
 // nested in RunSpec, with default member initialisers, would not be default-constructible inside
 // RunSpec's own definition, and clang then refuses std::optional<Coverage>::emplace().
@@ -61,9 +61,9 @@ struct RunSpec {
   // value, normalised by its sensor bounds (env/dynamic_context_env.h).
   env::ObserveMode observe = env::ObserveMode::kNone;
 
-  // Static evaluation (spec/schedules.md §9): every `eval_freq` environment steps and at the
-  // end, `eval_episodes` deterministic episodes per context, on the varied feature's values
-  // per split (indexed by actor::Split).
+  // Static evaluation (docs/reference.md, "Evaluation protocol"): every `eval_freq` environment
+  // steps and at the end, `eval_episodes` deterministic episodes per context, on the varied
+  // feature's values per split (indexed by actor::Split).
   int64_t eval_freq = 10'000;
   int eval_episodes = 30;
   std::array<std::vector<double>, actor::kNumSplits> eval_contexts;

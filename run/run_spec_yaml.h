@@ -30,16 +30,16 @@
 //         pi_layers: [64, 64], vf_layers: [64, 64], log_std_init: 0.0, adam_eps: 1.0e-5,
 //         cnn_features: 256, context_layers: []}   # context_layers: image policies only
 //
-// Meanings: spec/schedules.md §4 (schedule parameters, as fractions of the training range),
-// §7 (pools), §8 (stages), §9 (evaluation); spec/contexts.md §8 (ranges and grids per
-// environment) and §10 (PPO). `pool` is {size: N} (pool-N over the training range) or
-// {values: [...]} (exactly these, each inside the training range), not both; absent, pool-1
-// (the midpoint). No `schedule` and no `stages`: the feature is static within episodes
-// (identity). `schedule` alone is one stage of steps 0, which runs for the whole run; each of
-// a list of stages runs for its `steps` environment steps, and the last one stays in force
-// after its steps are over (env/staged_schedule.h).
-// `clip_range_vf` and `target_kl` take null for none. Schedules are read by
-// ReadScheduleConfig (run/schedule_yaml.h); numbers follow the rule of run/yaml_reader.h.
+// Meanings: docs/reference.md, "Parameters as fractions of the range" (schedule parameters, as
+// fractions of the training range), "Pools", "Multi-stage schedules", "Evaluation protocol";
+// "Evaluation grids" (ranges and grids per environment) and "Settings per experiment" (PPO). `pool`
+// is {size: N} (pool-N over the training range) or {values: [...]} (exactly these, each inside the
+// training range), not both; absent, pool-1 (the midpoint). No `schedule` and no `stages`: the
+// feature is static within episodes (identity). `schedule` alone is one stage of steps 0, which
+// runs for the whole run; each of a list of stages runs for its `steps` environment steps, and the
+// last one stays in force after its steps are over (env/staged_schedule.h). `clip_range_vf` and
+// `target_kl` take null for none. Schedules are read by ReadScheduleConfig (run/schedule_yaml.h);
+// numbers follow the rule of run/yaml_reader.h.
 //
 // Errors are INVALID_ARGUMENT, as "<where>: <path>: line <n>: <message>": `path` is the YAML
 // path of the field (`evaluation.contexts.ood_high[2]`, `stages[1].schedule.period`,

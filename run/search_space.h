@@ -2,9 +2,9 @@
 #ifndef DCS_RUN_SEARCH_SPACE_H_
 #define DCS_RUN_SEARCH_SPACE_H_
 
-// A search space for a study (shared/spec/tpe.md): float, int and categorical parameters, some of
-// them conditional on an earlier categorical's choice (a multi-stage schedule's stage k has a mode,
-// and a sinusoid's period exists only in the stages whose mode is sinusoidal).
+// A search space for a study (Optuna's distributions): float, int and categorical parameters, some
+// of them conditional on an earlier categorical's choice (a multi-stage schedule's stage k has a
+// mode, and a sinusoid's period exists only in the stages whose mode is sinusoidal).
 //
 // Values are kept in Optuna's internal representation, a double per parameter: a float or int
 // parameter's value in its own scale (not the log scale), a categorical's choice index. A trial's

@@ -9,7 +9,7 @@
 // on every channel it opens (services/channel.h), so the check holds between services as well
 // as from `dcs`. Health (grpc.health.v1) and reflection stay open for probes. Without a token
 // nothing is required or presented. Plaintext channels carry it in metadata: gRPC's call
-// credentials refuse to travel without transport security (spec/operations.md §1.9).
+// credentials refuse to travel without transport security.
 //
 // Mutual TLS. With certificate files, servers accept only TLS connections from clients whose
 // certificate chains to the CA bundle, and clients accept only servers whose certificate does

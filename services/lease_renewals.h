@@ -2,13 +2,12 @@
 #ifndef DCS_SERVICES_LEASE_RENEWALS_H_
 #define DCS_SERVICES_LEASE_RENEWALS_H_
 
-// A worker's lease renewals (DESIGN.md §5): the leases that fall due, renewed at once, each by
-// its own call. On a loaded machine a call waits for the scheduler far longer than for the
+// A worker's lease renewals (docs/architecture.md §9): the leases that fall due, renewed at once,
+// each by its own call. On a loaded machine a call waits for the scheduler far longer than for the
 // coordinator, and one call after another for 16 runs took longer than a lease lasts
-// (bench/RESULTS.md, issue 14's load). A learner renews its runs' leases and an actor its
-// slots' from the manager thread that takes them, never from a thread that works under them:
-// a piece of work longer than a third of a lease would let it lapse. Thread-safe (gRPC stubs
-// are).
+// (bench/RESULTS.md, issue 14's load). A learner renews its runs' leases and an actor its slots'
+// from the manager thread that takes them, never from a thread that works under them: a piece of
+// work longer than a third of a lease would let it lapse. Thread-safe (gRPC stubs are).
 
 #include <memory>
 #include <string>

@@ -17,11 +17,22 @@
 // Attempts and expiries run on the parked calls' own thread, one at a time, never under a lock;
 // each call ends in exactly one successful attempt or one expiry.
 //
+// Asking costs the attempts that can find something, not one per parked call. Calls may name
+// the question they ask (AcquireSlot's: a free slot for these numerics): calls of one topic and
+// one question find the same in the same state, whoever asks. Once one of them finds nothing,
+// the question is known to have no answer until its topic is woken: the rest of its calls are
+// not tried, and a call that parks with it is not tried when it parks. So work must come with
+// a wake of its topic: whatever makes work (a run queued, a slot freed, a lease lapsed) wakes
+// the calls that wait for it. Thousands of idle workers parked on one topic cost a wake one
+// attempt per question, plus one per call it satisfies, and cost nothing when they park.
+//
 // Thread-safe. The destructor expires every call still parked, then joins its thread.
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "absl/base/thread_annotations.h"
@@ -44,8 +55,11 @@ class ParkedCalls {
   ParkedCalls(const ParkedCalls&) = delete;
   ParkedCalls& operator=(const ParkedCalls&) = delete;
 
-  // Parks a call until `deadline` under `topic`, and makes its first attempt.
-  void Park(std::string topic, absl::Time deadline, Attempt attempt, Expire expire);
+  // Parks a call until `deadline` under `topic`, and makes its first attempt. `question` names
+  // what the attempt asks, the same for calls that find the same in the same state; empty if
+  // the call's question is its own.
+  void Park(std::string topic, std::string question, absl::Time deadline, Attempt attempt,
+            Expire expire);
 
   // Something the calls parked under `topic` wait for may have changed: they try again.
   void Wake(absl::string_view topic);
@@ -53,6 +67,8 @@ class ParkedCalls {
  private:
   struct Call {
     std::string topic;
+    std::string question;  // empty: the call's own
+    int64_t parked;        // when, in the order of Park calls
     absl::Time deadline;
     Attempt attempt;
     Expire expire;
@@ -65,6 +81,9 @@ class ParkedCalls {
   std::vector<Call> parked_ ABSL_GUARDED_BY(mu_);
   // Topics woken while their calls were out of parked_, attempting.
   absl::flat_hash_set<std::string> woken_while_out_ ABSL_GUARDED_BY(mu_);
+  // The questions (topic, question) an attempt found nothing for since their topic's last wake.
+  absl::flat_hash_set<std::pair<std::string, std::string>> unanswered_ ABSL_GUARDED_BY(mu_);
+  int64_t parks_ ABSL_GUARDED_BY(mu_) = 0;
   bool work_ ABSL_GUARDED_BY(mu_) = false;        // a call in parked_ is woken
   bool attempting_ ABSL_GUARDED_BY(mu_) = false;  // a round's calls are out of parked_
   bool stopping_ ABSL_GUARDED_BY(mu_) = false;

@@ -5,7 +5,7 @@
 // A counter of refused requests by reason, the status code's name (`reason="NOT_FOUND"`). The
 // reasons a DCS server refuses with in normal operation (INVALID_ARGUMENT, NOT_FOUND,
 // FAILED_PRECONDITION) start at zero, so that rate() sees their first refusal and dashboards
-// show a zero rather than no data (spec/operations.md §2.1). Thread-safe. Borrows the registry,
+// show a zero rather than no data. Thread-safe. Borrows the registry,
 // which must outlive it.
 
 #include <prometheus/counter.h>

@@ -555,6 +555,7 @@ class Actor final : public Worker {
       complete_keys_[LeaseName(learner)] = learner;
       v1::ReleaseLeaseRequest request;
       *request.mutable_lease() = services::LeaseToProto(slots_.at(name).key);
+      request.set_run_complete(true);
       slots_.erase(name);
       learner_of_.erase(name);
       Unary<v1::ReleaseLeaseRequest, v1::ReleaseLeaseResponse>(

@@ -7,7 +7,7 @@
 //                                    stage, the mode's parameters)
 //   BM_SuggestFourStagesGrouped/N    the same with multivariate TPE by groups
 //   BM_SuggestHartmann6/N            6 floats, for comparison with Optuna 4.9's 6.9 ms per trial
-//                                    at trials 91-100 (shared/spec/tpe.md §16.3)
+//                                    at trials 91-100 (bench/study/ask_tell.py)
 // The N trials are TPE's own, told a synthetic objective, so the history is what a study has.
 
 #include <cmath>

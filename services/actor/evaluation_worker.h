@@ -2,7 +2,7 @@
 #ifndef DCS_SERVICES_ACTOR_EVALUATION_WORKER_H_
 #define DCS_SERVICES_ACTOR_EVALUATION_WORKER_H_
 
-// An actor's evaluation jobs (DESIGN.md §3). A thread takes jobs from the coordinator
+// An actor's evaluation jobs (docs/architecture.md §9). A thread takes jobs from the coordinator
 // (AcquireEvaluation): a few evaluation contexts of one policy version of a run, this actor's
 // share of them. It evaluates each context with that policy (actor::EvaluateContext, Eigen, as
 // `dcs train` does) or, for the cells of a grid evaluation (`dcs eval --on-actors`), each cell

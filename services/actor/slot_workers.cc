@@ -210,9 +210,10 @@ void SlotWorkers::Work(Slot& slot) {
   int failures = 0;
 
   // Gives the lease back when the slot is done with (the run ended, or the actor stops).
-  auto release = [&] {
+  auto release = [&](bool run_complete) {
     v1::ReleaseLeaseRequest request;
     *request.mutable_lease() = lease;
+    request.set_run_complete(run_complete);
     v1::ReleaseLeaseResponse response;
     CallUnary(*coordinator_, &v1::CoordinatorService::Stub::ReleaseLease, request, response,
               options_.rpc_timeout, "coordinator")
@@ -247,7 +248,8 @@ void SlotWorkers::Work(Slot& slot) {
         if (learner_alive()) continue;
       }
       Log(LogLevel::kInfo, "giving up a slot", {{"slot", name}, {"error", asked.ToString()}});
-      release();  // at once, for another try, rather than when the lease lapses
+      // At once, for another try, rather than when the lease lapses.
+      release(/*run_complete=*/false);
       return;
     }
     learner_answered_at = absl::Now();
@@ -261,7 +263,7 @@ void SlotWorkers::Work(Slot& slot) {
         complete_learners_[LeaseName(complete)] = {
             .lease = complete, .until = absl::Now() + kCompleteLearnerLeases * lease_duration_};
       }
-      release();
+      release(/*run_complete=*/true);
       return;
     }
     if (!work.ready()) continue;
@@ -322,7 +324,7 @@ void SlotWorkers::Work(Slot& slot) {
     rollouts_.Increment();
     learner_answered_at = absl::Now();
   }
-  if (!slot.lost) release();  // a lost lease is another holder's now
+  if (!slot.lost) release(/*run_complete=*/false);  // a lost lease is another holder's now
 }
 
 }  // namespace dcs::services

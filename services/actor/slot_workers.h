@@ -2,17 +2,16 @@
 #ifndef DCS_SERVICES_ACTOR_SLOT_WORKERS_H_
 #define DCS_SERVICES_ACTOR_SLOT_WORKERS_H_
 
-// An actor's work (DESIGN.md §3): env slots leased from the coordinator, stepped for their
-// runs' learners. Stateless between leases. A manager thread takes slot leases while fewer
-// than max_slots are held and renews them (services/lease_renewals.h); each slot has a thread
-// that asks the run's learner for work (waiting there for the next policy version), rebuilds
-// the slot from its journal when it is not positioned where the learner says
-// (actor/slot_stepper.h), collects the slot's part of the rollout with the policy (Eigen) and
-// pushes it, retrying a learner that does not answer. A piece of work may thus take longer
-// than a lease (an image policy under a sanitizer, a slot waiting for the core). Slots step
-// holding the actor's core (a mutex shared with its evaluation jobs:
-// services/actor/evaluation_worker.h), so an actor uses one core and the slots of many runs
-// share it: while one waits for its run's update, another steps.
+// An actor's work (docs/architecture.md §9): env slots leased from the coordinator, stepped for
+// their runs' learners. Stateless between leases. A manager thread takes slot leases while fewer
+// than max_slots are held and renews them (services/lease_renewals.h); each slot has a thread that
+// asks the run's learner for work (waiting there for the next policy version), rebuilds the slot
+// from its journal when it is not positioned where the learner says (actor/slot_stepper.h),
+// collects the slot's part of the rollout with the policy (Eigen) and pushes it, retrying a learner
+// that does not answer. A piece of work may thus take longer than a lease (an image policy under a
+// sanitizer, a slot waiting for the core). Slots step holding the actor's core (a mutex shared with
+// its evaluation jobs: services/actor/evaluation_worker.h), so an actor uses one core and the slots
+// of many runs share it: while one waits for its run's update, another steps.
 //
 // A slot is given up when its lease is lost (it moved, lapsed, or the run ended) or its
 // learner stops answering for longer than a lease: the coordinator then hands it out again.

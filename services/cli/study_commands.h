@@ -2,7 +2,7 @@
 #ifndef DCS_SERVICES_CLI_STUDY_COMMANDS_H_
 #define DCS_SERVICES_CLI_STUDY_COMMANDS_H_
 
-// Ask-and-tell studies for objectives outside DCS, as Optuna's (shared/spec/tpe.md):
+// Ask-and-tell studies for objectives outside DCS, as Optuna 4.9's:
 //
 //   dcs study create --space space.yaml [--sampler tpe|random] [--seed N]
 //                    [--direction minimize|maximize] [--multivariate [--group]]

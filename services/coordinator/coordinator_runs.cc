@@ -252,7 +252,8 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerCon
       response->set_observe(lease->observe);
       return true;
     };
-    return AnswerOrPark(context, request->wait(), kRunsTopic, acquire);
+    // Learners of the same numerics find the same queued run.
+    return AnswerOrPark(context, request->wait(), kRunsTopic, request->numerics(), acquire);
   });
 }
 
@@ -283,7 +284,13 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireSlot(grpc::CallbackServerCo
       *response->mutable_lease_duration() = DurationToProto(runs_.lease_duration);
       return true;
     };
-    return AnswerOrPark(context, request->wait(), kSlotsTopic, std::move(acquire));
+    // Actors of the same numerics that skip the same runs find the same free slot.
+    std::string question = request->numerics();
+    for (const v1::Lease& learner : request->complete_learners()) {
+      absl::StrAppend(&question, " ", learner.run_id(), "@", learner.epoch());
+    }
+    return AnswerOrPark(context, request->wait(), kSlotsTopic, std::move(question),
+                        std::move(acquire));
   });
 }
 
@@ -305,7 +312,16 @@ grpc::ServerUnaryReactor* CoordinatorService::ReleaseLease(grpc::CallbackServerC
     absl::StatusOr<coordinator::LeaseKey> key = LeaseFromProto(request->lease());
     if (!key.ok()) return key.status();
     const absl::Status released = runs_.store->runs().ReleaseLease(*key, absl::Now());
-    if (released.ok()) watchers_.Notify(RunTopic(key->run_id));
+    if (released.ok()) {
+      watchers_.Notify(RunTopic(key->run_id));
+      // A learner's run goes back to the queue; an actor's slot is free for another, unless
+      // its run is complete.
+      if (key->slot == coordinator::kLearnerSlot) {
+        parked_.Wake(kRunsTopic);
+      } else if (!request->run_complete()) {
+        parked_.Wake(kSlotsTopic);
+      }
+    }
     return released;
   });
 }
@@ -467,7 +483,8 @@ grpc::ServerUnaryReactor* CoordinatorService::GetEvaluation(
       return evaluation.done == evaluation.contexts;
     };
     return AnswerOrPark(context, request->wait(),
-                        EvaluationTopic(request->run_id(), request->policy_version()), progress);
+                        EvaluationTopic(request->run_id(), request->policy_version()),
+                        /*question=*/"", progress);
   });
 }
 
@@ -503,8 +520,10 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
     // (a server that stops expires a parked call without one).
     auto messages = std::make_shared<std::vector<v1::AcquireEvaluationResponse>>(1);
     auto* writer = new PiecesWriter<v1::AcquireEvaluationResponse>();
+    // Actors of the same numerics find the same open job, and a grid's only if they take grids.
     AnswerOrPark(
         *context, request->wait(), kEvaluationJobsTopic,
+        absl::StrCat(request->numerics(), request->grid_cells() ? " grid" : ""),
         [acquire, messages]() -> absl::StatusOr<bool> {
           DCS_ASSIGN_OR_RETURN(*messages, acquire());
           return !messages->front().jobs().empty();

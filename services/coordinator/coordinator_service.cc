@@ -85,6 +85,7 @@ absl::Time ParkingDeadline(const grpc::CallbackServerContext& context, absl::Dur
 
 void CoordinatorService::AnswerOrPark(const grpc::CallbackServerContext& context,
                                       const google::protobuf::Duration& wait, std::string topic,
+                                      std::string question,
                                       std::function<absl::StatusOr<bool>()> attempt,
                                       std::function<void(const absl::Status&)> answer) {
   auto counted = [this, answer = std::move(answer)](const absl::Status& status) {
@@ -97,7 +98,7 @@ void CoordinatorService::AnswerOrPark(const grpc::CallbackServerContext& context
     return;
   }
   parked_.Park(
-      std::move(topic), ParkingDeadline(context, asked),
+      std::move(topic), std::move(question), ParkingDeadline(context, asked),
       [attempt = std::move(attempt), counted] {
         const absl::StatusOr<bool> found = attempt();
         if (found.ok() && !*found) return false;
@@ -109,11 +110,16 @@ void CoordinatorService::AnswerOrPark(const grpc::CallbackServerContext& context
 
 grpc::ServerUnaryReactor* CoordinatorService::AnswerOrPark(
     grpc::CallbackServerContext* context, const google::protobuf::Duration& wait,
-    std::string topic, std::function<absl::StatusOr<bool>()> attempt) {
+    std::string topic, std::string question, std::function<absl::StatusOr<bool>()> attempt) {
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-  AnswerOrPark(*context, wait, std::move(topic), std::move(attempt),
+  AnswerOrPark(*context, wait, std::move(topic), std::move(question), std::move(attempt),
                [reactor](const absl::Status& status) { reactor->Finish(ToGrpcStatus(status)); });
   return reactor;
+}
+
+void CoordinatorService::RunsChanged() {
+  watchers_.NotifyAll();
+  for (const char* topic : {kRunsTopic, kSlotsTopic, kEvaluationJobsTopic}) parked_.Wake(topic);
 }
 
 grpc::ServerUnaryReactor* CoordinatorService::RegisterWorker(

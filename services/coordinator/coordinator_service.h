@@ -169,17 +169,20 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
       grpc::CallbackServerContext* context, const v1::WatchSweepRequest* request) override;
 
   // Runs changed, and their writer cannot say which (the lease reaper returned lapsed leases'
-  // runs to the queue, a study sweep stepped): every watch looks again.
+  // runs to the queue, a study sweep stepped): every watch looks again, and every call parked
+  // for work asks again.
   void RunsChanged();
   // Ends every watch with UNAVAILABLE (its client watches again once the coordinator is back),
   // and each begun later: the coordinator stops. Call before the server drains.
   void StopWatches();
 
  private:
-  // What parked calls wait for (ParkedCalls topics): a queued run (AcquireRun), a free slot of
-  // a run its learner hosts (AcquireSlot: woken when the learner fetches the run's checkpoint,
-  // which it does as it loads the run), an open evaluation job (AcquireEvaluation), and one
-  // evaluation's last result (GetEvaluation).
+  // What parked calls wait for (ParkedCalls topics), each woken by whatever makes it: a queued
+  // run (AcquireRun: a run submitted or released), a free slot of a run its learner hosts
+  // (AcquireSlot: a slot released, or the learner fetching the run's checkpoint, which it does
+  // as it loads the run), an open evaluation job (AcquireEvaluation: an evaluation submitted),
+  // and one evaluation's last result (GetEvaluation); any of the first three by RunsChanged (a
+  // lease lapsed, a sweep retried, a study sweep's trials asked).
   static constexpr char kRunsTopic[] = "runs";
   static constexpr char kSlotsTopic[] = "slots";
   static constexpr char kEvaluationJobsTopic[] = "evaluation jobs";
@@ -202,19 +205,19 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   // Makes a call's answer with `attempt`, which prepares it and returns whether it found what
   // the caller waits for, then gives it with `answer` (its status, counted if a refusal). With
   // a positive `wait`, until an attempt finds it, the call is parked under `topic` (tried
-  // again at each Wake of it) for that long at most (ParkingDeadline), then answered as its
-  // last attempt left it (GetEvaluation's says how far the evaluation is; an Acquire's holds
-  // nothing). `attempt` and `answer` run on the pool or the parked calls' thread, not the
-  // handler's: they must hold what they read by value or by pointer to the call's own request
-  // and response.
+  // again at each Wake of it; calls of one `question` are tried until one finds nothing:
+  // ParkedCalls) for that long at most (ParkingDeadline), then answered as its last attempt
+  // left it (GetEvaluation's says how far the evaluation is; an Acquire's holds nothing).
+  // `attempt` and `answer` run on the pool or the parked calls' thread, not the handler's: they
+  // must hold what they read by value or by pointer to the call's own request and response.
   void AnswerOrPark(const grpc::CallbackServerContext& context,
                     const google::protobuf::Duration& wait, std::string topic,
-                    std::function<absl::StatusOr<bool>()> attempt,
+                    std::string question, std::function<absl::StatusOr<bool>()> attempt,
                     std::function<void(const absl::Status&)> answer);
   // AnswerOrPark for a unary call: `attempt` fills its response, which goes with its status.
   grpc::ServerUnaryReactor* AnswerOrPark(grpc::CallbackServerContext* context,
                                          const google::protobuf::Duration& wait,
-                                         std::string topic,
+                                         std::string topic, std::string question,
                                          std::function<absl::StatusOr<bool>()> attempt);
   // The actors heartbeating now, who share each evaluation's jobs.
   int AliveActors() const;

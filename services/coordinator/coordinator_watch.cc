@@ -197,8 +197,6 @@ grpc::ServerWriteReactor<v1::GetSweepResponse>* CoordinatorService::WatchSweep(
   });
 }
 
-void CoordinatorService::RunsChanged() { watchers_.NotifyAll(); }
-
 void CoordinatorService::StopWatches() { watchers_.Close(); }
 
 }  // namespace dcs::services

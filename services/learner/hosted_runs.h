@@ -2,7 +2,7 @@
 #ifndef DCS_SERVICES_LEARNER_HOSTED_RUNS_H_
 #define DCS_SERVICES_LEARNER_HOSTED_RUNS_H_
 
-// The runs a learner hosts (DESIGN.md §3, §5). A manager thread takes runs from the
+// The runs a learner hosts (docs/architecture.md §9). A manager thread takes runs from the
 // coordinator while fewer than max_runs are hosted (AcquireRun), renews their leases
 // (services/lease_renewals.h), and drops a run whose lease moved or whose run ended. Each run
 // has its own thread, which loads the run (from the coordinator's latest checkpoint, if any)

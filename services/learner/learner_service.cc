@@ -105,7 +105,7 @@ grpc::ServerWriteReactor<v1::GetSlotWorkResponse>* LearnerService::GetSlotWork(
       answer();
     } else {
       parked_.Park(
-          request->lease().run_id(), absl::Now() + wait,
+          request->lease().run_id(), /*question=*/"", absl::Now() + wait,
           [attempt, answer] {
             if (!attempt()) return false;
             answer();

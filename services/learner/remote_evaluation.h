@@ -2,13 +2,13 @@
 #ifndef DCS_SERVICES_LEARNER_REMOTE_EVALUATION_H_
 #define DCS_SERVICES_LEARNER_REMOTE_EVALUATION_H_
 
-// A hosted run's evaluations, done by actors (DESIGN.md §3): the learner hands the policy that
-// fell due to the coordinator (SubmitEvaluation), which makes one job per evaluation context
-// for actors, and asks until every context's returns are in (GetEvaluation, which the
-// coordinator holds until they are or a poll interval is up). The returns are
-// those `dcs train` computes in one process (actor::EvaluateContext), bit for bit, whichever
-// actors run the jobs. Handing a version over is idempotent: a learner that resumes the run
-// from a checkpoint hands it over again and gets the results already in.
+// A hosted run's evaluations, done by actors (docs/architecture.md §9): the learner hands the
+// policy that fell due to the coordinator (SubmitEvaluation), which makes one job per evaluation
+// context for actors, and asks until every context's returns are in (GetEvaluation, which the
+// coordinator holds until they are or a poll interval is up). The returns are those `dcs train`
+// computes in one process (actor::EvaluateContext), bit for bit, whichever actors run the jobs.
+// Handing a version over is idempotent: a learner that resumes the run from a checkpoint hands it
+// over again and gets the results already in.
 //
 // Thread-safe: a host runs each evaluation on a thread of its own.
 

@@ -78,7 +78,7 @@ std::shared_ptr<RunMetrics::Families> RunMetrics::Register(prometheus::Registry&
 
 RunMetrics::RunMetrics(std::shared_ptr<Families> families, prometheus::Labels labels)
     : families_(std::move(families)), labels_(std::move(labels)) {
-  // Known series start at zero (spec/operations.md §2.1).
+  // Known series start at zero.
   families_->env_steps.Add(labels_);
   families_->episodes.Add(labels_);
 }

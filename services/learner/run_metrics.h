@@ -5,7 +5,7 @@
 // A learner's training metrics, one series per hosted run (bounded by --max-runs; a run's
 // series are removed when it leaves the learner), labelled with the run's run_id, sweep_id,
 // condition and observe (the last three empty for a run alone), so that dashboards filter by
-// sweep and condition. Names and label rules: spec/operations.md §2. Thread-compatible: the
+// sweep and condition. Names and labels: docs/monitoring.md. Thread-compatible: the
 // run's thread updates it while scrapes read its series (prometheus-cpp metrics allow that).
 //
 //   dcs_env_steps_total, dcs_episodes_total          counters

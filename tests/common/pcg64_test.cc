@@ -10,7 +10,7 @@
 namespace dcs {
 namespace {
 
-// Expected values: shared/spec/envs.md Appendix A, and numpy 1.24.2 (Debian 12's
+// Expected values: numpy 1.24.2 (Debian 12's
 // python3-numpy): numpy.random.PCG64(seed).random_raw(n).
 
 TEST(Pcg64Test, Seed42MatchesSpec) {

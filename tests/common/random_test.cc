@@ -15,8 +15,8 @@ namespace {
 
 using ::testing::ElementsAre;
 
-// Expected values come from shared/spec/envs.md (Appendix A and §1.4) where marked "spec", and
-// otherwise were printed by numpy 1.24.2 (Debian 12's python3-numpy), e.g.
+// Expected values come from numpy's SeedSequence and Gymnasium 1.4.0's CartPole reset where marked
+// "spec", and otherwise were printed by numpy 1.24.2 (Debian 12's python3-numpy), e.g.
 // [numpy.random.default_rng(0).integers(5, 10) for _ in range(5)].
 
 std::vector<int64_t> DrawIntegers(Random& random, int64_t lo, int64_t hi, int n) {
@@ -45,7 +45,7 @@ TEST(RandomTest, SeedSequenceConstructorEqualsIntegerSeed) {
 }
 
 TEST(RandomTest, CartPoleResetVectorsMatchSpec) {
-  // envs.md §1.4: reset(seed=0) with the default bounds ±0.05.
+  // Gymnasium's CartPole: reset(seed=0) with the default bounds ±0.05.
   Random seed0(0);
   EXPECT_EQ(seed0.Uniform(-0.05, 0.05), 0.013696168732145436);
   EXPECT_EQ(seed0.Uniform(-0.05, 0.05), -0.02302132862361297);

@@ -22,7 +22,7 @@ using google::protobuf::ListValue;
 using google::protobuf::Struct;
 using google::protobuf::Value;
 
-// shared/reference/tpe/parzen_vectors.json (shared/spec/tpe.md §15): Optuna 4.9.0's Parzen
+// tests/coordinator/data/parzen_vectors.json: Optuna 4.9.0's Parzen
 // estimators, fitted to below and above observations, and their densities at 24 candidates.
 Struct LoadVectors() {
   std::ifstream file(DCS_TEST_DATA_DIR "/parzen_vectors.json");

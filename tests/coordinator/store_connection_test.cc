@@ -1,12 +1,19 @@
 // Copyright 2026 The DCS Authors.
 #include "coordinator/store_connection.h"
 
+#include <SQLiteCpp/Database.h>
 #include <SQLiteCpp/Exception.h>
 #include <sqlite3.h>
 
+#include <memory>
+#include <string>
+#include <utility>
+
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/testing/temp_dir.h"
 
 namespace dcs::coordinator::internal {
 namespace {
@@ -39,6 +46,54 @@ TEST(StoreErrorTest, ACorruptStoreIsDataLoss) {
 
 TEST(StoreErrorTest, AnythingElseIsInternal) {
   EXPECT_EQ(ErrorOf(SQLITE_MISUSE).code(), absl::StatusCode::kInternal);
+}
+
+class StoreConnectionTest : public testing::TempDirTest {
+ protected:
+  void SetUp() override {
+    TempDirTest::SetUp();
+    auto db = std::make_unique<SQLite::Database>(Path("store.db"),
+                                                 SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
+    db->exec("PRAGMA journal_mode = WAL");
+    db->exec("CREATE TABLE t (value INTEGER)");
+    connection_ = std::make_unique<StoreConnection>(std::move(db), absl::Seconds(10));
+  }
+
+  // The `synchronous` setting a transaction of `commit` runs, and so commits, under: 2 is
+  // FULL (synced), 1 NORMAL.
+  int SynchronousOf(Commit commit) {
+    const absl::StatusOr<int> setting = connection_->Transaction(
+        [](SQLite::Database& db) -> absl::StatusOr<int> {
+          return db.execAndGet("PRAGMA synchronous").getInt();
+        },
+        commit);
+    EXPECT_TRUE(setting.ok()) << setting.status();
+    return setting.value_or(-1);
+  }
+
+  std::unique_ptr<StoreConnection> connection_;
+};
+
+TEST_F(StoreConnectionTest, EachTransactionCommitsAsItAsks) {
+  EXPECT_EQ(SynchronousOf(Commit::kSynced), 2);
+  EXPECT_EQ(SynchronousOf(Commit::kUnsynced), 1);
+  EXPECT_EQ(SynchronousOf(Commit::kUnsynced), 1);
+  // A synced commit after unsynced ones is synced again.
+  EXPECT_EQ(SynchronousOf(Commit::kSynced), 2);
+}
+
+TEST_F(StoreConnectionTest, AnUnsyncedCommitIsCommitted) {
+  ASSERT_TRUE(connection_
+                  ->Transaction(
+                      [](SQLite::Database& db) -> absl::Status {
+                        db.exec("INSERT INTO t VALUES (7)");
+                        return absl::OkStatus();
+                      },
+                      Commit::kUnsynced)
+                  .ok());
+  // Another connection, as a coordinator restarted after a crash of its own opens the file.
+  SQLite::Database reader(Path("store.db"), SQLite::OPEN_READONLY);
+  EXPECT_EQ(reader.execAndGet("SELECT value FROM t").getInt(), 7);
 }
 
 }  // namespace

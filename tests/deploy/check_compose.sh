@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Checks the container files without a container engine (shared/spec/operations.md §3.5):
+# Checks the container files without a container engine:
 # docker-compose.yml as docker-compose parses it, Prometheus's compose scrape config
-# with promtool, the compose file against the conventions of §3.2-3.4 and the scrape config,
-# docker-compose.tls.yml merged with it (mutual TLS for every DCS service), and the Dockerfile
-# against §3.1 (by grep: hadolint is not packaged). Quick: no image is built.
+# with promtool, the compose file against DCS's conventions (a token required, health checks,
+# loopback ports, named volumes) and the scrape config, docker-compose.tls.yml merged with it
+# (mutual TLS for every DCS service), and the Dockerfile against its own (two stages, non-root,
+# tini, exec-form CMD; by grep: hadolint is not packaged). Quick: no image is built.
 #
 #   tests/deploy/check_compose.sh REPO_ROOT
 #
@@ -355,7 +356,7 @@ for name in dcs:
         fail(f"service '{name}': healthcheck {test!r} is not `dcs ... health` reading DCS_TLS_*")
 EOF
 
-# --- Dockerfile against §3.1 (grep: hadolint is not packaged) ------------------------------
+# --- Dockerfile: two stages, non-root, tini (grep: hadolint is not packaged) ---------------
 step "Dockerfile: two stages, apt hygiene, non-root user, EXPOSE, HEALTHCHECK, tini, exec form"
 # Instructions one per line: continuation lines joined, comments dropped.
 instructions=$(sed -e '/^[[:space:]]*#/d' Dockerfile | sed -e ':a' -e '/\\$/{N;s/\\\n/ /;ba}')

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Checks deploy/kubernetes without a cluster (shared/spec/operations.md §4.1): renders every
+# Checks deploy/kubernetes without a cluster: renders every
 # overlay with `kubectl kustomize`, validates every object against the Kubernetes 1.33 API
 # schema (tests/deploy/kubernetes_schema/validate.js: types and values, and unknown fields),
 # and checks what DCS needs of the manifests (resources, probes and ports against the programs'

@@ -23,7 +23,7 @@ using Observation = std::array<float, BipedalWalker::kObservationSize>;
 using Action = std::array<float, BipedalWalker::kActionSize>;
 
 constexpr double kTerrainHeight = 400.0 / 30.0 / 4.0;
-constexpr double kHullMass = 5.42222;  // spec/envs.md §2.2
+constexpr double kHullMass = 5.42222;  // Gymnasium 1.4.0's hull polygon at density 5
 constexpr double kHullCenterX = -0.020036;
 constexpr double kHullCenterY = -0.005647;
 
@@ -50,7 +50,7 @@ struct Episode {
   double final_angle = 0;  // hull angle at the end, rad
 };
 
-// Gymnasium's heuristic driver (spec/envs.md §2.9): a zero action first, then the gait.
+// Gymnasium's heuristic driver (bipedal_walker.py's __main__): a zero action first, then the gait.
 Episode RunEpisode(BipedalWalker& env, uint64_t seed) {
   Random random(seed);
   Observation observation;
@@ -161,7 +161,7 @@ TEST(BipedalWalkerTest, JointsAndWorldFollowPybox2dConventions) {
   Random random(0);
   Observation observation;
   env.Reset(random, observation);
-  // Hip reference angles are leg angle - hull angle (envs.md §0.3 item 1); knees 0.
+  // Hip reference angles are leg angle - hull angle (as pybox2d sets them); knees 0.
   EXPECT_FLOAT_EQ(env.world().joint(0)->GetReferenceAngle(), -0.05f);
   EXPECT_FLOAT_EQ(env.world().joint(2)->GetReferenceAngle(), 0.05f);
   EXPECT_EQ(env.world().joint(1)->GetReferenceAngle(), 0.0f);
@@ -184,7 +184,7 @@ TEST(BipedalWalkerTest, ResetTakesOneInternalZeroActionStep) {
     EXPECT_EQ(env.world().joint(j)->GetMaxMotorTorque(), 0.0f) << j;
   }
   // One step of 1/50 s from (init_x, init_y): gravity gave the hull -10/50 m/s (the joint
-  // solver also lifts it while it corrects the initial joint errors, envs.md §2.2).
+  // solver also lifts it while it corrects the initial joint errors).
   const b2Body* hull = env.world().hull();
   EXPECT_NEAR(hull->GetPosition().x, 14.0 / 30.0 * 20 / 2, 0.01);
   EXPECT_NE(hull->GetPosition().y, static_cast<float>(kTerrainHeight + 2 * 34.0 / 30.0));

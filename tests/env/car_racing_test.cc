@@ -1,7 +1,7 @@
 // Copyright 2026 The DCS Authors.
 //
-// CarRacing-v3 (spec/envs.md §3, env/car_racing.h): track generation and its draw order, tile
-// visiting and rewards, termination and truncation, the payload and the other context
+// CarRacing-v3 (Gymnasium car_racing.py, env/car_racing.h): track generation and its draw order,
+// tile visiting and rewards, termination and truncation, the payload and the other context
 // features, the 96x96 picture, the discrete variant, the wrappers, and the baselines (the
 // centre-line driver and random actions).
 //

@@ -25,7 +25,7 @@ struct GoldenRow {
   bool terminated;
 };
 
-// spec/reference/cartpole/golden_default.csv: Gymnasium 1.4.0 trajectories, default context.
+// tests/env/data/cartpole_golden_default.csv: Gymnasium 1.4.0 trajectories, default context.
 std::vector<GoldenRow> ReadGolden() {
   std::ifstream file(DCS_TEST_DATA_DIR "/cartpole_golden_default.csv");
   std::vector<GoldenRow> rows;
@@ -80,7 +80,7 @@ TEST(CartPoleTest, ReproducesGymnasiumGoldenTrajectories) {
 }
 
 TEST(CartPoleTest, ResetMatchesGymnasiumSeeds) {
-  // spec/envs.md §1.4: reset(seed=0) with Gymnasium's +-0.05, and seed 123 with +-0.1.
+  // Gymnasium's CartPole.reset: reset(seed=0) with Gymnasium's +-0.05, and seed 123 with +-0.1.
   CartPole env;
   std::array<float, 4> observation;
   env.SetFeature(CartPole::kInitialStateLower, -0.05);

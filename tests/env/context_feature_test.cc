@@ -1,6 +1,7 @@
 // Copyright 2026 The DCS Authors.
 //
-// Context features and their normalisation (spec/schedules.md §6.2, env/context_feature.h).
+// Context features and their normalisation (docs/reference.md, "Observation modes and
+// normalisation", env/context_feature.h).
 
 #include "env/context_feature.h"
 

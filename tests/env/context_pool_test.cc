@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
 //
-// Context pools (spec/schedules.md §7): construction by size (midpoint insertion / linspace)
+// Context pools (docs/reference.md, "Pools"): construction by size (midpoint insertion / linspace)
 // and by explicit values, and the selection of an episode's initial value.
 
 #include "env/context_pool.h"

@@ -1,8 +1,8 @@
 // Copyright 2026 The DCS Authors.
 //
-// The dynamic-context wrapper over CartPole (spec/schedules.md §5-7, env/dynamic_context_env.h):
-// step timing of schedule calls, observation modes and normalisation, pools re-applied at every
-// reset, validation, and determinism.
+// The dynamic-context wrapper over CartPole (docs/reference.md, "Step timing",
+// env/dynamic_context_env.h): step timing of schedule calls, observation modes and normalisation,
+// pools re-applied at every reset, validation, and determinism.
 
 // env/cartpole.h comes first: env/dynamic_context_env.h uses ContextSpace and
 // NormalizeContext without including env/context_feature.h (not self-contained).
@@ -122,7 +122,7 @@ std::string CreateError(DynamicContextOptions options) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Step timing (§5.3)
+// Step timing
 
 TEST(DynamicContextEnvTest, FirstTransitionMakesNoScheduleCall) {
   Slot slot = MakeSlot({.context = ContextWithLength(0.55),
@@ -174,7 +174,7 @@ TEST(DynamicContextEnvTest, FirstCallSkipFamiliesChangeFromTheThirdTransition) {
 }
 
 TEST(DynamicContextEnvTest, EventAtCallKHappensInTransitionKPlusOne) {
-  // §5.3: event times compare with k, so a jump due at k = 10 happens in the 11th transition.
+  // Event times compare with k, so a jump due at k = 10 happens in the 11th transition.
   const ScheduleSpec jump =
       Spec("sudden_jump", {{"step_size_range", std::vector<double>{0.05, 0.05}},
                            {"interval_range", std::vector<double>{10, 10}},
@@ -213,7 +213,7 @@ TEST(DynamicContextEnvTest, ScheduleRunsWithItsOwnSeedEpisodeAndSlot) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Observation modes and normalisation (§6)
+// Observation modes and normalisation
 
 TEST(DynamicContextEnvTest, LiveModeShowsThePostUpdateValueNormalised) {
   Slot slot = MakeSlot({.context = ContextWithLength(0.55),
@@ -281,7 +281,7 @@ TEST(DynamicContextEnvTest, NoneModeShowsNothing) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Pools (§7) and re-applying the context at every reset (§5.2)
+// Pools, and re-applying the context at every reset
 
 TEST(DynamicContextEnvTest, PoolValueIsReappliedAtEveryResetEvenAfterDrift) {
   Slot slot = MakeSlot({.pools = {{.feature = kLength, .pool = Pool({0.4, 0.6})}},
@@ -301,7 +301,8 @@ TEST(DynamicContextEnvTest, PoolValueIsReappliedAtEveryResetEvenAfterDrift) {
 }
 
 TEST(DynamicContextEnvTest, SingleValuePoolAndBaseContextAreReappliedToo) {
-  // A single-value pool needs no duplication (§5.2 pitfall): every episode starts at 0.5.
+  // A single-value pool is one value here (the reference lists it twice): every episode starts
+  // at 0.5.
   Slot pooled = MakeSlot({.pools = {{.feature = kLength, .pool = Pool({0.5})}},
                           .schedules = {Scheduled(kLength, Up())},
                           .observe = ObserveMode::kNone});
@@ -352,7 +353,7 @@ TEST(DynamicContextEnvTest, EpisodeRandomnessFollowsTheNamedStreams) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Multi-stage schedules (§8)
+// Multi-stage schedules
 
 TEST(DynamicContextEnvTest, GlobalStepSelectsTheStageAtReset) {
   FeatureSchedule staged = {.feature = kLength,

@@ -1,7 +1,8 @@
 // Copyright 2026 The DCS Authors.
 //
 // ParseScheduleSpec: schedule configs as users write them, checked and converted with the
-// builder's defaults and fractions of the range (spec/schedules.md §4, env/schedule_config.h).
+// builder's defaults and fractions of the range (docs/reference.md, "Parameters as fractions of the
+// range", env/schedule_config.h).
 
 #include "env/schedule_config.h"
 
@@ -265,7 +266,7 @@ TEST(ScheduleConfigTest, BadBounds) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Builder defaults and fractions (§4)
+// Builder defaults and fractions
 
 TEST(ScheduleConfigTest, SinusoidalAmplitudeIsAFractionOfHalfTheSpan) {
   // Training range [0.35, 0.75] (span 0.4): amplitude_frac 0.25 -> 0.25 * 0.2 = 0.05.
@@ -416,7 +417,7 @@ TEST(ScheduleConfigTest, SequentialPartsGetDistinctSeedsAndTheSameBounds) {
 
 TEST(ScheduleConfigTest, SequentialPartSeedsAreNumpySpawnedSeeds) {
   // Part i's base seed is numpy's SeedSequence(seed).spawn(n)[i].generate_state(1)[0], as the
-  // reference's make_levy_walk derives its parts' seeds (§3.11). Expected words printed by
+  // reference's make_levy_walk derives its parts' seeds. Expected words printed by
   // numpy 1.24.2 (Debian 12's python3-numpy):
   //   [int(c.generate_state(1)[0]) for c in numpy.random.SeedSequence(42).spawn(3)]
   ScheduleConfig config = Config("sequential");

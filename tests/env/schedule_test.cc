@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
 //
-// The schedule families (spec/schedules.md §2-3), built as users build them:
+// The schedule families (docs/reference.md, "Schedule families"), built as users build them:
 // MakeSchedule(ParseScheduleSpec(config, min, max, seed)), and driven by the Reset/Next protocol
 // of env/schedule.h (v = Reset(initial, id); v = Next(k, v) for k = 1, 2, ...).
 //
@@ -89,11 +89,11 @@ double StdDev(const std::vector<double>& x) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Sinusoidal (§3.7, builder §4)
+// Sinusoidal
 
 TEST(ScheduleSinusoidalTest, FollowsBaselineMinusAmplitudeSine) {
   // Bounds [0, 2]: span 2, so amplitude_frac 0.25 is 0.25 * span/2 = 0.25 (a fraction of the
-  // HALF range, §4). Baseline 1 +- 0.25 stays well inside the bounds: no reflection.
+  // HALF range). Baseline 1 +- 0.25 stays well inside the bounds: no reflection.
   auto schedule = Build(Config("sinusoidal", {{"amplitude_frac", 0.25},
                                               {"period", 40.0},
                                               {"initial_direction", std::string("down")}}),
@@ -176,7 +176,7 @@ TEST(ScheduleSinusoidalTest, ReflectsThePhaseDirectionInsteadOfLeavingTheBounds)
 }
 
 // ---------------------------------------------------------------------------------------------
-// Cosine annealing (§3.8)
+// Cosine annealing
 
 // end + (start - end) * (1 + cos(pi * t / (T - 1))) / 2.
 double Cosine(double start, double end, int64_t t, int64_t length) {
@@ -284,7 +284,7 @@ TEST(ScheduleCosineAnnealingTest, CycleRandomRetargetSwapsOrRestarts) {
 TEST(ScheduleCosineAnnealingTest, AutoDirectionPicksTheFartherEdge) {
   auto schedule = Build(
       Config("cosine_annealing", {{"mode", std::string("once")}, {"T_max", 21.0}}), 0, 1);
-  // Default direction auto. From 0.3 the farther edge is 1; from 0.7 it is 0 (§3.8: the code
+  // Default direction auto. From 0.3 the farther edge is 1; from 0.7 it is 0 (the reference's code
   // comment says "nearest" but the reference picks the farther edge).
   EXPECT_DOUBLE_EQ(RunEpisode(*schedule, 0.3, {}, 20).back(), 1.0);
   EXPECT_DOUBLE_EQ(RunEpisode(*schedule, 0.7, {}, 20).back(), 0.0);
@@ -334,7 +334,7 @@ TEST(ScheduleCosineAnnealingTest, ReflectsBackIntoTheBand) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Continuous incrementer (§3.2)
+// Continuous incrementer
 
 TEST(ScheduleContinuousIncrementerTest, FirstCallIsANoOpThenConstantSteps) {
   auto up = Build(Config("continuous_incrementer", {{"delta_frac", 0.01},
@@ -418,7 +418,7 @@ TEST(ScheduleContinuousIncrementerTest, RandomEpisodeDirectionIsFiftyFifty) {
 }
 
 TEST(ScheduleContinuousIncrementerTest, BothWithClipAndNoEpisodeDirectionIsAPlusMinusWalk) {
-  // §3.2 step 2: direction both, edge clip, no episode direction: a new sign every call.
+  // Direction both, edge clip, no episode direction: a new sign every call.
   // Mean step (2 * 0.5 - 1) delta = 0; of 4000 steps the number of up steps is
   // Binomial(4000, 1/2): 2000 +- 158 (5 sd = 5 * 31.6).
   auto schedule = Build(Config("continuous_incrementer",
@@ -436,7 +436,7 @@ TEST(ScheduleContinuousIncrementerTest, BothWithClipAndNoEpisodeDirectionIsAPlus
 }
 
 // ---------------------------------------------------------------------------------------------
-// Sudden jump (§3.3)
+// Sudden jump
 
 TEST(ScheduleSuddenJumpTest, JumpsOnlyAtIntervalTimesWithMagnitudesInRange) {
   auto schedule = Build(Config("sudden_jump", {{"step_size_range", std::vector<double>{0.05, 0.1}},
@@ -469,8 +469,8 @@ TEST(ScheduleSuddenJumpTest, JumpsOnlyAtIntervalTimesWithMagnitudesInRange) {
 }
 
 TEST(ScheduleSuddenJumpTest, SkippedCallsCatchUpEveryDueJump) {
-  // §3.3: "while k >= next_jump". Interval 10 exactly, direction positive: calling k = 100
-  // right after the reset makes all ten jumps due by then, each in [0.05, 0.1].
+  // The reference's "while k >= next_jump". Interval 10 exactly, direction positive: calling k =
+  // 100 right after the reset makes all ten jumps due by then, each in [0.05, 0.1].
   auto schedule = Build(Config("sudden_jump", {{"step_size_range", std::vector<double>{0.05, 0.1}},
                                                {"interval_range", std::vector<double>{10, 10}},
                                                {"direction", std::string("positive")}}),
@@ -500,7 +500,7 @@ TEST(ScheduleSuddenJumpTest, ValuesStayInBoundsAndClip) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Random walk (§3.4)
+// Random walk
 
 TEST(ScheduleRandomWalkTest, FirstCallSkipThenGaussianStepsOfTheGivenStd) {
   // std_frac 0.005 of span 20 = 0.1. 200 episodes x 100 steps = 20000 increments; the sample
@@ -535,7 +535,7 @@ TEST(ScheduleRandomWalkTest, ClipsToTheBounds) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Ornstein-Uhlenbeck (§3.5)
+// Ornstein-Uhlenbeck
 
 TEST(ScheduleOrnsteinUhlenbeckTest, DeterministicUpdateWithoutNoise) {
   // sigma 0: x' = x + theta (mu - x) exactly. mu defaults to the midpoint 5 of [0, 10].
@@ -599,7 +599,7 @@ TEST(ScheduleOrnsteinUhlenbeckTest, MuFracAndAbsoluteMu) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Piecewise constant (§3.6)
+// Piecewise constant
 
 TEST(SchedulePiecewiseConstantTest, KeepsInitialValueUntilFirstSwitchThenListValues) {
   const std::vector<double> levels = {0.2, 0.4, 0.6, 0.8};
@@ -649,7 +649,7 @@ TEST(SchedulePiecewiseConstantTest, AtMostOneSwitchPerCall) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Sinusoidal jump (§3.9)
+// Sinusoidal jump
 
 TEST(ScheduleSinusoidalJumpTest, WithoutJumpsItIsTheSinusoid) {
   // The first jump is due at call 1000: over 100 calls only the sinusoid (random direction).
@@ -693,7 +693,7 @@ TEST(ScheduleSinusoidalJumpTest, BaselineJumpsAtIntervalTimes) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Phased OU (§3.10)
+// Phased OU
 
 TEST(SchedulePhasedOuTest, TargetsComeFromValuesAndSwitchAtIntervalTimes) {
   // theta 1, sigma 0: every update snaps to the current target, so the value is the target
@@ -739,7 +739,7 @@ TEST(SchedulePhasedOuTest, DefaultTargetsAreMinMidMax) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Levy walk (§3.11), sequential (§3.12), identity (§3.1)
+// Levy walk, sequential, identity
 
 TEST(ScheduleLevyWalkTest, IsASuddenJumpFollowedByARandomWalk) {
   // The reference's make_levy_walk: Sequential([SuddenJump(both, 0.5, clip), RandomWalk]) with

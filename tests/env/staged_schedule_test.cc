@@ -1,7 +1,7 @@
 // Copyright 2026 The DCS Authors.
 //
-// Multi-stage schedules (spec/schedules.md §8, env/staged_schedule.h): stage boundaries in
-// global environment steps, taking effect at the next reset.
+// Multi-stage schedules (docs/reference.md, "Multi-stage schedules", env/staged_schedule.h): stage
+// boundaries in global environment steps, taking effect at the next reset.
 
 #include "env/staged_schedule.h"
 

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
 //
-// Faults under a running sweep, with real processes on loopback (spec/operations.md §7). Each
+// Faults under a running sweep, with real processes on loopback. Each
 // faulty run of the same sweep must end with the report, in every format, of an undisturbed
 // run: no run or evaluation lost or counted twice, every run bit for bit the same.
 // - Chaos: a killer SIGKILLs a random process (the coordinator, the learner or an actor) every

@@ -1,6 +1,6 @@
 // Copyright 2026 The DCS Authors.
 //
-// deploy/ against a real Prometheus (Debian's package, spec/operations.md §2.5): a local
+// deploy/ against a real Prometheus (Debian's package): a local
 // cluster (`dcs up`'s LocalCluster) runs a small sweep while Prometheus, configured by
 // deploy/prometheus/local.yml and its rules, scrapes every process through the targets file the
 // cluster writes. Then every query of every Grafana dashboard panel and variable, and every

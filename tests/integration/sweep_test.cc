@@ -4,8 +4,8 @@
 // with `dcs submit` runs to completion, `dcs report` tabulates it and `dcs plot` draws it (its
 // index.html looked at in headless Chromium, as `make demo`'s is); a sweep whose coordinator is
 // killed (SIGKILL) mid-way and restarted on its data directory gives the same report, and so
-// does a coordinator restored from a `dcs backup` taken mid-way (README, Backups); a bad spec is
-// refused whole, every problem named, and nothing of it is stored.
+// does a coordinator restored from a `dcs backup` taken mid-way (docs/deploy.md, Backups); a bad
+// spec is refused whole, every problem named, and nothing of it is stored.
 
 #include <filesystem>
 #include <string>
@@ -128,10 +128,10 @@ TEST(SweepTest, ACoordinatorRestoredFromABackupTakenMidSweepFinishesItWithTheSam
   ASSERT_EQ(queued.exit_code, 0) << queued.output;
   WaitForCompleted(original, "sweep-1", 2);
 
-  // Backed up mid-sweep; restored as README's Backups says: the backup as the new coordinator's
-  // store, the runs' files copied after it (here once the sweep ended: runs the backup holds as
-  // running then have the checkpoints of their ends, which a learner resuming them must
-  // finish at once).
+  // Backed up mid-sweep; restored as docs/deploy.md's Backups says: the backup as the new
+  // coordinator's store, the runs' files copied after it (here once the sweep ended: runs the
+  // backup holds as running then have the checkpoints of their ends, which a learner resuming
+  // them must finish at once).
   const std::string backup = original.dir() + "/backup.db";
   const RunResult backed_up =
       DcsAt({"backup", "--out", backup}, original.coordinator_address());

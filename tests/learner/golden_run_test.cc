@@ -4,8 +4,8 @@
 // process on the pinned kernels (as `dcs train` trains it), gives exactly the evaluations and
 // final weights recorded in tests/learner/data/golden_cartpole_static_blind_seed0.csv: every
 // evaluation's split means and avg_combined written with %.17g, and an FNV-1a hash of the final
-// parameters' bytes. It holds on every x86-64-v3 machine, Intel or AMD (DESIGN.md §4), so CI
-// guards that a run is a function of its config and seed wherever it runs.
+// parameters' bytes. It holds on every x86-64-v3 machine, Intel or AMD (docs/architecture.md §8),
+// so CI guards that a run is a function of its config and seed wherever it runs.
 //
 // A change that changes a run's bits on purpose updates the file and says why in its commit
 // message: DCS_UPDATE_GOLDEN=1 makes this test write the file it would have compared against.
