@@ -257,7 +257,8 @@ absl::StatusOr<ScheduleParams> ParseSinusoidal(ParamReader& r) {
   SinusoidalParams p;
   using D = SinusoidalParams::InitialDirection;
   r.Check(r.Magnitude("amplitude", "amplitude_frac", 0.5, 0.0, &p.amplitude));
-  r.Check(r.Number("period", 0.0, 0, kInf, &p.period));
+  // The default was 0, which the wave reads as 1 (a period of one step): the same schedule.
+  r.Check(r.Number("period", 1.0, 1, kInf, &p.period));
   r.Check(r.Choice("initial_direction", D::kRandom,
                    {{"random", D::kRandom}, {"down", D::kDown}, {"up", D::kUp}},
                    &p.initial_direction));
@@ -368,7 +369,7 @@ absl::StatusOr<ScheduleParams> ParseOrnsteinUhlenbeck(ParamReader& r) {
 absl::StatusOr<ScheduleParams> ParseSinusoidalJump(ParamReader& r) {
   SinusoidalJumpParams p;
   r.Check(r.Magnitude("amplitude", "amplitude_frac", 0.5, 0.3, &p.amplitude));
-  r.Check(r.Number("period", 100.0, 0, kInf, &p.period));
+  r.Check(r.Number("period", 100.0, 1, kInf, &p.period));
   r.Check(r.MagnitudeRange("step_size_range", "step_size_frac_range", {0.2, 0.4}, &p.step_size));
   r.Check(r.Interval("interval_range", {80, 150}, &p.interval));
   return p;

@@ -13,6 +13,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/match.h"
 #include "absl/strings/str_replace.h"
+#include "services/did_you_mean.h"
 #include "services/exit_codes.h"
 
 namespace dcs::services {
@@ -116,6 +117,12 @@ CLI::Option* AddDurationOption(CLI::App& app, const std::string& name, absl::Dur
       ->default_str(absl::FormatDuration(*value));
 }
 
+std::string CommandPath(const CLI::App& command) {
+  const CLI::App* parent = command.get_parent();
+  return parent == nullptr ? command.get_name()
+                           : absl::StrCat(CommandPath(*parent), " ", command.get_name());
+}
+
 void PrintError(absl::string_view program, absl::string_view message) {
   std::cerr << program << ": error: " << message << std::endl;
 }
@@ -142,7 +149,10 @@ std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* 
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    PrintError(app.get_name(), absl::StrCat(e.what(), " (see --help)"));
+    // CLI11 names an unknown flag or command only as an extra argument, and suggests nothing.
+    const std::optional<std::string> unknown =
+        UnknownNameError(app, std::vector<std::string>(argv + 1, argv + argc));
+    PrintError(app.get_name(), absl::StrCat(unknown.value_or(e.what()), " (see --help)"));
     return kExitUsage;
   }
   return std::nullopt;

@@ -53,6 +53,9 @@ std::vector<std::pair<std::string, E>> ChoicesOf(const EnumName<E> (&table)[N]) 
   return choices;
 }
 
+// "dcs runs cancel": a command's names, from the program's on.
+std::string CommandPath(const CLI::App& command);
+
 // Prints "<program>: error: <message>" as one line on stderr.
 void PrintError(absl::string_view program, absl::string_view message);
 

@@ -38,7 +38,7 @@ clients_cpu=$(awk -v before="$clients_cpu_before" -v hz="$(getconf CLK_TCK)" \
 
 steps=$("$dcs" runs --data-dir "$data" -o json |
         python3 -c 'import json, sys; print(sum(int(r["progress"]["timesteps"])
-                    for r in json.load(sys.stdin)["runs"] if r["state"] == "RUN_STATE_COMPLETED"))')
+                    for r in json.load(sys.stdin)["runs"] if r["state"] == "completed"))')
 cpu=0
 per_process=""
 for process in $(sed -n 's/^ *- name: *//p' "$data/cluster.yaml"); do

@@ -53,9 +53,9 @@ steps = sum(s for _, s in last.values())
 minute_ago = max(t for t in times if t <= times[-1] - 55) if times[-1] >= 60 else times[0]
 before = progress[minute_ago]
 recent = steps - sum(s for _, s in before.values())
-states = collections.Counter(state.replace("RUN_STATE_", "") for state, _ in last.values())
+states = collections.Counter(state for state, _ in last.values())
 stalled = [r for r, (state, s) in last.items()
-           if state == "RUN_STATE_RUNNING" and r in before and s <= before[r][1]]
+           if state == "running" and r in before and s <= before[r][1]]
 print(f"window {window:.0f} s: runs {dict(states)}; steps {steps:,} "
       f"({steps / window:,.0f} steps/s over the window, "
       f"{recent / (times[-1] - minute_ago):,.0f} steps/s over the last {times[-1] - minute_ago:.0f} s)")

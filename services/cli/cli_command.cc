@@ -36,7 +36,7 @@ absl::StatusOr<std::vector<double>> ParseNumberList(absl::string_view text,
   for (absl::string_view item : absl::StrSplit(text, ',')) {
     const std::optional<double> value = FiniteNumber(item);
     if (!value.has_value()) {
-      return absl::InvalidArgumentError(
+      return UsageError(
           absl::StrCat(flag, ": '", item, "' is not a finite number (expected a,b,c,...)"));
     }
     numbers.push_back(*value);
@@ -52,12 +52,11 @@ absl::StatusOr<std::map<std::string, double>> ParseAssignments(
     const std::optional<double> value =
         parts.size() == 2 ? FiniteNumber(parts[1]) : std::nullopt;
     if (!value.has_value()) {
-      return absl::InvalidArgumentError(absl::StrCat(
-          flag, ": expected name=value with a finite number, got '", assignment, "'"));
+      return UsageError(absl::StrCat(flag, ": expected name=value with a finite number, got '",
+                                     assignment, "'"));
     }
     if (!values.emplace(parts[0], *value).second) {
-      return absl::InvalidArgumentError(
-          absl::StrCat(flag, ": '", parts[0], "' is given twice"));
+      return UsageError(absl::StrCat(flag, ": '", parts[0], "' is given twice"));
     }
   }
   return values;

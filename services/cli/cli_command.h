@@ -18,7 +18,7 @@
 #include "absl/strings/string_view.h"
 #include "absl/time/time.h"
 #include "services/auth.h"
-#include "services/cli/status_format.h"
+#include "services/cli/command_output.h"
 
 namespace dcs::services::cli {
 
@@ -41,17 +41,24 @@ int FailCommand(const absl::Status& status);
 struct CliCommand {
   CLI::App* app;            // owned by the parent CLI::App
   std::function<int()> run;  // returns the exit code (services/exit_codes.h)
+  // The formats of -o it prints its data in; `dcs` refuses another before it runs. Table
+  // alone for a command that prints no data, or only words for people.
+  std::vector<OutputFormat> formats = {OutputFormat::kTable};
 };
+
+inline const std::vector<OutputFormat> kEveryFormat = {OutputFormat::kTable, OutputFormat::kJson,
+                                                       OutputFormat::kCsv};
+inline const std::vector<OutputFormat> kTableOrJson = {OutputFormat::kTable, OutputFormat::kJson};
 
 // What each command file provides: adds its commands to `dcs`. `flags` outlives them.
 using AddCommandsFunction = std::vector<CliCommand> (*)(CLI::App& dcs, const GlobalFlags& flags);
 
-// Comma-separated finite numbers ("0.35,0.75"). INVALID_ARGUMENT naming `flag` and the bad
-// entry.
+// Comma-separated finite numbers ("0.35,0.75"). A UsageError (services/exit_codes.h) naming
+// `flag` and the bad entry.
 absl::StatusOr<std::vector<double>> ParseNumberList(absl::string_view text,
                                                     absl::string_view flag);
 
-// name=value assignments of a repeatable flag (`--set length=1.3`), by name. INVALID_ARGUMENT
+// name=value assignments of a repeatable flag (`--set length=1.3`), by name. A UsageError
 // naming `flag` for one without '=', a value that is not a finite number, or a name given
 // twice.
 absl::StatusOr<std::map<std::string, double>> ParseAssignments(

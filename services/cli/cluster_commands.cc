@@ -17,6 +17,7 @@
 #include "services/auth.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/local_cluster.h"
+#include "services/cli/status_format.h"
 #include "services/command_line.h"
 #include "services/exit_codes.h"
 #include "services/signals.h"
@@ -142,7 +143,8 @@ std::vector<CliCommand> AddClusterCommands(CLI::App& dcs, const GlobalFlags& fla
   auto health_service = std::make_shared<std::string>();
   auto health_wait = std::make_shared<absl::Duration>(absl::ZeroDuration());
   CLI::App* health = dcs.add_subcommand(
-      "health", "Ask a server (--addr) whether it is SERVING; exit 0 if so, 1 if not");
+      "health", "Ask a server (--addr) whether it is SERVING; exit 0 if so, 1 if it answers "
+                "NOT_SERVING, 69 if it does not answer");
   health->add_option("--service", *health_service,
                      "a service name such as dcs.v1.CoordinatorService (default: the server)");
   AddDurationOption(*health, "--wait", health_wait.get(),
@@ -151,7 +153,7 @@ std::vector<CliCommand> AddClusterCommands(CLI::App& dcs, const GlobalFlags& fla
   return {
       {up, [&flags, up_flags] { return RunUp(flags, *up_flags); }},
       {down, [&flags, down_grace] { return RunDown(flags, *down_grace); }},
-      {status, [&flags] { return PrintStatus(flags, CoordinatorAddress(flags)); }},
+      {status, [&flags] { return PrintStatus(flags, CoordinatorAddress(flags)); }, kEveryFormat},
       {health,
        [&flags, health_service, health_wait] {
          return RunHealth(flags, *health_service, *health_wait);

@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "absl/algorithm/container.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "services/auth.h"
@@ -60,8 +61,8 @@ int Main(int argc, char** argv) {
       ->envname("DCS_TOKEN_FILE");
   AddTlsFlags(app, flags.tls);
   AddDurationOption(app, "--timeout", &flags.timeout, "deadline of each call to a server");
-  AddChoiceOption(app, "-o,--output", &flags.output, OutputFormatNames(),
-                  "table, or json (for scripts)");
+  AddChoiceOption(app, "-o,--output", &flags.output, ChoicesOf(kOutputFormatNames),
+                  "table, json (JSON Lines, for scripts) or csv, where the command prints data");
 
   std::vector<CliCommand> commands;
   for (AddCommandsFunction add : kCommandFiles) {
@@ -75,7 +76,16 @@ int Main(int argc, char** argv) {
   if (absl::Status tls = CheckTlsFiles(flags.tls); !tls.ok()) return FailCommand(tls);
   SetClusterTls(flags.tls);
   for (const CliCommand& command : commands) {
-    if (command.app->parsed()) return command.run();
+    if (!command.app->parsed()) continue;
+    if (absl::c_linear_search(command.formats, flags.output)) return command.run();
+    std::vector<std::string> formats;
+    for (OutputFormat format : command.formats) {
+      formats.emplace_back(NameOf(kOutputFormatNames, format));
+    }
+    PrintError("dcs", absl::StrCat("-o ", NameOf(kOutputFormatNames, flags.output), ": `",
+                                   CommandPath(*command.app), "` prints ",
+                                   absl::StrJoin(formats, " or "), " (see --help)"));
+    return kExitUsage;
   }
   // Checked here rather than by CLI11, which would report it before an unknown flag.
   std::vector<std::string> names;

@@ -15,7 +15,6 @@
 #include "common/random.h"
 #include "common/round_trip.h"
 #include "common/status_macros.h"
-#include "common/text_table.h"
 #include "env/baseline_policies.h"
 #include "env/cartpole.h"
 #include "env/env_registry.h"
@@ -28,15 +27,12 @@
 namespace dcs::services::cli {
 namespace {
 
-enum class TraceFormat { kTable, kCsv };
-
 struct TraceFlags {
   std::string env = "cartpole";
   std::vector<std::string> set;  // name=value
   std::string init;               // x,x_dot,theta,theta_dot
   uint64_t seed = 0;
   std::string actions;  // comma-separated
-  TraceFormat format = TraceFormat::kTable;
 };
 
 struct RolloutFlags {
@@ -71,7 +67,7 @@ absl::StatusOr<std::unique_ptr<Env>> EnvFromFlags(const std::vector<std::string>
   return environment;
 }
 
-int RunTrace(const TraceFlags& flags) {
+int RunTrace(const TraceFlags& flags, OutputFormat format) {
   if (flags.env != "cartpole") {
     return FailCommand(absl::InvalidArgumentError(
         absl::StrCat("unknown environment '", flags.env, "' (known: cartpole)")));
@@ -116,12 +112,7 @@ int RunTrace(const TraceFlags& flags) {
     const std::array<int32_t, 1> action = {static_cast<int32_t>((*actions)[t])};
     add_row(static_cast<int>(t + 1), action[0], (*cartpole)->Step(action, observation));
   }
-  if (flags.format == TraceFormat::kCsv) {
-    for (const auto& row : rows) std::cout << absl::StrJoin(row, ",") << "\n";
-  } else {
-    std::cout << RenderTable(rows);
-  }
-  std::cout << std::flush;
+  std::cout << FormatRows(rows, format) << std::flush;
   return kExitOk;
 }
 
@@ -154,7 +145,7 @@ double RunEpisode(Env& environment, env::BaselinePolicy<Env>& policy, uint64_t s
 }
 
 template <typename Env>
-absl::Status Rollout(const RolloutFlags& flags) {
+absl::Status Rollout(const RolloutFlags& flags, OutputFormat format) {
   DCS_ASSIGN_OR_RETURN(std::unique_ptr<Env> environment, EnvFromFlags<Env>(flags.set));
   DCS_ASSIGN_OR_RETURN(std::unique_ptr<env::BaselinePolicy<Env>> policy,
                        env::MakeBaselinePolicy<Env>(flags.policy, flags.seed));
@@ -169,11 +160,12 @@ absl::Status Rollout(const RolloutFlags& flags) {
   double variance = 0;
   for (double r : returns) variance += (r - mean) * (r - mean) / static_cast<double>(returns.size());
   const auto [min, max] = std::minmax_element(returns.begin(), returns.end());
-  std::cout << RenderTable({{"ENV", "POLICY", "EPISODES", "MEAN", "STD", "MIN", "MAX"},
-                            {flags.env, flags.policy, absl::StrCat(returns.size()),
-                             absl::StrFormat("%.2f", mean), absl::StrFormat("%.2f",
-                                                                            std::sqrt(variance)),
-                             absl::StrFormat("%.2f", *min), absl::StrFormat("%.2f", *max)}})
+  std::cout << FormatRows({{"ENV", "POLICY", "EPISODES", "MEAN", "STD", "MIN", "MAX"},
+                           {flags.env, flags.policy, absl::StrCat(returns.size()),
+                            absl::StrFormat("%.2f", mean),
+                            absl::StrFormat("%.2f", std::sqrt(variance)),
+                            absl::StrFormat("%.2f", *min), absl::StrFormat("%.2f", *max)}},
+                          format)
             << std::flush;
   return absl::OkStatus();
 }
@@ -214,12 +206,13 @@ absl::Status Render(const RenderFlags& flags) {
 
 }  // namespace
 
-std::vector<CliCommand> AddEnvCommands(CLI::App& dcs, const GlobalFlags&) {
+std::vector<CliCommand> AddEnvCommands(CLI::App& dcs, const GlobalFlags& flags) {
   CLI::App* env_group = dcs.add_subcommand("env", "Environments: debugging tools");
   env_group->require_subcommand(1);
   auto trace_flags = std::make_shared<TraceFlags>();
   CLI::App* trace = env_group->add_subcommand(
-      "trace", "Print an environment's state after every step of an action sequence");
+      "trace", "Print an environment's state after every step of an action sequence (numbers "
+               "with round-trip precision)");
   trace->add_option("--env", trace_flags->env, "the environment")->capture_default_str();
   trace->add_option("--set", trace_flags->set,
                     "a context feature's value, name=value (repeatable), e.g. length=1.3");
@@ -228,9 +221,6 @@ std::vector<CliCommand> AddEnvCommands(CLI::App& dcs, const GlobalFlags&) {
   trace->add_option("--seed", trace_flags->seed, "the reset's seed, as Gymnasium's reset(seed)")
       ->capture_default_str();
   trace->add_option("--actions", trace_flags->actions, "the actions, e.g. 0,1,1,0")->required();
-  AddChoiceOption(*trace, "--format", &trace_flags->format,
-                  {{"table", TraceFormat::kTable}, {"csv", TraceFormat::kCsv}},
-                  "table, or csv with round-trip precision");
 
   auto rollout_flags = std::make_shared<RolloutFlags>();
   CLI::App* rollout = env_group->add_subcommand(
@@ -269,13 +259,15 @@ std::vector<CliCommand> AddEnvCommands(CLI::App& dcs, const GlobalFlags&) {
     return status.ok() ? kExitOk : FailCommand(status);
   };
   return {
-      {trace, [trace_flags] { return RunTrace(*trace_flags); }},
+      {trace, [trace_flags, &flags] { return RunTrace(*trace_flags, flags.output); },
+       kEveryFormat},
       {rollout,
-       [rollout_flags, visit] {
+       [rollout_flags, visit, &flags] {
          return visit(rollout_flags->env, [&]<typename Env>() {
-           return Rollout<Env>(*rollout_flags);
+           return Rollout<Env>(*rollout_flags, flags.output);
          });
-       }},
+       },
+       kEveryFormat},
       {render,
        [render_flags, visit] {
          return visit(render_flags->env,

@@ -23,12 +23,12 @@
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
 #include "common/text_table.h"
-#include "dcs/proto_json.h"
 #include "dcs/v1/evaluation.pb.h"
 #include "env/env_registry.h"
 #include "learner/trained_policy.h"
 #include "report/generalization_map.h"
 #include "services/cli/cluster_client.h"
+#include "services/cli/command_output.h"
 #include "services/cli/figure_render.h"
 #include "services/cli/grid_evaluation_client.h"
 #include "services/cli/run_client.h"
@@ -344,8 +344,9 @@ absl::Status Evaluate(const EvalFlags& flags, const GlobalFlags& global) {
     std::cerr << "dcs: wrote " << rendered.path << " and " << flags.out << "/cells.csv"
               << std::endl;
   }
-  std::cout << (global.output == OutputFormat::kJson ? ProtoToJson(grid) + "\n"
-                                                      : CellRows(grid, false));
+  std::cout << (global.output == OutputFormat::kJson
+                    ? CommandJson(grid) + "\n"
+                    : CellRows(grid, /*csv=*/global.output == OutputFormat::kCsv));
   return absl::OkStatus();
 }
 

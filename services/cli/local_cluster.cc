@@ -107,7 +107,8 @@ std::string TokenPath(const std::string& data_dir) { return fs::path(data_dir) /
 absl::StatusOr<ClusterState> ReadClusterState(const std::string& data_dir) {
   const std::string path = StatePath(data_dir);
   if (!fs::exists(path)) {
-    return absl::NotFoundError(absl::StrCat("no local cluster is recorded in ", data_dir));
+    return absl::FailedPreconditionError(
+        absl::StrCat("no local cluster is recorded in ", data_dir));
   }
   try {
     const YAML::Node root = YAML::LoadFile(path);

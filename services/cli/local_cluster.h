@@ -66,8 +66,8 @@ struct ClusterState {
 // Where a cluster in `data_dir` keeps its token.
 std::string TokenPath(const std::string& data_dir);
 
-// The cluster recorded in `data_dir`. NOT_FOUND if none is; DATA_LOSS if cluster.yaml is
-// unreadable.
+// The cluster recorded in `data_dir`. FAILED_PRECONDITION if none is (no cluster was started
+// there: a state, not a missing input); DATA_LOSS if cluster.yaml is unreadable.
 absl::StatusOr<ClusterState> ReadClusterState(const std::string& data_dir);
 
 // Whether any process of `state` still runs.
@@ -120,7 +120,7 @@ class LocalCluster {
 
 // Stops the cluster recorded in `data_dir` from another process (`dcs down`): signals a
 // foreground supervisor, or stops each process of a detached cluster in reverse order.
-// NOT_FOUND if no cluster is recorded there.
+// FAILED_PRECONDITION if no cluster is recorded there.
 absl::Status StopClusterInDirectory(const std::string& data_dir, absl::Duration grace);
 
 }  // namespace dcs::services::cli

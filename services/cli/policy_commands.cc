@@ -137,7 +137,8 @@ std::vector<CliCommand> AddPolicyCommands(CLI::App& dcs, const GlobalFlags& glob
       ->capture_default_str();
 
   return {
-      {eval, [eval_flags, &global] { return EvaluateInProcess(*eval_flags, global); }},
+      {eval, [eval_flags, &global] { return EvaluateInProcess(*eval_flags, global); },
+       kEveryFormat},
       {play, [play_flags, &global] { return PlayInProcess(*play_flags, global); }},
       {export_command,
        [export_flags, &global] { return ExportInProcess(*export_flags, global); }},

@@ -18,6 +18,7 @@
 #include "report/sweep_index_html.h"
 #include "report/sweep_report.h"
 #include "services/cli/cluster_client.h"
+#include "services/cli/command_output.h"
 #include "services/cli/figure_render.h"
 #include "services/cli/run_client.h"
 #include "services/cli/study_client.h"
@@ -30,7 +31,8 @@ namespace {
 struct ReportFlags {
   std::string sweep_id;
   report::ReportOptions options;
-  report::ReportFormat format = report::ReportFormat::kTable;
+  report::ReportFormat format = report::ReportFormat::kTable;  // --format, else -o's
+  const CLI::Option* format_option = nullptr;
   int top = 20;  // a study sweep's: the best trials shown and counted
 };
 
@@ -51,7 +53,19 @@ absl::StatusOr<v1::StudyReport> FetchStudyReport(const GlobalFlags& flags,
   return report::BuildStudyReport(results, *trials, top, options);
 }
 
-int ReportCommand(const GlobalFlags& flags, const ReportFlags& report_flags) {
+int ReportCommand(const GlobalFlags& flags, ReportFlags report_flags) {
+  const report::ReportFormat from_output = flags.output == OutputFormat::kJson
+                                               ? report::ReportFormat::kJson
+                                           : flags.output == OutputFormat::kCsv
+                                               ? report::ReportFormat::kCsv
+                                               : report::ReportFormat::kTable;
+  if (report_flags.format_option->count() == 0) {
+    report_flags.format = from_output;
+  } else if (flags.output != OutputFormat::kTable && report_flags.format != from_output) {
+    return FailCommand(UsageError(absl::StrCat(
+        "-o ", NameOf(kOutputFormatNames, flags.output), " and --format ",
+        NameOf(report::kReportFormatNames, report_flags.format), " disagree; give one")));
+  }
   auto text = [&]() -> absl::StatusOr<std::string> {
     DCS_ASSIGN_OR_RETURN(const v1::SweepResults results,
                          GetSweepResults(CoordinatorAddress(flags), report_flags.sweep_id,
@@ -61,10 +75,12 @@ int ReportCommand(const GlobalFlags& flags, const ReportFlags& report_flags) {
       DCS_ASSIGN_OR_RETURN(const v1::StudyReport report,
                            FetchStudyReport(flags, results, report_flags.top,
                                             report_flags.options, &trials));
+      if (report_flags.format == report::ReportFormat::kJson) return CommandJson(report) + "\n";
       return report::FormatStudyReport(report, report_flags.format, report_flags.top);
     }
     DCS_ASSIGN_OR_RETURN(const v1::SweepReport report,
                          report::BuildSweepReport(results, report_flags.options));
+    if (report_flags.format == report::ReportFormat::kJson) return CommandJson(report) + "\n";
     return report::FormatReport(report, report_flags.format);
   }();
   if (!text.ok()) return FailCommand(text.status());
@@ -179,8 +195,10 @@ std::vector<CliCommand> AddReportCommands(CLI::App& dcs, const GlobalFlags& flag
   AddChoiceOption(*report, "--split", &report_flags->options.split,
                   ChoicesOf(report::kReportSplitNames),
                   "the score: avg_combined over every context, or one split's mean");
-  AddChoiceOption(*report, "--format", &report_flags->format, ChoicesOf(report::kReportFormatNames),
-                  "table, md, csv, json, latex (booktabs) or html");
+  report_flags->format_option =
+      AddChoiceOption(*report, "--format", &report_flags->format,
+                      ChoicesOf(report::kReportFormatNames),
+                      "table, md, csv, json, latex (booktabs) or html (default: -o's format)");
   report->add_option("--resamples", report_flags->options.bootstrap_resamples,
                      "bootstrap resamples of the intervals")
       ->capture_default_str()
@@ -209,7 +227,8 @@ std::vector<CliCommand> AddReportCommands(CLI::App& dcs, const GlobalFlags& flag
       ->check(CLI::PositiveNumber);
 
   return {
-      {report, [&flags, report_flags] { return ReportCommand(flags, *report_flags); }},
+      {report, [&flags, report_flags] { return ReportCommand(flags, *report_flags); },
+       kEveryFormat},
       {plot, [&flags, plot_flags] { return PlotCommand(flags, *plot_flags); }},
   };
 }

@@ -9,10 +9,8 @@
 #include <memory>
 
 #include "absl/random/random.h"
-#include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "absl/strings/strip.h"
 #include "absl/time/clock.h"
 #include "common/atomic_file.h"
 #include "common/status_macros.h"
@@ -40,12 +38,6 @@ constexpr BackoffPolicy kSubmitBackoff{.initial = absl::Milliseconds(200),
 // RetryTransient's keep_trying: `attempts` in all.
 auto AttemptsUpTo(int attempts) {
   return [attempts, failures = 0](const absl::Status&) mutable { return ++failures < attempts; };
-}
-
-// "RUN_STATE_COMPLETED" without `prefix`, in lower case: "completed".
-std::string EnumValueName(absl::string_view name, absl::string_view prefix) {
-  absl::ConsumePrefix(&name, prefix);
-  return absl::AsciiStrToLower(name);
 }
 
 std::string Peer(const std::string& address) { return absl::StrCat("coordinator ", address); }
@@ -290,14 +282,6 @@ ProgressLine ProgressLineOf(const v1::RunProgress& progress) {
     line.avg_combined = progress.avg_combined();
   }
   return line;
-}
-
-std::string RunStateName(v1::RunState state) {
-  return EnumValueName(v1::RunState_Name(state), "RUN_STATE_");
-}
-
-std::string SweepStateName(v1::SweepState state) {
-  return EnumValueName(v1::SweepState_Name(state), "SWEEP_STATE_");
 }
 
 }  // namespace dcs::services::cli

@@ -93,10 +93,6 @@ absl::StatusOr<v1::SweepResults> GetSweepResults(const std::string& address,
 // The progress line of a run (training_report.h).
 ProgressLine ProgressLineOf(const v1::RunProgress& progress);
 
-// "completed", "running", ...: the state as `dcs runs` and `dcs sweeps` show it.
-std::string RunStateName(v1::RunState state);
-std::string SweepStateName(v1::SweepState state);
-
 }  // namespace dcs::services::cli
 
 #endif  // DCS_SERVICES_CLI_RUN_CLIENT_H_

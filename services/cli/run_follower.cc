@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "run/evaluation_log.h"
+#include "services/cli/command_output.h"
 #include "services/cli/detach.h"
 #include "services/cli/run_client.h"
 #include "services/cli/training_report.h"
@@ -36,7 +37,7 @@ int FollowRun(const std::string& address, const std::string& run_id, const std::
   }
   if (!run.ok()) return FailCommand(run.status());
   if (run->state() != v1::RUN_STATE_COMPLETED) {
-    std::cerr << "dcs: " << run_id << " " << RunStateName(run->state())
+    std::cerr << "dcs: " << run_id << " " << EnumWordOf(run->state())
               << (run->error().empty() ? "" : ": ") << run->error() << std::endl;
     return kExitFailure;
   }

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "common/text_table.h"
-#include "dcs/proto_json.h"
 #include "services/cli/cluster_client.h"
+#include "services/cli/command_output.h"
 #include "services/cli/run_client.h"
 #include "services/cli/run_follower.h"
 #include "services/exit_codes.h"
@@ -28,7 +28,7 @@ int ListRunsCommand(const GlobalFlags& flags) {
   if (flags.output == OutputFormat::kJson) {
     v1::ListRunsResponse response;
     for (const v1::Run& run : *runs) *response.add_runs() = run;
-    std::cout << ProtoToJson(response) << std::endl;
+    std::cout << CommandJson(response) << std::endl;
     return kExitOk;
   }
   std::vector<std::vector<std::string>> rows = {
@@ -36,19 +36,22 @@ int ListRunsCommand(const GlobalFlags& flags) {
   for (const v1::Run& run : *runs) {
     const v1::RunProgress& progress = run.progress();
     rows.push_back(
-        {run.run_id(), RunStateName(run.state()), run.env(), std::to_string(run.seed()),
+        {run.run_id(), EnumWordOf(run.state()), run.env(), std::to_string(run.seed()),
          absl::StrFormat("%d/%d", progress.timesteps(), progress.total_timesteps()),
          absl::StrFormat("%.0f", progress.steps_per_second()),
          progress.has_avg_combined() ? absl::StrFormat("%.1f", progress.avg_combined()) : "-"});
   }
-  std::cout << RenderTable(rows) << std::flush;
+  std::cout << FormatRows(rows, flags.output) << std::flush;
   return kExitOk;
 }
 
 int CancelRunCommand(const GlobalFlags& flags, const std::string& run_id) {
   absl::StatusOr<v1::Run> run = CancelRun(CoordinatorAddress(flags), run_id, flags.timeout);
   if (!run.ok()) return FailCommand(run.status());
-  std::cout << run->run_id() << " " << RunStateName(run->state()) << std::endl;
+  std::cout << (flags.output == OutputFormat::kJson
+                    ? CommandJson(*run)
+                    : absl::StrCat(run->run_id(), " ", EnumWordOf(run->state())))
+            << std::endl;
   return kExitOk;
 }
 
@@ -89,10 +92,11 @@ std::vector<CliCommand> AddRunsCommands(CLI::App& dcs, const GlobalFlags& flags)
        [&flags, run_id, out] {
          return FollowRun(CoordinatorAddress(flags), *run_id,
                           out->empty() ? DefaultOut(flags, *run_id) : *out, flags);
-       }},
-      {cancel, [&flags, run_id] { return CancelRunCommand(flags, *run_id); }},
+       },
+       kTableOrJson},
+      {cancel, [&flags, run_id] { return CancelRunCommand(flags, *run_id); }, kTableOrJson},
       {get, [&flags, run_id, out] { return GetRunCommand(flags, *run_id, *out); }},
-      {runs, [&flags] { return ListRunsCommand(flags); }},
+      {runs, [&flags] { return ListRunsCommand(flags); }, kEveryFormat},
   };
 }
 

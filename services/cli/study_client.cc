@@ -3,6 +3,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <filesystem>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
@@ -138,7 +139,12 @@ class RemoteStudies : public StudyClient {
 
 }  // namespace
 
-absl::StatusOr<std::unique_ptr<StudyClient>> OpenLocalStudies(const std::string& path) {
+absl::StatusOr<std::unique_ptr<StudyClient>> OpenLocalStudies(const std::string& path,
+                                                              MissingStore missing) {
+  if (missing == MissingStore::kRefuse && !std::filesystem::exists(path)) {
+    return absl::NotFoundError(
+        absl::StrCat("no study store ", path, " (dcs study create --store makes one)"));
+  }
   DCS_ASSIGN_OR_RETURN(std::unique_ptr<coordinator::Store> store,
                        coordinator::Store::Open(path, coordinator::StoreOptions{}, absl::Now()));
   return std::make_unique<LocalStudies>(std::move(store));

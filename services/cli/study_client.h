@@ -37,8 +37,14 @@ class StudyClient {
                                       double value) = 0;
 };
 
-// The study store in the SQLite file `path` (created if missing).
-absl::StatusOr<std::unique_ptr<StudyClient>> OpenLocalStudies(const std::string& path);
+// What opening a study store file that does not exist does: only `dcs study create` makes one;
+// every other command refuses it, so that a mistyped path creates no file.
+enum class MissingStore { kCreate, kRefuse };
+
+// The study store in the SQLite file `path`. If it does not exist: created (kCreate), or
+// NOT_FOUND naming it (kRefuse).
+absl::StatusOr<std::unique_ptr<StudyClient>> OpenLocalStudies(const std::string& path,
+                                                              MissingStore missing);
 
 // The coordinator at `address`; each call has `timeout`, and transient failures are retried.
 std::unique_ptr<StudyClient> ConnectStudies(const std::string& address, absl::Duration timeout);

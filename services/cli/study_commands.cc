@@ -14,11 +14,11 @@
 #include "common/status_macros.h"
 #include "common/text_table.h"
 #include "coordinator/study_table.h"
-#include "dcs/proto_json.h"
 #include "dcs/v1/study.pb.h"
 #include "report/study_figures.h"
 #include "run/search_space_yaml.h"
 #include "services/cli/cluster_client.h"
+#include "services/cli/command_output.h"
 #include "services/cli/figure_render.h"
 #include "services/cli/run_client.h"
 #include "services/cli/study_client.h"
@@ -63,8 +63,9 @@ absl::StatusOr<double> ParseValue(const std::string& text) {
 
 // The studies of --store, or else of the coordinator (--addr, or the local cluster's).
 absl::StatusOr<std::unique_ptr<StudyClient>> Studies(const std::string& store,
+                                                     MissingStore missing,
                                                      const GlobalFlags& flags) {
-  if (!store.empty()) return OpenLocalStudies(store);
+  if (!store.empty()) return OpenLocalStudies(store, missing);
   return ConnectStudies(CoordinatorAddress(flags), flags.timeout);
 }
 
@@ -85,7 +86,7 @@ std::string TrialJson(const StudyTrial& trial, const run::SearchSpace& space) {
       params[parameter.name].set_string_value(run::ChoiceOf(*choices, value->second));
     }
   }
-  return ProtoToJsonLine(line);
+  return CommandJson(line);
 }
 
 // The study's space, to name its parameters' values.
@@ -179,7 +180,7 @@ absl::Status Trials(const std::string& study_id, const GlobalFlags& flags, Study
                                                 : absl::StrFormat("%.6g", value->second));
     }
   }
-  std::cout << RenderTable(rows) << std::endl;
+  std::cout << FormatRows(rows, flags.output) << std::flush;
   return absl::OkStatus();
 }
 
@@ -204,8 +205,9 @@ absl::Status Plot(const PlotFlags& flags, StudyClient& studies) {
 
 // Runs `command` on the studies of --store or the coordinator; the exit code.
 template <typename Command>
-int RunOn(const std::string& store, const GlobalFlags& flags, const Command& command) {
-  absl::StatusOr<std::unique_ptr<StudyClient>> studies = Studies(store, flags);
+int RunOn(const std::string& store, MissingStore missing, const GlobalFlags& flags,
+          const Command& command) {
+  absl::StatusOr<std::unique_ptr<StudyClient>> studies = Studies(store, missing, flags);
   if (!studies.ok()) return FailCommand(studies.status());
   const absl::Status status = command(**studies);
   return status.ok() ? kExitOk : FailCommand(status);
@@ -220,8 +222,8 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
   auto store = std::make_shared<std::string>();
   const auto add_store = [store](CLI::App* command) {
     command->add_option("--store", *store,
-                        "keep the study in this SQLite file (created if missing) rather than on "
-                        "the coordinator");
+                        "keep the study in this SQLite file rather than on the coordinator "
+                        "(`study create` makes it if missing)");
   };
 
   auto create_flags = std::make_shared<CreateFlags>();
@@ -297,16 +299,19 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
   add_store(best);
 
   // Each command runs on the studies of --store or of the coordinator.
-  const auto on_studies = [store, &flags](auto command) {
-    return [store, &flags, command] { return RunOn(*store, flags, command); };
+  const auto on_studies = [store, &flags](auto command,
+                                          MissingStore missing = MissingStore::kRefuse) {
+    return [store, &flags, command, missing] { return RunOn(*store, missing, flags, command); };
   };
-  return {{create, on_studies([=](StudyClient& s) { return Create(*create_flags, s); })},
-          {ask, on_studies([=](StudyClient& s) { return Ask(*study_id, s); })},
+  return {{create, on_studies([=](StudyClient& s) { return Create(*create_flags, s); },
+                              MissingStore::kCreate)},
+          {ask, on_studies([=](StudyClient& s) { return Ask(*study_id, s); }), kTableOrJson},
           {tell, on_studies([=](StudyClient& s) { return Tell(*trial_flags, s); })},
           {report, on_studies([=](StudyClient& s) { return Report(*trial_flags, s); })},
-          {list, on_studies([=, &flags](StudyClient& s) { return Trials(*study_id, flags, s); })},
+          {list, on_studies([=, &flags](StudyClient& s) { return Trials(*study_id, flags, s); }),
+           kEveryFormat},
           {plot, on_studies([=](StudyClient& s) { return Plot(*plot_flags, s); })},
-          {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); })}};
+          {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); }), kTableOrJson}};
 }
 
 }  // namespace dcs::services::cli

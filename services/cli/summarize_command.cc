@@ -1,4 +1,5 @@
 // Copyright 2026 The DCS Authors.
+#include "services/cli/command_output.h"
 #include "services/cli/summarize_command.h"
 
 #include <iostream>
@@ -8,7 +9,6 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "common/text_table.h"
-#include "dcs/proto_json.h"
 #include "report/runs_summary.h"
 #include "services/exit_codes.h"
 
@@ -24,7 +24,7 @@ int RunSummarize(const std::vector<std::string>& dirs, const GlobalFlags& global
   absl::StatusOr<v1::RunsSummary> summary = report::SummarizeRuns(dirs);
   if (!summary.ok()) return FailCommand(summary.status());
   if (global.output == OutputFormat::kJson) {
-    std::cout << ProtoToJson(*summary) << std::endl;
+    std::cout << CommandJson(*summary) << std::endl;
     return kExitOk;
   }
   std::vector<std::vector<std::string>> rows = {{"RUN", "SEED", "STEPS", "LAST", "BEST-ANYTIME"}};
@@ -32,6 +32,10 @@ int RunSummarize(const std::vector<std::string>& dirs, const GlobalFlags& global
     rows.push_back({run.run(), absl::StrCat(run.seed()), absl::StrCat(run.steps()),
                     absl::StrFormat("%.1f", run.last()),
                     absl::StrFormat("%.1f", run.best_anytime())});
+  }
+  if (global.output == OutputFormat::kCsv) {
+    std::cout << FormatRows(rows, global.output) << std::flush;
+    return kExitOk;
   }
   std::cout << RenderTable(rows) << "\n"
             << "avg_combined IQM [Q1, Q3] over " << summary->runs_size() << " runs\n"
@@ -48,7 +52,8 @@ std::vector<CliCommand> AddSummarizeCommand(CLI::App& dcs, const GlobalFlags& fl
       "summarize", "Scores of finished runs (one condition, several seeds) and their IQM [Q1, Q3]");
   summarize->add_option("runs", *run_dirs, "the runs' directories (as dcs train --out)")
       ->required();
-  return {{summarize, [run_dirs, &flags] { return RunSummarize(*run_dirs, flags); }}};
+  return {
+      {summarize, [run_dirs, &flags] { return RunSummarize(*run_dirs, flags); }, kEveryFormat}};
 }
 
 }  // namespace dcs::services::cli

@@ -13,8 +13,8 @@
 #include "absl/strings/str_cat.h"
 #include "common/atomic_file.h"
 #include "common/text_table.h"
-#include "dcs/proto_json.h"
 #include "services/cli/cluster_client.h"
+#include "services/cli/command_output.h"
 #include "services/cli/detach.h"
 #include "services/cli/run_client.h"
 #include "services/cli/sweep_view.h"
@@ -24,15 +24,19 @@ namespace dcs::services::cli {
 namespace {
 
 // Follows the sweep until it ends: on a terminal, the progress view redrawn in place whenever
-// it changes; otherwise its headline whenever a run starts or ends. Ctrl-C detaches (the sweep
-// goes on). Exit: 0 completed, 1 failed or cancelled, 130 detached.
+// it changes; otherwise its headline (with -o json, the GetSweepResponse) whenever a run starts
+// or ends. Ctrl-C detaches (the sweep goes on). Exit: 0 completed, 1 failed or cancelled, 130
+// detached.
 int WatchSweepCommand(const GlobalFlags& flags, const std::string& sweep_id) {
-  const bool terminal = isatty(STDOUT_FILENO) == 1;
+  const bool json = flags.output == OutputFormat::kJson;
+  const bool terminal = !json && isatty(STDOUT_FILENO) == 1;
   const DetachOnInterrupt detach;
   std::string shown;
   int shown_lines = 0;
   auto show = [&](const v1::GetSweepResponse& sweep) {
-    const std::string view = terminal ? SweepProgressView(sweep) : SweepHeadline(sweep);
+    const std::string view = json       ? CommandJson(sweep)
+                             : terminal ? SweepProgressView(sweep)
+                                        : SweepHeadline(sweep);
     // A terminal's view is redrawn whenever it changes; plain lines only when a run moved.
     const v1::Sweep& counts = sweep.sweep();
     const std::string key =
@@ -67,7 +71,7 @@ int WatchSweepCommand(const GlobalFlags& flags, const std::string& sweep_id) {
   }
   if (!last.ok()) return FailCommand(last.status());
   if (last->sweep().state() != v1::SWEEP_STATE_COMPLETED) {
-    std::cerr << "dcs: " << sweep_id << " " << SweepStateName(last->sweep().state())
+    std::cerr << "dcs: " << sweep_id << " " << EnumWordOf(last->sweep().state())
               << (last->sweep().failed() > 0 ? "; `dcs retry " + sweep_id + "` reruns its "
                                                 "failed runs"
                                               : "")
@@ -91,7 +95,7 @@ int SubmitCommand(const GlobalFlags& flags, const SubmitFlags& submit) {
                                                 stem, submit.dry_run, flags.timeout);
   if (!sweep.ok()) return FailCommand(sweep.status());
   if (flags.output == OutputFormat::kJson) {
-    std::cout << ProtoToJson(*sweep) << std::endl;
+    std::cout << CommandJson(*sweep) << std::endl;
   } else if (submit.dry_run) {
     std::vector<std::vector<std::string>> rows = {{"CONDITION", "FAMILY", "MODE"}};
     for (const v1::Trial& trial : sweep->trials()) {
@@ -121,28 +125,28 @@ int ListSweepsCommand(const GlobalFlags& flags) {
   if (flags.output == OutputFormat::kJson) {
     v1::ListSweepsResponse response;
     for (const v1::Sweep& sweep : *sweeps) *response.add_sweeps() = sweep;
-    std::cout << ProtoToJson(response) << std::endl;
+    std::cout << CommandJson(response) << std::endl;
     return kExitOk;
   }
   std::vector<std::vector<std::string>> rows = {
       {"SWEEP", "NAME", "STATE", "TRIALS", "SEEDS", "DONE", "RUNNING", "QUEUED", "FAILED"}};
   for (const v1::Sweep& sweep : *sweeps) {
-    rows.push_back({sweep.sweep_id(), sweep.name(), SweepStateName(sweep.state()),
+    rows.push_back({sweep.sweep_id(), sweep.name(), EnumWordOf(sweep.state()),
                     absl::StrCat(sweep.trials_size()), absl::StrCat(sweep.seeds()),
                     absl::StrCat(sweep.completed(), "/", sweep.runs()),
                     absl::StrCat(sweep.running()), absl::StrCat(sweep.queued()),
                     absl::StrCat(sweep.failed())});
   }
-  std::cout << RenderTable(rows) << std::flush;
+  std::cout << FormatRows(rows, flags.output) << std::flush;
   return kExitOk;
 }
 
 // Prints the sweep a cancel or retry left, as JSON or as "<id> <state>".
 int PrintSweepState(const GlobalFlags& flags, const v1::Sweep& sweep) {
   if (flags.output == OutputFormat::kJson) {
-    std::cout << ProtoToJson(sweep) << std::endl;
+    std::cout << CommandJson(sweep) << std::endl;
   } else {
-    std::cout << sweep.sweep_id() << " " << SweepStateName(sweep.state()) << std::endl;
+    std::cout << sweep.sweep_id() << " " << EnumWordOf(sweep.state()) << std::endl;
   }
   return kExitOk;
 }
@@ -194,11 +198,12 @@ std::vector<CliCommand> AddSweepCommands(CLI::App& dcs, const GlobalFlags& flags
   retry->add_option("sweep", *sweep_id, "the sweep's id")->required();
 
   return {
-      {submit, [&flags, submit_flags] { return SubmitCommand(flags, *submit_flags); }},
-      {sweeps, [&flags] { return ListSweepsCommand(flags); }},
-      {watch, [&flags, sweep_id] { return WatchSweepCommand(flags, *sweep_id); }},
-      {cancel, [&flags, sweep_id] { return CancelSweepCommand(flags, *sweep_id); }},
-      {retry, [&flags, sweep_id] { return RetrySweepCommand(flags, *sweep_id); }},
+      {submit, [&flags, submit_flags] { return SubmitCommand(flags, *submit_flags); },
+       kTableOrJson},
+      {sweeps, [&flags] { return ListSweepsCommand(flags); }, kEveryFormat},
+      {watch, [&flags, sweep_id] { return WatchSweepCommand(flags, *sweep_id); }, kTableOrJson},
+      {cancel, [&flags, sweep_id] { return CancelSweepCommand(flags, *sweep_id); }, kTableOrJson},
+      {retry, [&flags, sweep_id] { return RetrySweepCommand(flags, *sweep_id); }, kTableOrJson},
   };
 }
 

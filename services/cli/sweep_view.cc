@@ -11,6 +11,7 @@
 #include "absl/time/time.h"
 #include "common/text_table.h"
 #include "coordinator/iqm.h"
+#include "services/cli/command_output.h"
 #include "services/cli/run_client.h"
 
 namespace dcs::services::cli {
@@ -62,7 +63,7 @@ std::string TrialName(const v1::Trial& trial) {
 std::string SweepHeadline(const v1::GetSweepResponse& response) {
   const v1::Sweep& sweep = response.sweep();
   std::string line = absl::StrCat(sweep.sweep_id(), " ", sweep.name(), ": ",
-                                   SweepStateName(sweep.state()), ", ", sweep.completed(), "/",
+                                   EnumWordOf(sweep.state()), ", ", sweep.completed(), "/",
                                    sweep.runs(), " runs done (", sweep.running(), " running, ",
                                    sweep.queued(), " queued, ", sweep.failed(), " failed)");
   double steps_per_second = 0;

@@ -42,11 +42,11 @@ absl::StatusOr<run::RunRequest> CheckRunRequest(const TrainFlags& flags,
                                                 const GlobalFlags& global) {
   if (flags.resume && flags.config.empty()) {
     if (flags.out.empty()) {
-      return absl::InvalidArgumentError("--resume needs --out (the run's directory) or --config");
+      return UsageError("--resume needs --out (the run's directory) or --config");
     }
     return run::StoredRun(flags.out);
   }
-  if (flags.config.empty()) return absl::InvalidArgumentError("--config is required");
+  if (flags.config.empty()) return UsageError("--config is required");
   absl::StatusOr<std::string> text = ReadFile(flags.config);
   if (!text.ok()) {
     return absl::NotFoundError(absl::StrCat("cannot read the run config ", flags.config));
@@ -84,8 +84,9 @@ int RunTrainOnCluster(const TrainFlags& flags, const GlobalFlags& global,
 
 int RunTrain(const TrainFlags& flags, const GlobalFlags& global) {
   if (flags.cluster && flags.resume) {
-    return FailCommand(absl::InvalidArgumentError(
-        "--resume is for runs in this process; a cluster resumes its runs itself (dcs runs)"));
+    return FailCommand(
+        UsageError("--resume is for runs in this process; a cluster resumes its runs itself "
+                   "(dcs runs)"));
   }
   absl::StatusOr<run::RunRequest> request = CheckRunRequest(flags, global);
   if (!request.ok()) return FailCommand(request.status());
@@ -118,7 +119,7 @@ std::vector<CliCommand> AddTrainCommand(CLI::App& dcs, const GlobalFlags& flags)
                   "submit the run to the cluster at --addr (default: the local cluster of "
                   "`dcs up`), follow it (Ctrl-C detaches; the run goes on), then download it "
                   "into --out");
-  return {{train, [train_flags, &flags] { return RunTrain(*train_flags, flags); }}};
+  return {{train, [train_flags, &flags] { return RunTrain(*train_flags, flags); }, kTableOrJson}};
 }
 
 }  // namespace dcs::services::cli

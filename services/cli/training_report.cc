@@ -1,4 +1,5 @@
 // Copyright 2026 The DCS Authors.
+#include "services/cli/command_output.h"
 #include "services/cli/training_report.h"
 
 #include <unistd.h>
@@ -8,7 +9,6 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "dcs/proto_json.h"
 #include "run/evaluation_log.h"
 
 namespace dcs::services::cli {
@@ -42,7 +42,7 @@ void ProgressPrinter::Finish() {
 void PrintRunSummary(const RunSummary& summary, OutputFormat format) {
   const v1::EvaluationLog& log = summary.log;
   if (format == OutputFormat::kJson) {
-    std::cout << ProtoToJson(log) << std::endl;
+    std::cout << CommandJson(log) << std::endl;
     return;
   }
   std::cout << "run           " << summary.dir << "\n"

@@ -183,6 +183,14 @@ TEST(ScheduleConfigTest, ProblemsNameEveryBadParameterWithItsField) {
   EXPECT_THAT(fields, ElementsAre("amplitude_frac", "period", "periode"));
   EXPECT_THAT(ErrorOf(config), HasSubstr("amplitude_frac must be in [0, inf], got -1"));
   EXPECT_THAT(ScheduleConfigProblems(Config("sinusoidal", {{"period", 5.0}}), 0, 1), IsEmpty());
+  // A period of 0 among other problems: reported with them, at once.
+  fields.clear();
+  const ScheduleConfig jump = Config(
+      "sinusoidal_jump", {{"period", 0.0}, {"interval_range", std::vector<double>{0, 5}}});
+  for (const absl::Status& problem : ScheduleConfigProblems(jump, 0, 1)) {
+    fields.push_back(ErrorField(problem).value_or("?"));
+  }
+  EXPECT_THAT(fields, ElementsAre("period", "interval_range"));
 
   // A sequential schedule's parts, each problem placed in its part.
   ScheduleConfig sequential = Config("sequential");
@@ -204,6 +212,10 @@ TEST(ScheduleConfigTest, OutOfRangeValuesNameTheAllowedRange) {
               AllOf(HasSubstr("std_frac"), HasSubstr("[0, inf]")));
   EXPECT_THAT(ErrorOf(Config("cosine_annealing", {{"T_0", 0.0}})),
               AllOf(HasSubstr("T_0"), HasSubstr("[1, ")));
+  EXPECT_THAT(ErrorOf(Config("sinusoidal", {{"period", 0.0}})),
+              HasSubstr("period must be in [1, inf], got 0"));
+  EXPECT_THAT(ErrorOf(Config("sinusoidal_jump", {{"period", 0.5}})),
+              HasSubstr("period must be in [1, inf], got 0.5"));
   EXPECT_THAT(ErrorOf(Config("cosine_annealing", {{"T_0", 10.5}})),
               AllOf(HasSubstr("T_0"), HasSubstr("whole")));
   EXPECT_THAT(ErrorOf(Config("cosine_annealing", {{"T_0", 10.0}, {"repel_edge_eps_frac", 0.7}})),
@@ -263,12 +275,13 @@ TEST(ScheduleConfigTest, SinusoidalAmplitudeIsAFractionOfHalfTheSpan) {
   EXPECT_NEAR(p.amplitude, 0.05, 1e-15);
   EXPECT_EQ(p.period, 125.0);
   EXPECT_EQ(p.initial_direction, SinusoidalParams::InitialDirection::kRandom);
-  // Absolute amplitude is taken as is; defaults: amplitude 0, period 0 (builder defaults).
+  // Absolute amplitude is taken as is; defaults: amplitude 0 and period 1 (the builder's 0,
+  // which its wave read as one step).
   EXPECT_EQ(ParseAs<SinusoidalParams>(Config("sinusoidal", {{"amplitude", 0.07}}), 0, 4).amplitude,
             0.07);
   const auto d = ParseAs<SinusoidalParams>(Config("sinusoidal"), 0, 4);
   EXPECT_EQ(d.amplitude, 0.0);
-  EXPECT_EQ(d.period, 0.0);
+  EXPECT_EQ(d.period, 1.0);
 }
 
 TEST(ScheduleConfigTest, ContinuousIncrementerDefaults) {

@@ -912,7 +912,7 @@ ScheduleConfig RandomConfig(const std::string& family, Random& random) {
     return std::vector<double>{lo, lo + random.Uniform(0, hi)};
   };
   if (family == "sinusoidal") {
-    return Config(family, {{"amplitude_frac", frac(3)}, {"period", frac(60)}});
+    return Config(family, {{"amplitude_frac", frac(3)}, {"period", 1 + frac(59)}});
   }
   if (family == "cosine_annealing") {
     const char* retarget[] = {"swap", "restart", "random"};
@@ -950,7 +950,7 @@ ScheduleConfig RandomConfig(const std::string& family, Random& random) {
   }
   if (family == "sinusoidal_jump") {
     return Config(family, {{"amplitude_frac", frac(3)},
-                           {"period", frac(60)},
+                           {"period", 1 + frac(59)},
                            {"step_size_frac_range", frac_range(1.5)},
                            {"interval_range", interval()}});
   }

@@ -205,13 +205,13 @@ TEST_F(EvalCliTest, AValueOutsideThePhysicalRangeIsRefused) {
 
 TEST_F(EvalCliTest, ARunThatDoesNotExistIsRefused) {
   ExpectRefused({Fresh("no/such/run"), "--grid", "length=0.1:1:3"}, "no run directory ",
-                services::kExitFailure);
+                services::kExitNoInput);
   fs::create_directories(Fresh("not-a-run"));
   ExpectRefused({Fresh("not-a-run"), "--grid", "length=0.1:1:3"},
-                "no run in " + Fresh("not-a-run"), services::kExitFailure);
+                "no run in " + Fresh("not-a-run"), services::kExitNoInput);
   ExpectRefused({Run(), "--checkpoint", "100", "--grid", "length=0.1:1:3"},
                 "no checkpoint at step 100 in " + Run() + " (kept: 512, 1024, 1536)",
-                services::kExitFailure);
+                services::kExitNoInput);
 }
 
 TEST_F(EvalCliTest, ACorruptCheckpointIsDataLossNamingTheFile) {
@@ -254,7 +254,7 @@ TEST_F(EvalCliTest, ARunOnTheClusterIsEvaluatedByItsId) {
 
   const RunResult missing = DcsAt({"eval", "run-missing", "--grid", "length=0.5:1:2"},
                                   cluster.coordinator_address());
-  EXPECT_EQ(missing.exit_code, services::kExitFailure) << missing.output;
+  EXPECT_EQ(missing.exit_code, services::kExitNoInput) << missing.output;
   EXPECT_THAT(Lines(missing.output), SizeIs(1)) << missing.output;
   EXPECT_THAT(missing.output, HasSubstr("no run run-missing: neither a directory nor a run on "
                                         "the cluster at "));

@@ -6,6 +6,7 @@
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
 
+#include <filesystem>
 #include <string>
 
 #include "absl/strings/str_cat.h"
@@ -125,6 +126,27 @@ TEST_F(StudyCliTest, ABadSpaceIsRefusedNamingTheFileAndCreatesNothing) {
   const RunResult value = Dcs({"study", "tell", "study-1", "0", "many", "--store", Path("s.db")});
   EXPECT_EQ(value.exit_code, services::kExitDataError);
   EXPECT_THAT(value.output, HasSubstr("VALUE must be a number"));
+}
+
+// Only `study create` makes a store: every other command refuses a path that holds none, and
+// creates no file there.
+TEST_F(StudyCliTest, ACommandOnAMissingStoreIsRefusedAndCreatesNothing) {
+  const std::string typo = Path("typo.db");
+  for (const std::vector<std::string>& command :
+       std::vector<std::vector<std::string>>{{"ask", "study-1"},
+                                             {"tell", "study-1", "0", "1"},
+                                             {"report", "study-1", "0", "10", "1"},
+                                             {"trials", "study-1"},
+                                             {"best", "study-1"},
+                                             {"plot", "study-1", "--out", Path("figures")}}) {
+    std::vector<std::string> args = {"study"};
+    args.insert(args.end(), command.begin(), command.end());
+    args.insert(args.end(), {"--store", typo});
+    const RunResult result = Dcs(args);
+    EXPECT_EQ(result.exit_code, services::kExitNoInput) << command[0] << ": " << result.output;
+    EXPECT_THAT(result.output, HasSubstr("no study store " + typo)) << command[0];
+    EXPECT_FALSE(std::filesystem::exists(typo)) << command[0] << " created it";
+  }
 }
 
 // Runs `trials` trials of the space.yaml study `study` (x², or 1 + x on the ridge) through

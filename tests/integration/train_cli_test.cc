@@ -179,7 +179,7 @@ evaluation: {contexts: {id: [0.5], ood_high: [1.0, 9.0]}}
   EXPECT_THAT(train.output, HasSubstr("evaluation.contexts.ood_high[1]"));
 
   train = Dcs({"train", "--config", dir + "/missing.yaml"});
-  EXPECT_EQ(train.exit_code, services::kExitFailure);
+  EXPECT_EQ(train.exit_code, services::kExitNoInput);
   EXPECT_THAT(train.output, HasSubstr("cannot read the run config"));
 }
 

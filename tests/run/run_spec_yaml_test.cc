@@ -514,7 +514,7 @@ evaluation: {episodes: 0, contexts: {id: [0.5]}}
             "4 problems in run.yaml:\n"
             "  run.yaml: evaluation.episodes: line 7: must be at least 1, got 0\n"
             "  run.yaml: stages[0].schedule.period: line 5: schedule 'sinusoidal': period must "
-            "be in [0, inf], got -3\n"
+            "be in [1, inf], got -3\n"
             "  run.yaml: ppo.learning_rate: line 6: must be positive, got -1\n"
             "  run.yaml: ppo.gamma: line 6: must be in [0, 1], got 2");
 }
@@ -530,7 +530,7 @@ ppo:
             "  run.yaml: schedule.amplitude_frac: line 8: schedule 'sinusoidal': amplitude_frac "
             "must be in [0, inf], got -0.5\n"
             "  run.yaml: schedule.period: line 8: schedule 'sinusoidal': period must be in "
-            "[0, inf], got -3\n"
+            "[1, inf], got -3\n"
             "  run.yaml: ppo.learning_rate: line 10: must be positive, got -1");
 }
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
-#include <google/protobuf/util/message_differencer.h>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_split.h"
@@ -131,20 +131,23 @@ TEST(FormatClusterStatusTest, FutureHeartbeatShowsAsZeroAge) {
   EXPECT_THAT(LineWith(Lines(text), "actor-1"), HasSubstr(" 0.0s ago"));
 }
 
-TEST(FormatClusterStatusTest, JsonParsesBackToTheSameMessage) {
+// As every command's -o json (command_output.h): proto field names, numbers, words for states.
+TEST(FormatClusterStatusTest, JsonIsTheCommandsJson) {
   const v1::GetClusterStatusResponse status = SampleStatus();
   const std::string json =
       FormatClusterStatus(status, "127.0.0.1:50051", kNow, OutputFormat::kJson);
-  // Proto field names, for scripts.
   EXPECT_THAT(json, HasSubstr("\"worker_id\""));
   EXPECT_THAT(json, HasSubstr("\"coordinator_build\""));
-  EXPECT_THAT(json, HasSubstr("\"WORKER_STATE_LOST\""));
+  EXPECT_THAT(json, HasSubstr("\"state\":\"lost\""));
+  EXPECT_THAT(json, HasSubstr("\"role\":\"learner\""));
+  EXPECT_THAT(json, ::testing::ContainsRegex("\"pid\":[0-9]+,"));
+  EXPECT_EQ(json.find('\n'), json.size() - 1) << "one line";
 
-  v1::GetClusterStatusResponse parsed;
+  google::protobuf::Value parsed;
   const auto result = google::protobuf::util::JsonStringToMessage(json, &parsed);
   ASSERT_TRUE(result.ok()) << result.ToString();
-  EXPECT_TRUE(google::protobuf::util::MessageDifferencer::Equals(parsed, status))
-      << parsed.DebugString();
+  EXPECT_EQ(parsed.struct_value().fields().at("workers").list_value().values_size(),
+            status.workers_size());
 }
 
 }  // namespace

@@ -1,0 +1,203 @@
+// Copyright 2026 The DCS Authors.
+//
+// The convention every `dcs` command follows: each command that prints data prints it as JSON
+// Lines with -o json, and refuses a format it cannot print; each exit code of README's table
+// (services/exit_codes.h) comes from the failures it names.
+
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
+#include <signal.h>
+
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "common/atomic_file.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+#include "services/cli/child_process.h"
+#include "services/cli/local_cluster.h"
+#include "services/exit_codes.h"
+#include "tests/integration/cluster_processes.h"
+#include "tests/integration/test_util.h"
+#include "tests/testing/net.h"
+#include "tests/testing/slowdown.h"
+#include "tests/testing/temp_dir.h"
+
+namespace dcs::integration {
+namespace {
+
+using ::testing::HasSubstr;
+
+// `dcs args...` with its stdout alone: what a script reads.
+RunResult DcsStdout(const std::vector<std::string>& args) {
+  std::vector<std::string> shell = {"-c", "exec \"$0\" \"$@\" 2>/dev/null", BinaryPath("dcs")};
+  shell.insert(shell.end(), args.begin(), args.end());
+  return RunProgram("/bin/sh", shell, absl::Minutes(5));
+}
+
+// Runs `args` with -o json and expects each line of its stdout, and at least one, to be a JSON
+// value; returns them.
+std::vector<google::protobuf::Value> JsonLines(std::vector<std::string> args) {
+  args.insert(args.end(), {"-o", "json"});
+  const RunResult result = DcsStdout(args);
+  const std::string command = absl::StrJoin(args, " ");
+  EXPECT_EQ(result.exit_code, 0) << command << ": " << result.output;
+  std::vector<google::protobuf::Value> values;
+  for (const std::string& line : Lines(result.output)) {
+    google::protobuf::Value& value = values.emplace_back();
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(line, &value).ok())
+        << command << ": not JSON: " << line;
+  }
+  EXPECT_FALSE(values.empty()) << command << " printed nothing";
+  return values;
+}
+
+const google::protobuf::Value& Field(const google::protobuf::Value& value,
+                                     const std::string& name) {
+  static const google::protobuf::Value kAbsent;
+  const auto& fields = value.struct_value().fields();
+  const auto it = fields.find(name);
+  return it == fields.end() ? kAbsent : it->second;
+}
+
+// A cluster that ran a small sweep, and a study in a store: every command that prints data is
+// run with -o json against them.
+TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
+  const std::string dir = testing::MakeTempDir();
+  const std::string spec = dir + "/small.yaml";
+  ASSERT_TRUE(WriteFileAtomically(spec, EightRunSweepSpec("small", 512, 256)).ok());
+  ClusterProcesses cluster(absl::Seconds(1));
+  StartCoordinatorLearnerAndActors(cluster);
+  const std::string addr = "--addr=" + cluster.coordinator_address();
+  const std::vector<google::protobuf::Value> submitted =
+      JsonLines({"submit", spec, "--watch", addr});
+  ASSERT_FALSE(submitted.empty());
+  EXPECT_EQ(Field(submitted[0], "sweep_id").string_value(), "sweep-1");
+
+  JsonLines({"submit", spec, "--dry-run", addr});
+  const std::vector<google::protobuf::Value> status = JsonLines({"status", addr});
+  ASSERT_FALSE(status.empty());
+  EXPECT_EQ(Field(status[0], "workers").list_value().values_size(), 3);
+  const std::vector<google::protobuf::Value> runs = JsonLines({"runs", addr});
+  ASSERT_FALSE(runs.empty());
+  ASSERT_EQ(Field(runs[0], "runs").list_value().values_size(), 8);
+  for (const google::protobuf::Value& run : Field(runs[0], "runs").list_value().values()) {
+    EXPECT_EQ(Field(run, "state").string_value(), "completed");
+    EXPECT_TRUE(Field(run, "seed").has_number_value()) << "a 64-bit integer as a number";
+  }
+  const std::vector<google::protobuf::Value> sweeps = JsonLines({"sweeps", addr});
+  ASSERT_FALSE(sweeps.empty());
+  EXPECT_EQ(Field(Field(sweeps[0], "sweeps").list_value().values(0), "state").string_value(),
+            "completed");
+  JsonLines({"report", "sweep-1", addr});
+  const std::string run_dir = dir + "/run-1";
+  JsonLines({"runs", "watch", "run-1", "--out", run_dir, addr});
+  JsonLines({"summarize", run_dir});
+  JsonLines({"eval", run_dir, "--grid", "length=0.3:1.2:2", "--episodes", "1"});
+
+  JsonLines({"env", "trace", "--actions", "0,1"});
+  JsonLines({"env", "rollout", "--episodes", "1"});
+
+  const std::string store = dir + "/studies.db";
+  ASSERT_TRUE(WriteFileAtomically(dir + "/space.yaml",
+                                  "parameters:\n  - {name: x, type: float, low: 0, high: 1}\n")
+                  .ok());
+  ASSERT_EQ(DcsStdout({"study", "create", "--space", dir + "/space.yaml", "--store", store})
+                .exit_code,
+            0);
+  JsonLines({"study", "ask", "study-1", "--store", store});
+  ASSERT_EQ(DcsStdout({"study", "tell", "study-1", "0", "0.5", "--store", store}).exit_code, 0);
+  JsonLines({"study", "trials", "study-1", "--store", store});
+  JsonLines({"study", "best", "study-1", "--store", store});
+}
+
+// A format a command cannot print is a usage error naming what it prints, before it runs.
+TEST(CliConventionTest, AFormatACommandCannotPrintIsRefused) {
+  const std::string dir = testing::MakeTempDir();
+  const RunResult up = RunProgram(BinaryPath("dcs"), {"up", "--data-dir", dir, "-o", "json"});
+  EXPECT_EQ(up.exit_code, services::kExitUsage) << up.output;
+  EXPECT_THAT(up.output, HasSubstr("-o json: `dcs up` prints table"));
+  const RunResult submit =
+      RunProgram(BinaryPath("dcs"), {"submit", dir + "/none.yaml", "-o", "csv"});
+  EXPECT_EQ(submit.exit_code, services::kExitUsage) << submit.output;
+  EXPECT_THAT(submit.output, HasSubstr("-o csv: `dcs submit` prints table or json"));
+  const RunResult trace =
+      RunProgram(BinaryPath("dcs"), {"env", "trace", "--actions", "0,1", "-o", "csv"});
+  EXPECT_EQ(trace.exit_code, 0) << trace.output;
+  EXPECT_THAT(trace.output, HasSubstr("t,action,x,x_dot,theta,theta_dot,reward,"));
+}
+
+// `dcs args...` exits with `code`, printing one line that holds `message`.
+void ExpectExit(int code, const std::vector<std::string>& args, const std::string& message) {
+  const RunResult result = RunProgram(BinaryPath("dcs"), args);
+  const std::string command = absl::StrJoin(args, " ");
+  EXPECT_EQ(result.exit_code, code) << command << ": " << result.output;
+  EXPECT_THAT(result.output, HasSubstr(message)) << command;
+}
+
+// Starts `dcs args...`, waits until its output holds `text`, then sends it SIGINT; returns its
+// exit code.
+int InterruptedExit(const std::vector<std::string>& args, const std::string& text) {
+  const std::string output = testing::MakeTempDir() + "/output";
+  absl::StatusOr<services::cli::ChildProcess> dcs = services::cli::ChildProcess::Start(
+      {.path = BinaryPath("dcs"), .args = args, .output_path = output});
+  EXPECT_TRUE(dcs.ok()) << dcs.status();
+  if (!dcs.ok()) return -1;
+  const absl::Time deadline = absl::Now() + testing::Patient(absl::Minutes(1));
+  while (ReadFile(output).value_or("").find(text) == std::string::npos && absl::Now() < deadline) {
+    absl::SleepFor(absl::Milliseconds(50));
+  }
+  ::kill(dcs->pid(), SIGINT);
+  const std::optional<int> status = dcs->Wait(testing::Patient(absl::Seconds(30)));
+  EXPECT_TRUE(status.has_value()) << ReadFile(output).value_or("");
+  return status.has_value() && WIFEXITED(*status) ? WEXITSTATUS(*status) : -1;
+}
+
+// README's table of exit codes, each from a command that should give it.
+TEST(CliConventionTest, EachExitCodeOfTheTableComesFromWhatItNames) {
+  const std::string dir = testing::MakeTempDir();
+  const std::string data_dir = dir + "/cluster";
+  const std::string local = "--data-dir=" + data_dir;
+  ASSERT_EQ(RunProgram(BinaryPath("dcs"), {"up", "--detach", "--actors=1", local}).exit_code, 0);
+  const absl::StatusOr<services::cli::ClusterState> cluster =
+      services::cli::ReadClusterState(data_dir);
+  ASSERT_TRUE(cluster.ok()) << cluster.status();
+  const std::string long_spec = dir + "/long.yaml";
+  ASSERT_TRUE(WriteFileAtomically(long_spec, EightRunSweepSpec("long", 10'000'000, 512)).ok());
+  const std::string bad_spec = dir + "/bad.yaml";
+  ASSERT_TRUE(WriteFileAtomically(bad_spec, "seeds: 2\nenv: cartpole\nconditions: []\n").ok());
+  const std::string bad_config = dir + "/coordinator.yaml";
+  ASSERT_TRUE(WriteFileAtomically(bad_config, "lissten: 127.0.0.1:0\n").ok());
+
+  ExpectExit(services::kExitOk, {"submit", long_spec, local}, "sweep-1");
+  ExpectExit(services::kExitFailure, {"up", "--detach", local}, "already runs");
+  ExpectExit(services::kExitUsage, {"train"}, "--config is required");
+  ExpectExit(services::kExitUsage, {"status", "--adr", "x"},
+             "unknown flag --adr for `dcs status`; did you mean --addr?");
+  ExpectExit(services::kExitUsage, {"runs", "cancle", "run-1"},
+             "unknown command 'cancle' for `dcs runs`; did you mean cancel?");
+  ExpectExit(services::kExitUsage, {"sweeps", "-o", "yaml"}, "'yaml' is not one of");
+  ExpectExit(services::kExitDataError, {"submit", bad_spec, "--dry-run", local}, "bad.yaml");
+  ExpectExit(services::kExitNoInput, {"submit", dir + "/missing.yaml", local}, "missing.yaml");
+  ExpectExit(services::kExitNoInput, {"runs", "get", "run-99", local}, "run-99");
+  const std::string nobody = absl::StrCat("127.0.0.1:", testing::PickFreePort());
+  ExpectExit(services::kExitUnavailable, {"health", "--addr", nobody, "--timeout=2s"},
+             "UNAVAILABLE");
+  // Another directory: the cluster's token is not used.
+  ExpectExit(services::kExitNoPermission,
+             {"status", "--addr", cluster->coordinator_address, "--data-dir", dir},
+             "requires a token");
+  const RunResult config =
+      RunProgram(BinaryPath("dcs-coordinator"), {"--config", bad_config});
+  EXPECT_EQ(config.exit_code, services::kExitConfig) << config.output;
+  EXPECT_THAT(config.output, HasSubstr("unknown key 'lissten'"));
+  EXPECT_EQ(InterruptedExit({"runs", "watch", "run-1", local}, "eval@"),
+            services::kExitInterrupted);
+
+  ExpectExit(services::kExitOk, {"down", local}, "cluster stopped");
+}
+
+}  // namespace
+}  // namespace dcs::integration
