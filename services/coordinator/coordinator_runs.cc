@@ -35,6 +35,12 @@ namespace {
 
 constexpr char kDefaultConfigName[] = "run.yaml";
 
+// The question (ParkedCalls) a worker of `numerics` asks for work: workers of other numerics
+// may not take the same runs. Never empty, so that such calls always share it.
+std::string NumericsQuestion(absl::string_view numerics) {
+  return absl::StrCat("numerics ", numerics);
+}
+
 // PutCheckpoint's stream: the pieces of one checkpoint and of its evaluation log's new part,
 // stored once the learner has sent them all. Owned by gRPC from construction until OnDone.
 class CheckpointReader final : public grpc::ServerReadReactor<v1::PutCheckpointRequest> {
@@ -253,7 +259,8 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireRun(grpc::CallbackServerCon
       return true;
     };
     // Learners of the same numerics find the same queued run.
-    return AnswerOrPark(context, request->wait(), kRunsTopic, request->numerics(), acquire);
+    return AnswerOrPark(context, request->wait(), kRunsTopic,
+                        NumericsQuestion(request->numerics()), acquire);
   });
 }
 
@@ -285,7 +292,7 @@ grpc::ServerUnaryReactor* CoordinatorService::AcquireSlot(grpc::CallbackServerCo
       return true;
     };
     // Actors of the same numerics that skip the same runs find the same free slot.
-    std::string question = request->numerics();
+    std::string question = NumericsQuestion(request->numerics());
     for (const v1::Lease& learner : request->complete_learners()) {
       absl::StrAppend(&question, " ", learner.run_id(), "@", learner.epoch());
     }
@@ -523,7 +530,7 @@ grpc::ServerWriteReactor<v1::AcquireEvaluationResponse>* CoordinatorService::Acq
     // Actors of the same numerics find the same open job, and a grid's only if they take grids.
     AnswerOrPark(
         *context, request->wait(), kEvaluationJobsTopic,
-        absl::StrCat(request->numerics(), request->grid_cells() ? " grid" : ""),
+        absl::StrCat(NumericsQuestion(request->numerics()), request->grid_cells() ? " grid" : ""),
         [acquire, messages]() -> absl::StatusOr<bool> {
           DCS_ASSIGN_OR_RETURN(*messages, acquire());
           return !messages->front().jobs().empty();
