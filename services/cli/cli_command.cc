@@ -3,7 +3,10 @@
 
 #include <cmath>
 #include <optional>
+#include <string>
+#include <utility>
 
+#include "absl/status/status.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
@@ -13,13 +16,12 @@
 
 namespace dcs::services::cli {
 
-int FailCommand(const absl::Status& status) {
-  // Without payloads: they are for code (common/status_util.h's field), not for the reader.
-  PrintError("dcs", status.ToString(absl::StatusToStringMode::kWithNoExtraData));
-  return ExitCodeFor(status);
-}
-
 namespace {
+
+std::string& UnavailableHint() {
+  static std::string* const hint = new std::string();  // never destroyed: read until exit
+  return *hint;
+}
 
 // `text` as a finite number, or nullopt.
 std::optional<double> FiniteNumber(absl::string_view text) {
@@ -29,6 +31,18 @@ std::optional<double> FiniteNumber(absl::string_view text) {
 }
 
 }  // namespace
+
+void SetUnavailableHint(std::string hint) { UnavailableHint() = std::move(hint); }
+
+int FailCommand(const absl::Status& status) {
+  // Without payloads: they are for code (common/status_util.h's field), not for the reader.
+  std::string line = status.ToString(absl::StatusToStringMode::kWithNoExtraData);
+  if (absl::IsUnavailable(status) && !UnavailableHint().empty()) {
+    absl::StrAppend(&line, "; ", UnavailableHint());
+  }
+  PrintError("dcs", line);
+  return ExitCodeFor(status);
+}
 
 absl::StatusOr<std::vector<double>> ParseNumberList(absl::string_view text,
                                                     absl::string_view flag) {

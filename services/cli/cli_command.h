@@ -35,8 +35,14 @@ struct GlobalFlags {
   std::vector<std::string> invocation;
 };
 
-// Prints `status` as `dcs`'s one error line and returns the exit code it maps to.
+// Prints `status` as `dcs`'s one error line and returns the exit code it maps to. An
+// UNAVAILABLE status (no server answered) ends with the hint SetUnavailableHint gave.
 int FailCommand(const absl::Status& status);
+
+// What FailCommand adds when no server answered: how to get one (start the local cluster, name
+// a coordinator). Set by main before the command runs; empty (the default) adds nothing. Not
+// thread-safe: for main.
+void SetUnavailableHint(std::string hint);
 
 struct CliCommand {
   CLI::App* app;            // owned by the parent CLI::App

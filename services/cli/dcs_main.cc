@@ -6,7 +6,9 @@
 // (services/cli/torch_commands.h). stdout carries data only; progress and errors
 // go to stderr. Exit codes: README.md.
 
+#include <filesystem>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -20,6 +22,7 @@
 #include "services/cli/cluster_client.h"
 #include "services/cli/cluster_commands.h"
 #include "services/cli/env_commands.h"
+#include "services/cli/local_cluster.h"
 #include "services/cli/policy_commands.h"
 #include "services/cli/report_commands.h"
 #include "services/cli/runs_commands.h"
@@ -53,8 +56,12 @@ int Main(int argc, char** argv) {
                  "a server's gRPC address host:port (default: the local cluster's "
                  "coordinator, else 127.0.0.1:50051)")
       ->envname("DCS_ADDR");
-  app.add_option("--data-dir", flags.data_dir, "where `dcs up` keeps logs and cluster state")
-      ->capture_default_str();
+  CLI::Option* data_dir =
+      app.add_option("--data-dir", flags.data_dir,
+                     "where `dcs up` keeps logs and cluster state (default: $DCS_DATA_DIR, else "
+                     "the nearest dcs-data, here or in a parent directory, that records a "
+                     "cluster `dcs up` started, else ./dcs-data)")
+          ->envname("DCS_DATA_DIR");
   app.add_option("--token-file", flags.token_file,
                  "the cluster's bearer token (default: $DCS_TOKEN, else the local cluster's "
                  "when calling its coordinator)")
@@ -70,6 +77,17 @@ int Main(int argc, char** argv) {
   }
 
   if (std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  const bool data_dir_named = data_dir->count() > 0;  // by the flag or DCS_DATA_DIR
+  if (!data_dir_named) {
+    std::error_code no_cwd;  // a removed working directory: ./dcs-data, which will not do either
+    flags.data_dir = FindDataDir(std::filesystem::current_path(no_cwd));
+  }
+  if (flags.addr.empty() && !ReadClusterState(flags.data_dir).ok()) {
+    SetUnavailableHint(absl::StrCat(
+        "no local cluster is recorded in ", flags.data_dir,
+        data_dir_named ? "" : " (looked here and in the parent directories)",
+        ": start one with `dcs up`, or name a coordinator with --addr or DCS_ADDR"));
+  }
   absl::StatusOr<std::string> token = ClientToken(flags);
   if (!token.ok()) return FailCommand(token.status());
   SetClusterToken(*std::move(token));

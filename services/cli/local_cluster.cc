@@ -33,6 +33,8 @@ constexpr absl::Duration kPollInterval = absl::Milliseconds(20);
 
 std::string StatePath(const std::string& data_dir) { return (fs::path(data_dir) / kStateFile); }
 
+constexpr char kDefaultDataDir[] = "dcs-data";
+
 std::string PortFilePath(const std::string& data_dir, const std::string& name) {
   return fs::path(data_dir) / "run" / (name + ".ports");
 }
@@ -125,6 +127,16 @@ absl::StatusOr<ClusterState> ReadClusterState(const std::string& data_dir) {
     return state;
   } catch (const YAML::Exception& e) {
     return absl::DataLossError(absl::StrCat(path, " is unreadable: ", e.what()));
+  }
+}
+
+std::string FindDataDir(const fs::path& from) {
+  for (fs::path dir = from;; dir = dir.parent_path()) {
+    std::error_code error;  // an unreadable directory records nothing
+    if (fs::exists(StatePath(dir / kDefaultDataDir), error)) {
+      return dir == from ? kDefaultDataDir : (dir / kDefaultDataDir).string();
+    }
+    if (dir == dir.parent_path()) return kDefaultDataDir;  // the root, or a relative path's top
   }
 }
 

@@ -20,6 +20,7 @@
 
 #include <sys/types.h>
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -65,6 +66,13 @@ struct ClusterState {
 
 // Where a cluster in `data_dir` keeps its token.
 std::string TokenPath(const std::string& data_dir);
+
+// The data directory `dcs` uses when none is named (--data-dir, DCS_DATA_DIR), seen from the
+// directory `from`: the nearest `dcs-data` of `from` or one of its parents that records a
+// cluster (`dcs up` started one there, and no `dcs down` has stopped it), so that a command
+// finds the local cluster from any directory of the project; "dcs-data" (in `from`) if none
+// does.
+std::string FindDataDir(const std::filesystem::path& from);
 
 // The cluster recorded in `data_dir`. FAILED_PRECONDITION if none is (no cluster was started
 // there: a state, not a missing input); DATA_LOSS if cluster.yaml is unreadable.

@@ -126,6 +126,47 @@ TEST(DcsCliTest, UpDetachedThenStatusThenDown) {
   EXPECT_FALSE(std::filesystem::exists(token));
 }
 
+// `dcs` in a directory, as a shell started there runs it.
+RunResult DcsIn(const std::string& directory, const std::string& args) {
+  return RunProgram("/bin/sh",
+                    {"-c", absl::StrCat("cd '", directory, "' && exec '", BinaryPath("dcs"),
+                                        "' ", args)});
+}
+
+TEST(DcsCliTest, TheLocalClusterIsFoundFromAnyDirectoryBelowItsDataDirectory) {
+  const std::string project = MakeTempDir();
+  const std::string data_dir = absl::StrCat(project, "/dcs-data");
+  const std::string deep = absl::StrCat(project, "/configs/mine");
+  std::filesystem::create_directories(deep);
+  ASSERT_EQ(DcsIn(project, "up --detach --actors=1").exit_code, 0);
+  absl::StatusOr<services::cli::ClusterState> state = services::cli::ReadClusterState(data_dir);
+  ASSERT_TRUE(state.ok()) << state.status();
+
+  // Two directories down, with neither --data-dir nor --addr: the cluster above, and its token.
+  const RunResult status = DcsIn(deep, "status");
+  EXPECT_EQ(status.exit_code, 0) << status.output;
+  EXPECT_THAT(status.output, HasSubstr(state->coordinator_address));
+  {
+    // Anywhere else, DCS_DATA_DIR names it.
+    ScopedVariable named("DCS_DATA_DIR", data_dir);
+    const RunResult elsewhere = DcsIn(MakeTempDir(), "status");
+    EXPECT_EQ(elsewhere.exit_code, 0) << elsewhere.output;
+    EXPECT_THAT(elsewhere.output, HasSubstr(state->coordinator_address));
+  }
+  const RunResult down = DcsIn(deep, "down");
+  EXPECT_EQ(down.exit_code, 0) << down.output;
+  ExpectAllStopped(*state);
+}
+
+// Nothing listens on the default address (127.0.0.1:50051) on a test machine.
+TEST(DcsCliTest, WithNoClusterFoundAnUnansweredCallSaysHowToStartOne) {
+  const RunResult status = DcsIn(MakeTempDir(), "status --timeout=2s");
+  EXPECT_EQ(status.exit_code, services::kExitUnavailable) << status.output;
+  ASSERT_THAT(Lines(status.output), SizeIs(1)) << status.output;
+  EXPECT_THAT(status.output, HasSubstr("no local cluster is recorded in dcs-data (looked here "
+                                       "and in the parent directories): start one with `dcs up`"));
+}
+
 // `dcs up` starts the learner with the pinned numeric kernels (common/pinned_kernels.h), over
 // a user's own choice: libtorch starts once in the cluster, and the learner registers with the
 // pinned kernels, as `dcs status` shows.
