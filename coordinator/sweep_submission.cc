@@ -61,4 +61,12 @@ absl::StatusOr<ExpandedSweep> ExpandSweep(const std::string& spec_text,
   return sweep;
 }
 
+SweepRecord SweepPreview(const ExpandedSweep& sweep) {
+  return {.name = sweep.submission.name,
+          .seeds = sweep.submission.seeds,
+          .trials = sweep.submission.trials,
+          .runs_by_state = {{RunState::kQueued,
+                             static_cast<int64_t>(sweep.submission.runs.size())}}};
+}
+
 }  // namespace dcs::coordinator

@@ -40,6 +40,10 @@ absl::StatusOr<ExpandedSweep> ExpandSweep(const std::string& spec_text,
                                           const std::string& default_name,
                                           const std::string& request_id);
 
+// What `sweep` would be once submitted, as a record: its name, seeds and trials, and every run
+// queued (`submit --dry-run`, offline or on the coordinator).
+SweepRecord SweepPreview(const ExpandedSweep& sweep);
+
 }  // namespace dcs::coordinator
 
 #endif  // DCS_COORDINATOR_SWEEP_SUBMISSION_H_

@@ -68,13 +68,12 @@ absl::StatusOr<v1::Run> SubmitRun(const std::string& address, const std::string&
 
 absl::StatusOr<v1::Sweep> SubmitSweep(const std::string& address, const std::string& spec,
                                       const std::string& spec_name, const std::string& name,
-                                      bool validate_only, absl::Duration timeout) {
+                                      absl::Duration timeout) {
   v1::SubmitSweepRequest request;
   request.set_request_id(NewRequestId());
   request.set_spec(spec);
   request.set_spec_name(spec_name);
   request.set_name(name);
-  request.set_validate_only(validate_only);
   v1::SubmitSweepResponse response;
   // The request id makes a retry safe if the first attempt was taken but not answered.
   DCS_RETURN_IF_ERROR(CallWithRetries(*Coordinator(address),

@@ -68,12 +68,11 @@ absl::StatusOr<v1::BackupPiece> BackupStore(const std::string& address, const st
                                             absl::Duration timeout);
 
 // Queues the sweep of `spec` (named `spec_name` in errors; `name` when the spec gives none)
-// under a new random request id, resent as is if the call must be retried; with
-// `validate_only`, checks it and returns its trials and run count, storing nothing.
-// INVALID_ARGUMENT from the coordinator lists every problem of the spec with its path and line.
+// under a new random request id, resent as is if the call must be retried. INVALID_ARGUMENT
+// from the coordinator lists every problem of the spec with its path and line.
 absl::StatusOr<v1::Sweep> SubmitSweep(const std::string& address, const std::string& spec,
                                       const std::string& spec_name, const std::string& name,
-                                      bool validate_only, absl::Duration timeout);
+                                      absl::Duration timeout);
 // The sweep and its runs.
 absl::StatusOr<v1::GetSweepResponse> GetSweep(const std::string& address,
                                               const std::string& sweep_id,

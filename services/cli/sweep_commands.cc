@@ -12,12 +12,15 @@
 
 #include "absl/strings/str_cat.h"
 #include "common/atomic_file.h"
+#include "common/status_macros.h"
 #include "common/text_table.h"
+#include "coordinator/sweep_submission.h"
 #include "services/cli/cluster_client.h"
 #include "services/cli/command_output.h"
 #include "services/cli/detach.h"
 #include "services/cli/run_client.h"
 #include "services/cli/sweep_view.h"
+#include "services/coordinator/record_proto.h"
 #include "services/exit_codes.h"
 
 namespace dcs::services::cli {
@@ -81,6 +84,15 @@ int WatchSweepCommand(const GlobalFlags& flags, const std::string& sweep_id) {
   return kExitOk;
 }
 
+// What `submit --dry-run` shows: the sweep `spec` would be, read and expanded as the
+// coordinator does (coordinator/sweep_submission.h), without one.
+absl::StatusOr<v1::Sweep> PreviewSweep(const std::string& spec, const std::string& spec_name,
+                                       const std::string& name) {
+  DCS_ASSIGN_OR_RETURN(const coordinator::ExpandedSweep sweep,
+                       coordinator::ExpandSweep(spec, spec_name, name, /*request_id=*/""));
+  return SweepToProto(coordinator::SweepPreview(sweep));
+}
+
 struct SubmitFlags {
   std::string spec;
   bool watch = false;
@@ -91,8 +103,11 @@ int SubmitCommand(const GlobalFlags& flags, const SubmitFlags& submit) {
   absl::StatusOr<std::string> text = ReadFile(submit.spec);
   if (!text.ok()) return FailCommand(text.status());
   const std::string stem = std::filesystem::path(submit.spec).stem().string();
-  absl::StatusOr<v1::Sweep> sweep = SubmitSweep(CoordinatorAddress(flags), *text, submit.spec,
-                                                stem, submit.dry_run, flags.timeout);
+  // A dry run checks and expands the spec here, as the coordinator would: no cluster needed.
+  absl::StatusOr<v1::Sweep> sweep =
+      submit.dry_run ? PreviewSweep(*text, submit.spec, stem)
+                     : SubmitSweep(CoordinatorAddress(flags), *text, submit.spec, stem,
+                                   flags.timeout);
   if (!sweep.ok()) return FailCommand(sweep.status());
   if (flags.output == OutputFormat::kJson) {
     std::cout << CommandJson(*sweep) << std::endl;
@@ -181,7 +196,8 @@ std::vector<CliCommand> AddSweepCommands(CLI::App& dcs, const GlobalFlags& flags
   submit->add_flag("--watch", submit_flags->watch,
                    "then follow it to its end, as `dcs watch`, and exit with its outcome");
   submit->add_flag("--dry-run", submit_flags->dry_run,
-                   "check the spec on the coordinator and list its trials; queue nothing");
+                   "check and expand the spec here, as the coordinator would, and list its trials; "
+                   "needs no cluster, queues nothing");
 
   CLI::App* sweeps = dcs.add_subcommand("sweeps", "List the cluster's sweeps with progress");
 

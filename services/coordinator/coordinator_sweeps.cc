@@ -38,12 +38,7 @@ grpc::ServerUnaryReactor* CoordinatorService::SubmitSweep(grpc::CallbackServerCo
                          coordinator::ExpandSweep(request->spec(), spec_name, request->name(),
                                                   request->request_id()));
     if (request->validate_only()) {
-      coordinator::SweepRecord preview{.name = sweep.submission.name,
-                                       .seeds = sweep.submission.seeds,
-                                       .trials = sweep.submission.trials};
-      preview.runs_by_state = {{coordinator::RunState::kQueued,
-                                static_cast<int64_t>(sweep.submission.runs.size())}};
-      *response->mutable_sweep() = SweepToProto(preview);
+      *response->mutable_sweep() = SweepToProto(coordinator::SweepPreview(sweep));
       return absl::OkStatus();
     }
     DCS_ASSIGN_OR_RETURN(const coordinator::SweepRecord record,

@@ -167,6 +167,15 @@ TEST(DcsCliTest, WithNoClusterFoundAnUnansweredCallSaysHowToStartOne) {
                                        "and in the parent directories): start one with `dcs up`"));
 }
 
+TEST(DcsCliTest, ADryRunChecksASpecWithNoClusterAndQueuesNothing) {
+  const RunResult dry =
+      DcsIn(MakeTempDir(), absl::StrCat("submit ", DCS_SOURCE_DIR, "/configs/quickstart.yaml",
+                                        " --dry-run --timeout=1s"));
+  EXPECT_EQ(dry.exit_code, 0) << dry.output;
+  EXPECT_THAT(dry.output, HasSubstr("quickstart: 6 trials x 3 seeds = 18 runs"));
+  EXPECT_THAT(dry.output, HasSubstr("sinusoidal"));
+}
+
 // `dcs up` starts the learner with the pinned numeric kernels (common/pinned_kernels.h), over
 // a user's own choice: libtorch starts once in the cluster, and the learner registers with the
 // pinned kernels, as `dcs status` shows.
