@@ -23,6 +23,7 @@
 #include "services/cli/cluster_commands.h"
 #include "services/cli/env_commands.h"
 #include "services/cli/local_cluster.h"
+#include "services/cli/logs_command.h"
 #include "services/cli/policy_commands.h"
 #include "services/cli/report_commands.h"
 #include "services/cli/runs_commands.h"
@@ -41,9 +42,10 @@ namespace {
 
 // Every command file of `dcs`, in the order `dcs --help` lists their commands.
 constexpr AddCommandsFunction kCommandFiles[] = {
-    AddClusterCommands, AddVersionCommand, AddEnvCommands,    AddScheduleCommands,
-    AddTrainCommand,    AddRunsCommands,   AddSweepCommands,  AddReportCommands,
-    AddSummarizeCommand, AddStudyCommands, AddPolicyCommands, AddBackupCommand,
+    AddClusterCommands,  AddLogsCommand,   AddVersionCommand, AddEnvCommands,
+    AddScheduleCommands, AddTrainCommand,  AddRunsCommands,   AddSweepCommands,
+    AddReportCommands,   AddSummarizeCommand, AddStudyCommands, AddPolicyCommands,
+    AddBackupCommand,
 };
 
 int Main(int argc, char** argv) {

@@ -106,6 +106,10 @@ void RemoveClusterFiles(const std::string& data_dir, const ClusterState& state) 
 
 std::string TokenPath(const std::string& data_dir) { return fs::path(data_dir) / "token"; }
 
+std::string ProcessLogPath(const std::string& data_dir, const std::string& name) {
+  return fs::path(data_dir) / "logs" / (name + ".log");
+}
+
 absl::StatusOr<ClusterState> ReadClusterState(const std::string& data_dir) {
   const std::string path = StatePath(data_dir);
   if (!fs::exists(path)) {
@@ -264,7 +268,7 @@ absl::Status LocalCluster::StartProcess(const std::string& name, const std::stri
 }
 
 std::string LocalCluster::LogPath(const std::string& name) const {
-  return fs::path(options_.data_dir) / "logs" / (name + ".log");
+  return ProcessLogPath(options_.data_dir, name);
 }
 
 LocalCluster::~LocalCluster() { Stop(absl::Seconds(5)).IgnoreError(); }

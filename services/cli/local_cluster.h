@@ -67,6 +67,9 @@ struct ClusterState {
 // Where a cluster in `data_dir` keeps its token.
 std::string TokenPath(const std::string& data_dir);
 
+// Where a cluster in `data_dir` keeps the log of its process `name` (`dcs logs`).
+std::string ProcessLogPath(const std::string& data_dir, const std::string& name);
+
 // The data directory `dcs` uses when none is named (--data-dir, DCS_DATA_DIR), seen from the
 // directory `from`: the nearest `dcs-data` of `from` or one of its parents that records a
 // cluster (`dcs up` started one there, and no `dcs down` has stopped it), so that a command

@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 
@@ -174,6 +175,47 @@ TEST(DcsCliTest, ADryRunChecksASpecWithNoClusterAndQueuesNothing) {
   EXPECT_EQ(dry.exit_code, 0) << dry.output;
   EXPECT_THAT(dry.output, HasSubstr("quickstart: 6 trials x 3 seeds = 18 runs"));
   EXPECT_THAT(dry.output, HasSubstr("sinusoidal"));
+}
+
+TEST(DcsCliTest, LogsListsPrintsTheLastLinesAndFollowsAProcesssLog) {
+  const std::string data_dir = MakeTempDir();
+  std::filesystem::create_directories(absl::StrCat(data_dir, "/logs"));
+  const std::string coordinator_log = services::cli::ProcessLogPath(data_dir, "coordinator");
+  ASSERT_TRUE(WriteFileAtomically(coordinator_log, "one\ntwo\nthree\n").ok());
+  ASSERT_TRUE(
+      WriteFileAtomically(services::cli::ProcessLogPath(data_dir, "learner"), "l\n").ok());
+
+  const RunResult list = Dcs({"logs", "--data-dir", data_dir});
+  EXPECT_EQ(list.exit_code, 0) << list.output;
+  EXPECT_THAT(list.output, HasSubstr("coordinator"));
+  EXPECT_THAT(list.output, HasSubstr("learner"));
+
+  const RunResult last = Dcs({"logs", "coordinator", "-n", "2", "--data-dir", data_dir});
+  EXPECT_EQ(last.exit_code, 0) << last.output;
+  EXPECT_EQ(last.output, "two\nthree\n");
+
+  const RunResult typo = Dcs({"logs", "learnr", "--data-dir", data_dir});
+  EXPECT_EQ(typo.exit_code, services::kExitNoInput) << typo.output;
+  EXPECT_THAT(typo.output, HasSubstr("did you mean learner?"));
+
+  // -f prints what the process writes next.
+  const std::string followed = absl::StrCat(MakeTempDir(), "/followed.txt");
+  absl::StatusOr<services::cli::ChildProcess> follow = services::cli::ChildProcess::Start(
+      {.path = BinaryPath("dcs"),
+       .args = {"logs", "coordinator", "-n", "0", "-f", "--data-dir", data_dir},
+       .output_path = followed});
+  ASSERT_TRUE(follow.ok()) << follow.status();
+  absl::SleepFor(absl::Milliseconds(300));  // it printed nothing (-n 0) and follows
+  {
+    std::ofstream append(coordinator_log, std::ios::app);
+    append << "four\n";
+  }
+  const absl::Time deadline = absl::Now() + testing::Patient(absl::Seconds(10));
+  while (absl::Now() < deadline && ReadFile(followed).value_or("") != "four\n") {
+    absl::SleepFor(absl::Milliseconds(50));
+  }
+  EXPECT_EQ(ReadFile(followed).value_or(""), "four\n");
+  follow->Stop(absl::Seconds(2));
 }
 
 // `dcs up` starts the learner with the pinned numeric kernels (common/pinned_kernels.h), over
