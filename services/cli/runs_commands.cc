@@ -22,8 +22,18 @@ std::string DefaultOut(const GlobalFlags& flags, const std::string& run_id) {
   return flags.data_dir + "/runs/" + run_id;
 }
 
-int ListRunsCommand(const GlobalFlags& flags) {
-  absl::StatusOr<std::vector<v1::Run>> runs = ListRuns(CoordinatorAddress(flags), flags.timeout);
+// The cluster's runs, or those of the sweep `sweep_id` if not empty.
+absl::StatusOr<std::vector<v1::Run>> RunsToList(const GlobalFlags& flags,
+                                                const std::string& sweep_id) {
+  if (sweep_id.empty()) return ListRuns(CoordinatorAddress(flags), flags.timeout);
+  absl::StatusOr<v1::GetSweepResponse> sweep =
+      GetSweep(CoordinatorAddress(flags), sweep_id, flags.timeout);
+  if (!sweep.ok()) return sweep.status();
+  return std::vector<v1::Run>(sweep->runs().begin(), sweep->runs().end());
+}
+
+int ListRunsCommand(const GlobalFlags& flags, const std::string& sweep_id) {
+  absl::StatusOr<std::vector<v1::Run>> runs = RunsToList(flags, sweep_id);
   if (!runs.ok()) return FailCommand(runs.status());
   if (flags.output == OutputFormat::kJson) {
     v1::ListRunsResponse response;
@@ -72,6 +82,8 @@ std::vector<CliCommand> AddRunsCommands(CLI::App& dcs, const GlobalFlags& flags)
       "runs", "The cluster's runs: list them (no subcommand), watch, cancel or get one");
   auto run_id = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
+  auto sweep_id = std::make_shared<std::string>();
+  runs->add_option("--sweep", *sweep_id, "list only this sweep's runs, e.g. sweep-1");
 
   CLI::App* watch = runs->add_subcommand(
       "watch", "Follow a run to its end (Ctrl-C detaches), then download it and summarise it");
@@ -96,7 +108,7 @@ std::vector<CliCommand> AddRunsCommands(CLI::App& dcs, const GlobalFlags& flags)
        kTableOrJson},
       {cancel, [&flags, run_id] { return CancelRunCommand(flags, *run_id); }, kTableOrJson},
       {get, [&flags, run_id, out] { return GetRunCommand(flags, *run_id, *out); }},
-      {runs, [&flags] { return ListRunsCommand(flags); }, kEveryFormat},
+      {runs, [&flags, sweep_id] { return ListRunsCommand(flags, *sweep_id); }, kEveryFormat},
   };
 }
 

@@ -87,6 +87,12 @@ TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
     EXPECT_EQ(Field(run, "state").string_value(), "completed");
     EXPECT_TRUE(Field(run, "seed").has_number_value()) << "a 64-bit integer as a number";
   }
+  // One sweep's runs: all 8 here, the cluster's only sweep (an unknown sweep is NOT_FOUND,
+  // EachExitCodeOfTheTableComesFromWhatItNames).
+  const std::vector<google::protobuf::Value> sweep_runs =
+      JsonLines({"runs", "--sweep", "sweep-1", addr});
+  ASSERT_FALSE(sweep_runs.empty());
+  EXPECT_EQ(Field(sweep_runs[0], "runs").list_value().values_size(), 8);
   const std::vector<google::protobuf::Value> sweeps = JsonLines({"sweeps", addr});
   ASSERT_FALSE(sweeps.empty());
   EXPECT_EQ(Field(Field(sweeps[0], "sweeps").list_value().values(0), "state").string_value(),
@@ -182,6 +188,7 @@ TEST(CliConventionTest, EachExitCodeOfTheTableComesFromWhatItNames) {
   ExpectExit(services::kExitDataError, {"submit", bad_spec, "--dry-run", local}, "bad.yaml");
   ExpectExit(services::kExitNoInput, {"submit", dir + "/missing.yaml", local}, "missing.yaml");
   ExpectExit(services::kExitNoInput, {"runs", "get", "run-99", local}, "run-99");
+  ExpectExit(services::kExitNoInput, {"runs", "--sweep", "sweep-99", local}, "sweep-99");
   const std::string nobody = absl::StrCat("127.0.0.1:", testing::PickFreePort());
   ExpectExit(services::kExitUnavailable, {"health", "--addr", nobody, "--timeout=2s"},
              "UNAVAILABLE");
