@@ -15,6 +15,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "absl/time/clock.h"
+#include "common/atomic_file.h"
 #include "common/text_table.h"
 #include "services/cli/local_cluster.h"
 #include "services/did_you_mean.h"
@@ -92,10 +93,10 @@ int ListLogs(const GlobalFlags& flags) {
 int PrintLog(const GlobalFlags& flags, const LogsFlags& logs) {
   absl::StatusOr<std::string> path = LogOf(flags.data_dir, logs.process);
   if (!path.ok()) return FailCommand(path.status());
-  std::ifstream file(*path, std::ios::binary);
-  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  std::cout << text.substr(LastLinesStart(text, logs.lines)) << std::flush;
-  uintmax_t printed = text.size();
+  absl::StatusOr<std::string> text = ReadFile(*path);
+  if (!text.ok()) return FailCommand(text.status());
+  std::cout << text->substr(LastLinesStart(*text, logs.lines)) << std::flush;
+  uintmax_t printed = text->size();
   while (logs.follow) {  // until Ctrl-C
     absl::SleepFor(kFollowInterval);
     std::error_code error;
@@ -105,7 +106,8 @@ int PrintLog(const GlobalFlags& flags, const LogsFlags& logs) {
     if (size == printed) continue;
     std::ifstream grown(*path, std::ios::binary);
     grown.seekg(static_cast<std::streamoff>(printed));
-    std::string more((std::istreambuf_iterator<char>(grown)), std::istreambuf_iterator<char>());
+    const std::string more((std::istreambuf_iterator<char>(grown)),
+                           std::istreambuf_iterator<char>());
     std::cout << more << std::flush;
     printed += more.size();
   }
