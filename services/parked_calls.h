@@ -6,7 +6,8 @@
 // may have changed, or their time is up. A worker that asks the coordinator for work and finds
 // none waits there (up to the `wait` its request names) instead of asking again a poll interval
 // later: new work reaches it at once (an evaluation's jobs the moment the learner submits them),
-// and an idle worker still costs one attempt per `wait`.
+// and an idle worker costs at most one attempt per `wait` (none while its question is known to
+// have no answer, below).
 //
 // A call parks under a topic (what it waits for: "evaluation jobs", one evaluation's results)
 // with an attempt and an expiry. The attempt runs at once, then again whenever Wake(topic) is
