@@ -94,10 +94,15 @@ absl::StatusOr<run::SearchSpace> SpaceOf(const coordinator::StudyRecord& study) 
   return run::ParseSearchSpaceYaml(study.submission.space, study.id);
 }
 
-absl::Status Create(const CreateFlags& flags, StudyClient& studies) {
-  DCS_ASSIGN_OR_RETURN(const std::string space, ReadFile(flags.space));
-  // Checked here first, to name the file in errors.
+// The space of `study create --space`, checked here first, to name the file in errors, and
+// before a store is made for a study that cannot be.
+absl::StatusOr<std::string> ReadSpace(const CreateFlags& flags) {
+  DCS_ASSIGN_OR_RETURN(std::string space, ReadFile(flags.space));
   DCS_RETURN_IF_ERROR(run::ParseSearchSpaceYaml(space, flags.space).status());
+  return space;
+}
+
+absl::Status Create(const CreateFlags& flags, const std::string& space, StudyClient& studies) {
   DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study,
                        studies.Create({.request_id = NewRequestId(),
                                        .name = flags.name,
@@ -303,8 +308,14 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
                                           MissingStore missing = MissingStore::kRefuse) {
     return [store, &flags, command, missing] { return RunOn(*store, missing, flags, command); };
   };
-  return {{create, on_studies([=](StudyClient& s) { return Create(*create_flags, s); },
-                              MissingStore::kCreate)},
+  return {{create,
+           [=, &flags] {
+             const absl::StatusOr<std::string> space = ReadSpace(*create_flags);
+             if (!space.ok()) return FailCommand(space.status());
+             return RunOn(*store, MissingStore::kCreate, flags, [&](StudyClient& s) {
+               return Create(*create_flags, *space, s);
+             });
+           }},
           {ask, on_studies([=](StudyClient& s) { return Ask(*study_id, s); }), kTableOrJson},
           {tell, on_studies([=](StudyClient& s) { return Tell(*trial_flags, s); })},
           {report, on_studies([=](StudyClient& s) { return Report(*trial_flags, s); })},

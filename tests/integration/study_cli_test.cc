@@ -123,6 +123,13 @@ TEST_F(StudyCliTest, ABadSpaceIsRefusedNamingTheFileAndCreatesNothing) {
   EXPECT_EQ(create.exit_code, services::kExitDataError) << create.output;
   EXPECT_THAT(create.output, HasSubstr(Path("space.yaml")));
   EXPECT_THAT(create.output, HasSubstr("a log range needs low > 0"));
+  EXPECT_FALSE(std::filesystem::exists(Path("s.db"))) << "the refused study made its store";
+  ASSERT_TRUE(WriteFileAtomically(Path("space.yaml"),
+                                  "parameters: [{name: x, type: float, low: 0, high: 1}]\n")
+                  .ok());
+  ASSERT_EQ(
+      Dcs({"study", "create", "--space", Path("space.yaml"), "--store", Path("s.db")}).exit_code,
+      0);
   const RunResult value = Dcs({"study", "tell", "study-1", "0", "many", "--store", Path("s.db")});
   EXPECT_EQ(value.exit_code, services::kExitDataError);
   EXPECT_THAT(value.output, HasSubstr("VALUE must be a number"));
