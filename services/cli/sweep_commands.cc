@@ -182,6 +182,22 @@ int RetrySweepCommand(const GlobalFlags& flags, const std::string& sweep_id) {
   return PrintSweepState(flags, retried->sweep());
 }
 
+// A command on one sweep, named by its id.
+struct SweepVerb {
+  const char* name;
+  const char* help;
+  int (*run)(const GlobalFlags& flags, const std::string& sweep_id);
+};
+constexpr SweepVerb kSweepVerbs[] = {
+    {"watch",
+     "Follow a sweep live (Ctrl-C detaches): runs by state per trial, steps/s, ETA, the best "
+     "trial so far; exit 0 once it completed, 1 if it failed",
+     WatchSweepCommand},
+    {"cancel", "Stop a sweep's queued and running runs", CancelSweepCommand},
+    {"retry", "Queue a sweep's failed runs again (each resumes from its last checkpoint)",
+     RetrySweepCommand},
+};
+
 }  // namespace
 
 std::vector<CliCommand> AddSweepCommands(CLI::App& dcs, const GlobalFlags& flags) {
@@ -199,28 +215,31 @@ std::vector<CliCommand> AddSweepCommands(CLI::App& dcs, const GlobalFlags& flags
                    "check and expand the spec here, as the coordinator would, and list its trials; "
                    "needs no cluster, queues nothing");
 
-  CLI::App* sweeps = dcs.add_subcommand("sweeps", "List the cluster's sweeps with progress");
+  CLI::App* sweeps = dcs.add_subcommand(
+      "sweeps", "The cluster's sweeps: list them with progress (no subcommand), watch, cancel or "
+                "retry one");
 
-  CLI::App* watch = dcs.add_subcommand(
-      "watch", "Follow a sweep live (Ctrl-C detaches): runs by state per trial, steps/s, ETA, "
-               "the best trial so far; exit 0 once it completed, 1 if it failed");
-  watch->add_option("sweep", *sweep_id, "the sweep's id, e.g. sweep-1")->required();
-
-  CLI::App* cancel = dcs.add_subcommand("cancel", "Stop a sweep's queued and running runs");
-  cancel->add_option("sweep", *sweep_id, "the sweep's id")->required();
-
-  CLI::App* retry = dcs.add_subcommand(
-      "retry", "Queue a sweep's failed runs again (each resumes from its last checkpoint)");
-  retry->add_option("sweep", *sweep_id, "the sweep's id")->required();
-
-  return {
-      {submit, [&flags, submit_flags] { return SubmitCommand(flags, *submit_flags); },
-       kTableOrJson},
-      {sweeps, [&flags] { return ListSweepsCommand(flags); }, kEveryFormat},
-      {watch, [&flags, sweep_id] { return WatchSweepCommand(flags, *sweep_id); }, kTableOrJson},
-      {cancel, [&flags, sweep_id] { return CancelSweepCommand(flags, *sweep_id); }, kTableOrJson},
-      {retry, [&flags, sweep_id] { return RetrySweepCommand(flags, *sweep_id); }, kTableOrJson},
-  };
+  std::vector<CliCommand> commands;
+  // The verbs on one sweep, as `dcs sweeps VERB`, beside `dcs runs VERB`; and at the top level,
+  // their first spelling, kept.
+  for (const SweepVerb& verb : kSweepVerbs) {
+    for (CLI::App* parent : {sweeps, &dcs}) {
+      CLI::App* command = parent->add_subcommand(
+          verb.name, parent == sweeps
+                         ? std::string(verb.help)
+                         : absl::StrCat(verb.help, " (as `dcs sweeps ", verb.name, "`)"));
+      command->add_option("sweep", *sweep_id, "the sweep's id, e.g. sweep-1")->required();
+      commands.push_back({command,
+                          [&flags, sweep_id, run = verb.run] { return run(flags, *sweep_id); },
+                          kTableOrJson});
+    }
+  }
+  // After its verbs: the first command parsed is the one run.
+  commands.push_back({sweeps, [&flags] { return ListSweepsCommand(flags); }, kEveryFormat});
+  commands.push_back({submit,
+                      [&flags, submit_flags] { return SubmitCommand(flags, *submit_flags); },
+                      kTableOrJson});
+  return commands;
 }
 
 }  // namespace dcs::services::cli

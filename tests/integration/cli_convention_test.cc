@@ -98,6 +98,14 @@ TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
   EXPECT_EQ(Field(Field(sweeps[0], "sweeps").list_value().values(0), "state").string_value(),
             "completed");
   JsonLines({"report", "sweep-1", addr});
+  // A sweep's verbs as a run's are spelt, and their first spelling.
+  for (const std::vector<std::string>& watch : std::vector<std::vector<std::string>>{
+           {"sweeps", "watch", "sweep-1", addr}, {"watch", "sweep-1", addr}}) {
+    const std::vector<google::protobuf::Value> watched = JsonLines(watch);
+    ASSERT_FALSE(watched.empty()) << watch[0];
+    EXPECT_EQ(Field(Field(watched.back(), "sweep"), "state").string_value(), "completed")
+        << watch[0];
+  }
   const std::string run_dir = dir + "/run-1";
   JsonLines({"runs", "watch", "run-1", "--out", run_dir, addr});
   JsonLines({"summarize", run_dir});
@@ -189,6 +197,8 @@ TEST(CliConventionTest, EachExitCodeOfTheTableComesFromWhatItNames) {
   ExpectExit(services::kExitNoInput, {"submit", dir + "/missing.yaml", local}, "missing.yaml");
   ExpectExit(services::kExitNoInput, {"runs", "get", "run-99", local}, "run-99");
   ExpectExit(services::kExitNoInput, {"runs", "--sweep", "sweep-99", local}, "sweep-99");
+  ExpectExit(services::kExitNoInput, {"sweeps", "cancel", "sweep-99", local}, "sweep-99");
+  ExpectExit(services::kExitNoInput, {"retry", "sweep-99", local}, "sweep-99");
   const std::string nobody = absl::StrCat("127.0.0.1:", testing::PickFreePort());
   ExpectExit(services::kExitUnavailable, {"health", "--addr", nobody, "--timeout=2s"},
              "UNAVAILABLE");
