@@ -25,7 +25,7 @@ namespace dcs::services::cli {
 // Flags every `dcs` command may use.
 struct GlobalFlags {
   std::string addr;  // --addr or DCS_ADDR
-  std::string data_dir = "dcs-data";
+  std::string data_dir;  // --data-dir or DCS_DATA_DIR, else FindDataDir (local_cluster.h)
   std::string token_file;  // --token-file or DCS_TOKEN_FILE
   TlsFiles tls;            // --tls-cert, --tls-key, --tls-ca, --tls-server-name
   absl::Duration timeout = absl::Seconds(5);

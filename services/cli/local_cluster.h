@@ -4,7 +4,7 @@
 
 // A DCS cluster on this machine, as child processes on loopback: `dcs up` and `dcs down`.
 //
-// Layout of the data directory (./dcs-data by default):
+// Layout of the data directory (./dcs-data by default: FindDataDir):
 //   cluster.yaml         the running cluster: supervisor pid, every process's pid and addresses
 //                        (how `dcs status` and `dcs down` find it)
 //   prometheus-targets.yml  every process's /metrics address, a Prometheus file_sd file
@@ -35,8 +35,8 @@
 namespace dcs::services::cli {
 
 struct LocalClusterOptions {
-  std::string data_dir = "dcs-data";
-  std::string bin_dir;  // holds dcs-coordinator, dcs-learner, dcs-actor
+  std::string data_dir;  // laid out as above
+  std::string bin_dir;   // holds dcs-coordinator, dcs-learner, dcs-actor
   int actors = 2;
   std::string coordinator_listen = "127.0.0.1:0";
   bool detach = false;  // children in their own sessions, left running when `dcs up` exits
