@@ -2,7 +2,7 @@
 #ifndef DCS_RUN_RUN_SPEC_H_
 #define DCS_RUN_RUN_SPEC_H_
 
-// One training run as a user specifies it (`dcs train --config run.yaml`; later one run of a
+// One training run as a user specifies it (`dcs train run.yaml`; later one run of a
 // sweep): the environment and its context, how the varied feature starts each episode and moves
 // within it, what the policy observes, the evaluation protocol, PPO's settings, the budget and
 // the seed. Features by name, not index: the run resolves them against the environment

@@ -2,7 +2,7 @@
 #ifndef DCS_RUN_RUN_SPEC_YAML_H_
 #define DCS_RUN_RUN_SPEC_YAML_H_
 
-// Training-run configs (run/run_spec.h) read from YAML, as `dcs train --config run.yaml`
+// Training-run configs (run/run_spec.h) read from YAML, as `dcs train run.yaml`
 // and the files in configs/ write them, and their validation against the environment. A full
 // example (every key; all but the evaluation contexts are optional and default to RunSpec's
 // member initialisers):

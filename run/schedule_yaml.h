@@ -3,7 +3,7 @@
 #define DCS_RUN_SCHEDULE_YAML_H_
 
 // Schedule configs (env/schedule_config.h) read from YAML, as run configs, sweep specs and
-// `dcs schedule preview --spec FILE` write them:
+// `dcs schedule preview FILE` write them:
 //
 //   family: cosine_annealing
 //   T_0: 250

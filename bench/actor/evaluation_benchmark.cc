@@ -5,7 +5,7 @@
 // halve, for the paper's CartPole config 15 contexts x 30 episodes, about 180k environment
 // steps with this policy. The policy is the latest checkpoint of a run directory that
 // `dcs train` wrote, named by DCS_BENCH_RUN_DIR, for example
-//   dcs train --config configs/cartpole_length_pool7_static_blind.yaml --out /tmp/trained
+//   dcs train configs/cartpole_length_pool7_static_blind.yaml --out /tmp/trained
 //   DCS_BENCH_RUN_DIR=/tmp/trained build/bench/actor/actor_evaluation_benchmark
 // Counters: environment steps per second, and the evaluation's avg_combined (the same run dir
 // gives the same figure whatever the machine).

@@ -23,6 +23,6 @@ echo "seed,seconds" > "${out}/seconds.csv"
 export config out dcs
 seq 0 $((seeds - 1)) | xargs -P "${jobs}" -I{} bash -c '
   start=${EPOCHREALTIME}
-  "${dcs}" train --config "${config}" --seed {} --out "${out}/seed{}" > /dev/null 2> "${out}/seed{}.log"
+  "${dcs}" train "${config}" --seed {} --out "${out}/seed{}" > /dev/null 2> "${out}/seed{}.log"
   awk -v s="${start}" -v e="${EPOCHREALTIME}" "BEGIN { printf \"{},%.2f\n\", e - s }" >> "${out}/seconds.csv"'
 "${dcs}" summarize "${out}"/seed*/

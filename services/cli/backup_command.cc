@@ -29,7 +29,7 @@ std::vector<CliCommand> AddBackupCommand(CLI::App& dcs, const GlobalFlags& flags
   CLI::App* backup = dcs.add_subcommand(
       "backup", "Copy the coordinator's store (runs, sweeps, studies, evaluations) as it is now "
                 "into a file; the runs' checkpoints stay in its data directory");
-  backup->add_option("--out", *out, "the file to write (replaced if it exists)")->required();
+  AddOutFile(*backup, out.get(), "the backup, a SQLite file (replaced if it exists)")->required();
   return {{backup, [&flags, out] { return BackupCommand(flags, *out); }}};
 }
 

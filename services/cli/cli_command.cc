@@ -58,6 +58,14 @@ absl::StatusOr<std::vector<double>> ParseNumberList(absl::string_view text,
   return numbers;
 }
 
+CLI::Option* AddOutDirectory(CLI::App& command, std::string* out, std::string help) {
+  return command.add_option("--out", *out, std::move(help))->type_name("DIR");
+}
+
+CLI::Option* AddOutFile(CLI::App& command, std::string* out, std::string help) {
+  return command.add_option("--out", *out, std::move(help))->type_name("FILE");
+}
+
 absl::StatusOr<std::map<std::string, double>> ParseAssignments(
     const std::vector<std::string>& assignments, absl::string_view flag) {
   std::map<std::string, double> values;

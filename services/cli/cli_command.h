@@ -59,6 +59,15 @@ inline const std::vector<OutputFormat> kTableOrJson = {OutputFormat::kTable, Out
 // What each command file provides: adds its commands to `dcs`. `flags` outlives them.
 using AddCommandsFunction = std::vector<CliCommand> (*)(CLI::App& dcs, const GlobalFlags& flags);
 
+// The command line's one convention for what a command reads and writes:
+// - what it acts on (a config, a spec, a run, a sweep, a study) is a positional argument; a flag
+//   that once named it (`train --config FILE`) stays as its alias;
+// - `--out` is a directory (shown as `--out DIR`) where the command writes several files, and a
+//   file (`--out FILE`) where it writes one artifact (a video, a state dict, a backup, a CSV),
+//   with anything it writes beside that file named in `help`.
+CLI::Option* AddOutDirectory(CLI::App& command, std::string* out, std::string help);
+CLI::Option* AddOutFile(CLI::App& command, std::string* out, std::string help);
+
 // Comma-separated finite numbers ("0.35,0.75"). A UsageError (services/exit_codes.h) naming
 // `flag` and the bad entry.
 absl::StatusOr<std::vector<double>> ParseNumberList(absl::string_view text,

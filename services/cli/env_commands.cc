@@ -248,7 +248,7 @@ std::vector<CliCommand> AddEnvCommands(CLI::App& dcs, const GlobalFlags& flags) 
       ->check(CLI::Range(0, 100000));
   render->add_option("--seed", render_flags->seed, "the reset's seed")->capture_default_str();
   render->add_option("--set", render_flags->set, "a context feature's value, name=value");
-  render->add_option("--out", render_flags->out, "the directory for frame_NNNNN.png")
+  AddOutDirectory(*render, &render_flags->out, "the directory for frame_NNNNN.png")
       ->required();
   render->add_option("--scale", render_flags->scale,
                      "pixel repetition (default: 4 for image observations, else 1)")

@@ -84,8 +84,8 @@ std::vector<CliCommand> AddPolicyCommands(CLI::App& dcs, const GlobalFlags& glob
                    "the episodes' seed (cell c's episode i resets as the run's evaluation "
                    "context c would)")
       ->capture_default_str();
-  eval->add_option("--out", eval_flags->out,
-                   "a directory for the figure: its data, gnuplot script and image");
+  AddOutDirectory(*eval, &eval_flags->out,
+                  "a directory for the figure: its data, gnuplot script and image");
   AddChoiceOption(*eval, "--format", &eval_flags->format, ChoicesOf(report::kFigureFormatNames),
                   "the image: svg, png or pdf");
   eval->add_option("--threads", eval_flags->threads, "threads evaluating (default: one a core)")
@@ -113,9 +113,9 @@ std::vector<CliCommand> AddPolicyCommands(CLI::App& dcs, const GlobalFlags& glob
   play->add_option("--seed", play_flags->seed,
                    "the episode's seed (its reset and its schedule's draws)")
       ->capture_default_str();
-  play->add_option("--out", play_flags->out,
-                   "the video: NAME.mp4 or NAME.gif, one frame per step and one of the reset, "
-                   "at the environment's 50 fps (needs Debian's ffmpeg)");
+  AddOutFile(*play, &play_flags->out,
+             "the video: NAME.mp4 or NAME.gif, one frame per step and one of the reset, at "
+             "the environment's 50 fps (needs Debian's ffmpeg)");
   play->add_option("--strip", play_flags->strip,
                    "a few frames spread over the episode side by side as one PNG, NAME.png, for "
                    "a README or a paper");
@@ -132,8 +132,8 @@ std::vector<CliCommand> AddPolicyCommands(CLI::App& dcs, const GlobalFlags& glob
   export_command->add_option("RUN", export_flags->run, kRunHelp)->required();
   export_command->add_option("--checkpoint", export_flags->checkpoint, kCheckpointHelp)
       ->capture_default_str();
-  export_command->add_option("--out", export_flags->out,
-                             "the state dict, NAME.pt; the layout goes to NAME.json")
+  AddOutFile(*export_command, &export_flags->out,
+             "the state dict, NAME.pt; the layout goes to NAME.json beside it")
       ->capture_default_str();
 
   return {

@@ -218,7 +218,7 @@ std::vector<CliCommand> AddReportCommands(CLI::App& dcs, const GlobalFlags& flag
               "family heatmap, performance profiles), each beside its CSV and script, and an "
               "index.html with the report's table; prints index.html's path");
   plot->add_option("sweep", plot_flags->sweep_id, "the sweep's id, e.g. sweep-1")->required();
-  plot->add_option("--out", plot_flags->out, "the directory to write")->required();
+  AddOutDirectory(*plot, &plot_flags->out, "the directory to write")->required();
   AddChoiceOption(*plot, "--format", &plot_flags->format, ChoicesOf(report::kFigureFormatNames),
                   "svg, png or pdf");
   plot->add_option("--top", plot_flags->top,

@@ -88,7 +88,7 @@ std::vector<CliCommand> AddRunsCommands(CLI::App& dcs, const GlobalFlags& flags)
   CLI::App* watch = runs->add_subcommand(
       "watch", "Follow a run to its end (Ctrl-C detaches), then download it and summarise it");
   watch->add_option("run", *run_id, "the run's id, e.g. run-1")->required();
-  watch->add_option("--out", *out, "where its files go (default: <data-dir>/runs/<run id>)");
+  AddOutDirectory(*watch, out.get(), "where its files go (default: <data-dir>/runs/<run id>)");
 
   CLI::App* cancel = runs->add_subcommand("cancel", "Stop a queued or running run");
   cancel->add_option("run", *run_id, "the run's id")->required();
@@ -97,7 +97,7 @@ std::vector<CliCommand> AddRunsCommands(CLI::App& dcs, const GlobalFlags& flags)
       "get", "Download a run's config, checkpoints and evaluation log, as `dcs train` lays "
              "them out");
   get->add_option("run", *run_id, "the run's id")->required();
-  get->add_option("--out", *out, "where its files go (default: <data-dir>/runs/<run id>)");
+  AddOutDirectory(*get, out.get(), "where its files go (default: <data-dir>/runs/<run id>)");
 
   return {
       {watch,

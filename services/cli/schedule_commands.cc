@@ -119,7 +119,7 @@ std::vector<CliCommand> AddScheduleCommands(CLI::App& dcs, const GlobalFlags&) {
   CLI::App* preview = schedule_group->add_subcommand(
       "preview",
       "Write schedule trajectories over a few episodes as CSV (and a figure, drawn by gnuplot)");
-  preview->add_option("--spec", preview_flags->spec,
+  preview->add_option("SPEC,--spec", preview_flags->spec,
                       "a YAML file of schedule configs, a family name, or 'all'")
       ->required();
   preview->add_option("--range", preview_flags->range, "the training range lo,hi")
@@ -136,7 +136,7 @@ std::vector<CliCommand> AddScheduleCommands(CLI::App& dcs, const GlobalFlags&) {
       ->check(CLI::Range(1, 1000000));
   preview->add_option("--seed", preview_flags->options.seed, "the preview's seed")
       ->capture_default_str();
-  preview->add_option("--out", preview_flags->out, "the CSV file to write")->required();
+  AddOutFile(*preview, &preview_flags->out, "the trajectories, a CSV file")->required();
   preview->add_option("--svg", preview_flags->svg,
                       "also draw the figure into this SVG file with gnuplot; its script and data "
                       "stay beside it as STEM.gp and STEM.csv (FILE's stem): restyle the "

@@ -233,7 +233,9 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
 
   auto create_flags = std::make_shared<CreateFlags>();
   CLI::App* create = study->add_subcommand("create", "Create a study and print its id");
-  create->add_option("--space", create_flags->space, "the search space (YAML)")->required();
+  create->add_option("SPACE,--space", create_flags->space, "the search space (YAML)")
+      ->type_name("FILE")
+      ->required();
   create->add_option("--name", create_flags->name, "a name for people");
   AddChoiceOption(*create, "--sampler", &create_flags->sampler,
                   ChoicesOf(coordinator::kSamplerKindNames), "tpe (default) or random");
@@ -294,7 +296,7 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
   CLI::App* plot = study->add_subcommand(
       "plot", "Draw the study's optimisation history with gnuplot; print the image's path");
   plot->add_option("study", plot_flags->study, "the study's id")->required();
-  plot->add_option("--out", plot_flags->out, "the directory to write")->required();
+  AddOutDirectory(*plot, &plot_flags->out, "the directory to write")->required();
   AddChoiceOption(*plot, "--format", &plot_flags->format, ChoicesOf(report::kFigureFormatNames),
                   "svg, png or pdf");
   add_store(plot);

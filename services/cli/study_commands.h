@@ -4,7 +4,7 @@
 
 // Ask-and-tell studies for objectives outside DCS, as Optuna 4.9's:
 //
-//   dcs study create --space space.yaml [--sampler tpe|random] [--seed N]
+//   dcs study create space.yaml [--sampler tpe|random] [--seed N]
 //                    [--direction minimize|maximize] [--multivariate [--group]]
 //                    [--constant-liar] [--startup-trials N] [--name NAME]
 //                    [--pruner none|median|successive_halving] [pruner options]

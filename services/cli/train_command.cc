@@ -36,17 +36,19 @@ struct TrainFlags {
 };
 
 // The run the flags ask for, checked against its directory; nothing changed yet. A new run
-// needs a directory without one; a resumed run needs its stored config, equal to --config if
-// that is given too.
+// needs a directory without one; a resumed run needs its stored config, equal to CONFIG if that
+// is given too.
 absl::StatusOr<run::RunRequest> CheckRunRequest(const TrainFlags& flags,
                                                 const GlobalFlags& global) {
   if (flags.resume && flags.config.empty()) {
     if (flags.out.empty()) {
-      return UsageError("--resume needs --out (the run's directory) or --config");
+      return UsageError("--resume needs --out (the run's directory) or the run config");
     }
     return run::StoredRun(flags.out);
   }
-  if (flags.config.empty()) return UsageError("--config is required");
+  if (flags.config.empty()) {
+    return UsageError("a run config is required: dcs train CONFIG (or --resume --out DIR)");
+  }
   absl::StatusOr<std::string> text = ReadFile(flags.config);
   if (!text.ok()) {
     return absl::NotFoundError(absl::StrCat("cannot read the run config ", flags.config));
@@ -101,16 +103,16 @@ std::vector<CliCommand> AddTrainCommand(CLI::App& dcs, const GlobalFlags& flags)
   CLI::App* train = dcs.add_subcommand(
       "train", "Train one run of a config (PPO, with the paper's evaluation) in this process, "
              "or on a cluster");
-  train->add_option("--config", train_flags->config,
-                    "the run config (YAML; examples in configs/, every key in "
-                    "run/run_spec_yaml.h)");
-  train->add_option("--out", train_flags->out,
-                    "the run's directory: checkpoints, evaluations.csv and .json (default: "
-                    "<data-dir>/runs/<config name>-seed<seed>)");
+  train->add_option("CONFIG,--config", train_flags->config,
+                    "the run config (YAML; examples in configs/, every key in docs/config.md)")
+      ->type_name("FILE");
+  AddOutDirectory(*train, &train_flags->out,
+                  "the run's directory: checkpoints, evaluations.csv and .json (default: "
+                  "<data-dir>/runs/<config name>-seed<seed>)");
   train->add_option("--seed", train_flags->seed, "the run's seed, instead of the config's")
       ->each([train_flags](const std::string&) { train_flags->seed_given = true; });
   train->add_flag("--resume", train_flags->resume,
-                  "continue the run in --out (or the config's default directory) from its "
+                  "continue the run in --out (or CONFIG's default directory) from its "
                   "latest checkpoint");
   train->add_option("--keep", train_flags->keep, "checkpoints to keep")
       ->capture_default_str()

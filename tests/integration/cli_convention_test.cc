@@ -8,11 +8,14 @@
 #include <google/protobuf/util/json_util.h>
 #include <signal.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "absl/strings/str_split.h"
 #include "common/atomic_file.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
@@ -118,7 +121,7 @@ TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
   ASSERT_TRUE(WriteFileAtomically(dir + "/space.yaml",
                                   "parameters:\n  - {name: x, type: float, low: 0, high: 1}\n")
                   .ok());
-  ASSERT_EQ(DcsStdout({"study", "create", "--space", dir + "/space.yaml", "--store", store})
+  ASSERT_EQ(DcsStdout({"study", "create", dir + "/space.yaml", "--store", store})
                 .exit_code,
             0);
   JsonLines({"study", "ask", "study-1", "--store", store});
@@ -141,6 +144,48 @@ TEST(CliConventionTest, AFormatACommandCannotPrintIsRefused) {
       RunProgram(BinaryPath("dcs"), {"env", "trace", "--actions", "0,1", "-o", "csv"});
   EXPECT_EQ(trace.exit_code, 0) << trace.output;
   EXPECT_THAT(trace.output, HasSubstr("t,action,x,x_dot,theta,theta_dot,reward,"));
+}
+
+// The help of `dcs command...` and of each command under it, depth first, by command path.
+void CollectHelp(const std::vector<std::string>& command,
+                 std::map<std::string, std::string>& help) {
+  std::vector<std::string> args = command;
+  args.push_back("--help");
+  const RunResult result = DcsStdout(args);
+  ASSERT_EQ(result.exit_code, 0) << absl::StrJoin(args, " ") << ": " << result.output;
+  help[absl::StrJoin(command, " ")] = result.output;
+  bool in_subcommands = false;
+  for (const std::string& line : Lines(result.output)) {
+    if (line == "Subcommands:") {
+      in_subcommands = true;
+    } else if (in_subcommands && absl::StartsWith(line, "  ") && line[2] != ' ') {
+      std::vector<std::string> subcommand = command;
+      subcommand.push_back(line.substr(2, line.find(' ', 2) - 2));
+      CollectHelp(subcommand, help);
+    } else if (!absl::StartsWith(line, "  ")) {
+      in_subcommands = false;
+    }
+  }
+}
+
+// What a command writes is a directory or a file, and its help says which: `--out DIR` or
+// `--out FILE` (services/cli/cli_command.h), in every command of the tree.
+TEST(CliConventionTest, EveryOutSaysWhetherItIsADirectoryOrAFile) {
+  std::map<std::string, std::string> help;
+  CollectHelp({}, help);
+  EXPECT_TRUE(help.contains("study plot")) << "the walk reaches nested commands";
+  int outs = 0;
+  for (const auto& [command, text] : help) {
+    for (const std::string& line : Lines(text)) {
+      const std::vector<std::string> words = absl::StrSplit(line, ' ', absl::SkipEmpty());
+      if (words.empty() || words[0] != "--out") continue;
+      ++outs;
+      const std::string kind = words.size() > 1 ? words[1].substr(0, words[1].find('=')) : "";
+      EXPECT_THAT(kind, ::testing::AnyOf("DIR", "FILE"))
+          << "dcs " << command << ": " << line;
+    }
+  }
+  EXPECT_GE(outs, 10) << "commands with --out found";
 }
 
 // `dcs args...` exits with `code`, printing one line that holds `message`.
@@ -187,7 +232,7 @@ TEST(CliConventionTest, EachExitCodeOfTheTableComesFromWhatItNames) {
 
   ExpectExit(services::kExitOk, {"submit", long_spec, local}, "sweep-1");
   ExpectExit(services::kExitFailure, {"up", "--detach", local}, "already runs");
-  ExpectExit(services::kExitUsage, {"train"}, "--config is required");
+  ExpectExit(services::kExitUsage, {"train"}, "a run config is required");
   ExpectExit(services::kExitUsage, {"status", "--adr", "x"},
              "unknown flag --adr for `dcs status`; did you mean --addr?");
   ExpectExit(services::kExitUsage, {"runs", "cancle", "run-1"},
