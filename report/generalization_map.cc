@@ -17,6 +17,7 @@ constexpr int kPanelWidth = 520;
 constexpr int kPanelHeight = 400;
 // Training contexts on a heatmap: Okabe-Ito vermillion, apart from every viridis colour.
 constexpr char kTrainingColor[] = "#D55E00";
+constexpr char kSharedPoolColor[] = "#555555";  // grey, as the training range's markers
 // Viridis at five stops (its published colour map), for `set palette defined`.
 constexpr char kViridis[] =
     "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n";
@@ -62,7 +63,10 @@ absl::Status CheckMap(const GeneralizationMap& map) {
 // and its pool as points along the bottom.
 absl::StatusOr<GnuplotFigure> LinesFigure(const GeneralizationMap& map) {
   const MapAxis& axis = map.axes[0];
-  LinePanel panel{.x_label = axis.feature, .y_label = map.value_label};
+  // The legend above the plot: returns fall off at either end of the axis, where a legend
+  // inside would hide them.
+  LinePanel panel{
+      .x_label = axis.feature, .y_label = map.value_label, .legend = LegendPlace::kAbove};
   double bottom = std::numeric_limits<double>::infinity();
   for (const MapPolicy& policy : map.policies) {
     ChartLine line{.label = policy.label, .x = axis.values, .y = policy.means};
@@ -74,19 +78,23 @@ absl::StatusOr<GnuplotFigure> LinesFigure(const GeneralizationMap& map) {
     panel.lines.push_back(std::move(line));
   }
   std::set<double> markers;
+  // Policies trained on one pool (a sweep's conditions, most often) share its points.
+  const bool one_pool = std::all_of(
+      map.policies.begin(), map.policies.end(), [&](const MapPolicy& policy) {
+        return policy.training[0].pool == map.policies.front().training[0].pool;
+      });
   for (size_t p = 0; p < map.policies.size(); ++p) {
     const TrainingSpan& span = map.policies[p].training[0];
     markers.insert(span.low);
     markers.insert(span.high);
-    if (span.pool.empty()) continue;
-    panel.lines.push_back({.label = map.policies.size() == 1
-                                         ? std::string("training pool")
-                                         : absl::StrCat("training pool (", map.policies[p].label,
-                                                        ")"),
-                           .x = span.pool,
-                           .y = std::vector<double>(span.pool.size(), bottom),
-                           .color = SeriesColor(static_cast<int>(p)),
-                           .points = true});
+    if (span.pool.empty() || (one_pool && p > 0)) continue;
+    panel.lines.push_back(
+        {.label = one_pool ? std::string("training pool")
+                           : absl::StrCat("training pool (", map.policies[p].label, ")"),
+         .x = span.pool,
+         .y = std::vector<double>(span.pool.size(), bottom),
+         .color = one_pool ? std::string(kSharedPoolColor) : SeriesColor(static_cast<int>(p)),
+         .points = true});
   }
   panel.x_markers.assign(markers.begin(), markers.end());
   return LineChartFigure({.name = map.name,

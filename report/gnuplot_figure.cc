@@ -70,6 +70,7 @@ std::string KeyCommand(LegendPlace place) {
     case LegendPlace::kBottomRight: where = "bottom right inside"; break;
     case LegendPlace::kBottomLeft: where = "bottom left inside"; break;
     case LegendPlace::kOutsideRight: where = "top right outside vertical"; break;
+    case LegendPlace::kAbove: where = "above horizontal"; break;
     case LegendPlace::kNone: return "unset key\n";
   }
   return absl::StrCat("set key ", where,

@@ -60,8 +60,17 @@ absl::Status CheckPanelGrid(absl::string_view kind, absl::string_view name, size
 std::string SeriesColor(int index);
 inline constexpr char kBaselineColor[] = "#000000";  // a baseline (static) drawn apart
 
-// Where a panel's legend goes: inside the plot at a corner, in a column right of it, or none.
-enum class LegendPlace { kTopRight, kTopLeft, kBottomRight, kBottomLeft, kOutsideRight, kNone };
+// Where a panel's legend goes: inside the plot at a corner, in a column right of it, in rows
+// above it, or none.
+enum class LegendPlace {
+  kTopRight,
+  kTopLeft,
+  kBottomRight,
+  kBottomLeft,
+  kOutsideRight,
+  kAbove,
+  kNone
+};
 
 // The `set key` command placing a legend (`unset key` for kNone), with the DCS look.
 std::string KeyCommand(LegendPlace place);

@@ -133,7 +133,8 @@ absl::StatusOr<Plotted> PlotStudy(const GlobalFlags& flags, const v1::SweepResul
 }
 
 // The report (also as CSV, LaTeX and Markdown beside it), every figure with its data and script,
-// and index.html, in `plot.out`; returns index.html's path.
+// and index.html, in `plot.out` (default <data-dir>/reports/<sweep id>); returns index.html's
+// path.
 absl::StatusOr<std::string> Plot(const GlobalFlags& flags, const PlotFlags& plot) {
   // A study's figures read the scores only; a sweep's, every context's returns.
   DCS_ASSIGN_OR_RETURN(const v1::GetSweepResponse sweep,
@@ -145,25 +146,25 @@ absl::StatusOr<std::string> Plot(const GlobalFlags& flags, const PlotFlags& plot
   DCS_ASSIGN_OR_RETURN(const Plotted plotted, results.study_id().empty()
                                                   ? PlotSweep(results)
                                                   : PlotStudy(flags, results, plot.top));
+  const std::string out =
+      plot.out.empty() ? absl::StrCat(flags.data_dir, "/reports/", plot.sweep_id) : plot.out;
   std::error_code error;
-  std::filesystem::create_directories(plot.out, error);
+  std::filesystem::create_directories(out, error);
   if (error) {
     return absl::FailedPreconditionError(
-        absl::StrCat("cannot create ", plot.out, ": ", error.message()));
+        absl::StrCat("cannot create ", out, ": ", error.message()));
   }
   for (const report::GnuplotFigure& figure : plotted.figures) {
-    DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
-                         RenderFigure(figure, plot.format, plot.out));
+    DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered, RenderFigure(figure, plot.format, out));
     std::cerr << "dcs: drew " << rendered.path << std::endl;
     if (!rendered.gnuplot_output.empty()) std::cerr << rendered.gnuplot_output << std::endl;
   }
   for (const auto& [format, file] : {std::pair{report::ReportFormat::kCsv, "report.csv"},
                                      std::pair{report::ReportFormat::kLatex, "report.tex"},
                                      std::pair{report::ReportFormat::kMarkdown, "report.md"}}) {
-    DCS_RETURN_IF_ERROR(
-        WriteFileAtomically(absl::StrCat(plot.out, "/", file), plotted.report(format)));
+    DCS_RETURN_IF_ERROR(WriteFileAtomically(absl::StrCat(out, "/", file), plotted.report(format)));
   }
-  const std::string index = absl::StrCat(plot.out, "/index.html");
+  const std::string index = absl::StrCat(out, "/index.html");
   DCS_RETURN_IF_ERROR(WriteFileAtomically(
       index, report::SweepIndexHtml(absl::StrCat(results.name(), " (", results.sweep_id(), ")"),
                                     plotted.report(report::ReportFormat::kHtml), plotted.figures,
@@ -218,7 +219,8 @@ std::vector<CliCommand> AddReportCommands(CLI::App& dcs, const GlobalFlags& flag
               "family heatmap, performance profiles), each beside its CSV and script, and an "
               "index.html with the report's table; prints index.html's path");
   plot->add_option("sweep", plot_flags->sweep_id, "the sweep's id, e.g. sweep-1")->required();
-  AddOutDirectory(*plot, &plot_flags->out, "the directory to write")->required();
+  AddOutDirectory(*plot, &plot_flags->out,
+                  "the directory to write (default: <data-dir>/reports/<sweep id>)");
   AddChoiceOption(*plot, "--format", &plot_flags->format, ChoicesOf(report::kFigureFormatNames),
                   "svg, png or pdf");
   plot->add_option("--top", plot_flags->top,

@@ -19,6 +19,7 @@ namespace dcs::report {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::SizeIs;
 
 MapPolicy Policy(const std::string& label, size_t cells, double scale) {
@@ -77,6 +78,27 @@ TEST(GeneralizationMapTest, OneFeatureGivesLinesWithTheTrainingRangeMarked) {
   EXPECT_THAT(figure->data[0].csv, HasSubstr("0,1,0.35,-1,"));
   EXPECT_THAT(figure->script, HasSubstr("0.35"));
   EXPECT_THAT(figure->script, HasSubstr("0.75"));
+}
+
+// Policies trained on one pool (a sweep's conditions) share one legend entry for it; policies
+// on different pools each show their own.
+TEST(GeneralizationMapTest, OneFeatureDrawsAPoolOnceForPoliciesTrainedOnIt) {
+  GeneralizationMap map{.name = "length", .axes = {{.feature = "length", .values = {0.5, 1.0}}}};
+  for (const std::string label : {"static", "sinusoidal"}) {
+    MapPolicy policy = Policy(label, 2, 100);
+    policy.training = {{.low = 0.35, .high = 0.75, .pool = {0.35, 0.75}}};
+    map.policies.push_back(policy);
+  }
+  absl::StatusOr<GnuplotFigure> shared = GeneralizationMapFigure(map);
+  ASSERT_TRUE(shared.ok()) << shared.status();
+  EXPECT_THAT(shared->script, HasSubstr("'training pool'"));
+  EXPECT_THAT(shared->script, Not(HasSubstr("training pool (")));
+
+  map.policies[1].training[0].pool = {0.35, 0.55, 0.75};
+  absl::StatusOr<GnuplotFigure> apart = GeneralizationMapFigure(map);
+  ASSERT_TRUE(apart.ok()) << apart.status();
+  EXPECT_THAT(apart->script, HasSubstr("'training pool (static)'"));
+  EXPECT_THAT(apart->script, HasSubstr("'training pool (sinusoidal)'"));
 }
 
 TEST(GeneralizationMapTest, AMalformedMapIsRefused) {
