@@ -48,6 +48,16 @@ constexpr AddCommandsFunction kCommandFiles[] = {
     AddBackupCommand,
 };
 
+// "table, json or csv": the formats of -o `command` prints.
+std::string FormatNames(const CliCommand& command) {
+  std::string names;
+  for (size_t i = 0; i < command.formats.size(); ++i) {
+    if (i > 0) names += i + 1 == command.formats.size() ? " or " : ", ";
+    absl::StrAppend(&names, NameOf(kOutputFormatNames, command.formats[i]));
+  }
+  return names;
+}
+
 int Main(int argc, char** argv) {
   ConfigureLogging({.component = "dcs"});
   CLI::App app("dcs: dynamic context scheduling for reinforcement learning, as a service", "dcs");
@@ -77,6 +87,12 @@ int Main(int argc, char** argv) {
   for (AddCommandsFunction add : kCommandFiles) {
     for (CliCommand& command : add(app, flags)) commands.push_back(std::move(command));
   }
+  // Each command's help says what it prints (CliConventionTest runs each that prints json).
+  for (const CliCommand& command : commands) {
+    if (command.formats.size() > 1) {
+      command.app->footer(absl::StrCat("Prints its data as -o ", FormatNames(command), "."));
+    }
+  }
 
   if (std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   const bool data_dir_named = data_dir->count() > 0;  // by the flag or DCS_DATA_DIR
@@ -98,13 +114,9 @@ int Main(int argc, char** argv) {
   for (const CliCommand& command : commands) {
     if (!command.app->parsed()) continue;
     if (absl::c_linear_search(command.formats, flags.output)) return command.run();
-    std::vector<std::string> formats;
-    for (OutputFormat format : command.formats) {
-      formats.emplace_back(NameOf(kOutputFormatNames, format));
-    }
     PrintError("dcs", absl::StrCat("-o ", NameOf(kOutputFormatNames, flags.output), ": `",
-                                   CommandPath(*command.app), "` prints ",
-                                   absl::StrJoin(formats, " or "), " (see --help)"));
+                                   CommandPath(*command.app), "` prints ", FormatNames(command),
+                                   " (see --help)"));
     return kExitUsage;
   }
   // Checked here rather than by CLI11, which would report it before an unknown flag.

@@ -9,6 +9,7 @@
 #include <signal.h>
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,16 @@ RunResult DcsStdout(const std::vector<std::string>& args) {
   return RunProgram("/bin/sh", shell, absl::Minutes(5));
 }
 
+// Every command line JsonLines ran.
+std::vector<std::vector<std::string>>& JsonInvocations() {
+  static auto* invocations = new std::vector<std::vector<std::string>>;
+  return *invocations;
+}
+
 // Runs `args` with -o json and expects each line of its stdout, and at least one, to be a JSON
 // value; returns them.
 std::vector<google::protobuf::Value> JsonLines(std::vector<std::string> args) {
+  JsonInvocations().push_back(args);
   args.insert(args.end(), {"-o", "json"});
   const RunResult result = DcsStdout(args);
   const std::string command = absl::StrJoin(args, " ");
@@ -63,6 +71,50 @@ const google::protobuf::Value& Field(const google::protobuf::Value& value,
   const auto& fields = value.struct_value().fields();
   const auto it = fields.find(name);
   return it == fields.end() ? kAbsent : it->second;
+}
+
+// The help of `dcs command...` and of each command under it, depth first, by command path.
+void CollectHelp(const std::vector<std::string>& command,
+                 std::map<std::string, std::string>& help) {
+  std::vector<std::string> args = command;
+  args.push_back("--help");
+  const RunResult result = DcsStdout(args);
+  ASSERT_EQ(result.exit_code, 0) << absl::StrJoin(args, " ") << ": " << result.output;
+  help[absl::StrJoin(command, " ")] = result.output;
+  bool in_subcommands = false;
+  for (const std::string& line : Lines(result.output)) {
+    if (line == "Subcommands:") {
+      in_subcommands = true;
+    } else if (in_subcommands && absl::StartsWith(line, "  ") && line[2] != ' ') {
+      std::vector<std::string> subcommand = command;
+      subcommand.push_back(line.substr(2, line.find(' ', 2) - 2));
+      CollectHelp(subcommand, help);
+    } else if (!absl::StartsWith(line, "  ")) {
+      in_subcommands = false;
+    }
+  }
+}
+
+// The commands whose help says they print JSON (services/cli/dcs_main.cc), by command path.
+std::set<std::string> JsonCommands(const std::map<std::string, std::string>& help) {
+  std::set<std::string> commands;
+  for (const auto& [command, text] : help) {
+    if (absl::StrContains(text, "Prints its data as -o") && absl::StrContains(text, "json")) {
+      commands.insert(command);
+    }
+  }
+  return commands;
+}
+
+// The command path `args` starts with: the longest prefix of it that `help` knows.
+std::string CommandPathOf(const std::vector<std::string>& args,
+                          const std::map<std::string, std::string>& help) {
+  std::string path;
+  for (size_t n = 1; n <= args.size(); ++n) {
+    const std::string prefix = absl::StrJoin(args.begin(), args.begin() + n, " ");
+    if (help.contains(prefix)) path = prefix;
+  }
+  return path;
 }
 
 // A cluster that ran a small sweep, and a study in a store: every command that prints data is
@@ -128,6 +180,30 @@ TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
   ASSERT_EQ(DcsStdout({"study", "tell", "study-1", "0", "0.5", "--store", store}).exit_code, 0);
   JsonLines({"study", "trials", "study-1", "--store", store});
   JsonLines({"study", "best", "study-1", "--store", store});
+  JsonLines({"train", DCS_SOURCE_DIR "/configs/cartpole_length_pool7_static_blind.yaml", "--out",
+             dir + "/trained"});
+
+  // Cancels: of a run, then of the rest of its sweep, then of another sweep by the first
+  // spelling of the verb.
+  const std::string long_spec = dir + "/long.yaml";
+  ASSERT_TRUE(WriteFileAtomically(long_spec, EightRunSweepSpec("long", 10'000'000, 512)).ok());
+  for (const char* sweep : {"sweep-2", "sweep-3"}) {
+    ASSERT_EQ(DcsStdout({"submit", long_spec, addr}).output, absl::StrCat(sweep, "\n"));
+  }
+  JsonLines({"runs", "cancel", "run-9", addr});
+  JsonLines({"sweeps", "cancel", "sweep-2", addr});
+  JsonLines({"cancel", "sweep-3", addr});
+
+  // Every command that says it prints JSON ran above, but retry: it needs a failed run, which
+  // no command can make, and prints what is left as cancel does (sweep_commands.cc).
+  std::map<std::string, std::string> help;
+  CollectHelp({}, help);
+  std::set<std::string> untested = JsonCommands(help);
+  ASSERT_THAT(untested, ::testing::Contains("runs")) << "the commands' help says what they print";
+  for (const std::vector<std::string>& args : JsonInvocations()) {
+    untested.erase(CommandPathOf(args, help));
+  }
+  EXPECT_THAT(untested, ::testing::UnorderedElementsAre("retry", "sweeps retry"));
 }
 
 // A format a command cannot print is a usage error naming what it prints, before it runs.
@@ -144,28 +220,6 @@ TEST(CliConventionTest, AFormatACommandCannotPrintIsRefused) {
       RunProgram(BinaryPath("dcs"), {"env", "trace", "--actions", "0,1", "-o", "csv"});
   EXPECT_EQ(trace.exit_code, 0) << trace.output;
   EXPECT_THAT(trace.output, HasSubstr("t,action,x,x_dot,theta,theta_dot,reward,"));
-}
-
-// The help of `dcs command...` and of each command under it, depth first, by command path.
-void CollectHelp(const std::vector<std::string>& command,
-                 std::map<std::string, std::string>& help) {
-  std::vector<std::string> args = command;
-  args.push_back("--help");
-  const RunResult result = DcsStdout(args);
-  ASSERT_EQ(result.exit_code, 0) << absl::StrJoin(args, " ") << ": " << result.output;
-  help[absl::StrJoin(command, " ")] = result.output;
-  bool in_subcommands = false;
-  for (const std::string& line : Lines(result.output)) {
-    if (line == "Subcommands:") {
-      in_subcommands = true;
-    } else if (in_subcommands && absl::StartsWith(line, "  ") && line[2] != ' ') {
-      std::vector<std::string> subcommand = command;
-      subcommand.push_back(line.substr(2, line.find(' ', 2) - 2));
-      CollectHelp(subcommand, help);
-    } else if (!absl::StartsWith(line, "  ")) {
-      in_subcommands = false;
-    }
-  }
 }
 
 // What a command writes is a directory or a file, and its help says which: `--out DIR` or
