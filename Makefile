@@ -4,6 +4,9 @@
 #               local cluster, its table and figures
 #   make test   bootstrap, build, run every test with ctest; then build the fuzz targets
 #               (tests/fuzz/, in build-fuzz/ with clang) and give each a short pass
+# and for whoever changes a config key, its default or its range:
+#   make docs   regenerate docs/config.md from the code's tables (tools/config_reference.cc);
+#               `make test` fails while it is stale
 BUILD_DIR ?= build
 FUZZ_BUILD_DIR ?= build-fuzz
 JOBS ?= $(shell nproc)
@@ -12,7 +15,7 @@ JOBS ?= $(shell nproc)
 PROGRAMS := dcs dcs-coordinator dcs-learner dcs-actor
 
 .PHONY: all bootstrap configure build programs test fuzz-configure fuzz-build fuzz demo sanitize \
-	clean
+	docs clean
 
 all: build
 
@@ -44,6 +47,10 @@ fuzz: fuzz-build
 
 demo: programs
 	scripts/demo $(BUILD_DIR)
+
+docs: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target dcs-config-reference
+	$(BUILD_DIR)/tools/dcs-config-reference --out docs/config.md
 
 # The release check (README "Working on DCS"): every test under ASan+UBSan, then under TSan.
 sanitize:

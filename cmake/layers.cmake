@@ -8,6 +8,7 @@ dcs_layer(dcs_env 1)                # environments, schedules, the dynamic-conte
 dcs_layer(dcs_proto_grpc 1 GRPC)    # gRPC stubs of the wire contract
 dcs_layer(dcs_actor 2)              # policies, rollout collection, evaluation
 dcs_layer(dcs_run 3)                # a run as data: configs, plans, records
+dcs_layer(dcs-config-reference 4)   # tools/: docs/config.md from the config readers' tables
 dcs_layer(dcs_learner 4 TORCH)      # PPO in libtorch, training sessions
 dcs_layer(dcs_coordinator 4 SQLITE) # workers, the run store and leases, samplers, study drivers
 dcs_layer(dcs_report 5 SQLITE)      # reports, their statistics and figures, for the client

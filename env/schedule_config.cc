@@ -20,18 +20,32 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// The longest interval or period a config may give, in steps.
+constexpr double kMaxSteps = 1e12;
+
 std::string FormatBound(double value) {
   return std::isinf(value) ? (value > 0 ? "inf" : "-inf") : absl::StrCat(value);
+}
+
+// "in [lo, hi]", as errors give a range.
+std::string RangeText(double lo, double hi) {
+  return absl::StrCat("in [", FormatBound(lo), ", ", FormatBound(hi), "]");
 }
 
 // Reads one schedule config's parameters, remembering which it has read, so that Finish() can
 // name any it did not recognise, and keeping every problem found (Check), so that each
 // parameter is checked whatever the others' checks found. Every error names the family and the
 // parameter, and carries the parameter as its field (common/status_util.h).
+//
+// With `reference`, each reading method also adds its parameter there as docs/config.md shows
+// it (its kind, default and range, from the arguments it checks with, and its meaning): a
+// family's reader run once on a config without parameters describes them all
+// (ScheduleFamilyReference). Ranges given by the schedule's bounds read "min" and "max".
 class ParamReader {
  public:
-  ParamReader(const ScheduleConfig& config, double min_value, double max_value, uint32_t seed)
-      : config_(config), min_(min_value), max_(max_value), seed_(seed) {}
+  ParamReader(const ScheduleConfig& config, double min_value, double max_value, uint32_t seed,
+              std::vector<KeyDoc>* reference = nullptr)
+      : config_(config), min_(min_value), max_(max_value), seed_(seed), reference_(reference) {}
 
   const ScheduleConfig& config() const { return config_; }
   double min() const { return min_; }
@@ -41,36 +55,45 @@ class ParamReader {
   double midpoint() const { return 0.5 * (min_ + max_); }
 
   // A number in [lo, hi], `fallback` if absent (nullopt: required).
-  absl::Status Number(const std::string& name, std::optional<double> fallback, double lo,
-                      double hi, double* out) {
-    const ScheduleParam* param = Take(name);
-    if (param == nullptr) return Fallback(name, fallback, out);
-    const double* value = std::get_if<double>(param);
-    if (value == nullptr) return Error(name, "must be a number");
-    return InRange(name, *value, lo, hi, out);
+  absl::Status Number(const std::string& name, absl::string_view meaning,
+                      std::optional<double> fallback, double lo, double hi, double* out) {
+    Describe(name, "number", Default(fallback), RangeText(lo, hi), meaning);
+    return ReadNumber(name, fallback, lo, hi, out);
   }
 
   // A non-negative magnitude, given as `name` (absolute) or `fraction_name` (times
   // `scale` * span); `fallback_fraction` if neither (nullopt: required).
   absl::Status Magnitude(const std::string& name, const std::string& fraction_name, double scale,
-                         std::optional<double> fallback_fraction, double* out) {
+                         absl::string_view meaning, std::optional<double> fallback_fraction,
+                         double* out) {
+    Describe(absl::StrCat(name, ", ", fraction_name),
+             absl::StrCat("magnitude (of span", scale == 1 ? "" : absl::StrCat("/", 1 / scale),
+                          ")"),
+             fallback_fraction.has_value()
+                 ? absl::StrCat(fraction_name, " ", *fallback_fraction)
+                 : "required",
+             RangeText(0, kInf), meaning);
     Allow(name, fraction_name);
     const bool absolute = Has(name);
     const bool fraction = Has(fraction_name);
     if (absolute && fraction) return BothGiven(name, fraction_name);
-    if (absolute) return Number(name, std::nullopt, 0, kInf, out);
+    if (absolute) return ReadNumber(name, std::nullopt, 0, kInf, out);
     double f = 0;
     if (!fraction && !fallback_fraction.has_value()) {
       return Error(name, absl::StrCat("missing (give ", name, " or ", fraction_name, ")"));
     }
-    DCS_RETURN_IF_ERROR(Number(fraction_name, fallback_fraction, 0, kInf, &f));
+    DCS_RETURN_IF_ERROR(ReadNumber(fraction_name, fallback_fraction, 0, kInf, &f));
     *out = f * scale * span();
     return absl::OkStatus();
   }
 
   // A range [lo, hi] of non-negative magnitudes, absolute or as fractions of the span.
   absl::Status MagnitudeRange(const std::string& name, const std::string& fraction_name,
-                              Range fallback_fraction, Range* out) {
+                              absl::string_view meaning, Range fallback_fraction, Range* out) {
+    Describe(absl::StrCat(name, ", ", fraction_name), "magnitude range (of span)",
+             absl::StrCat(fraction_name, " [", fallback_fraction.lo, ", ", fallback_fraction.hi,
+                          "]"),
+             "0 <= lo <= hi", meaning);
     Allow(name, fraction_name);
     const bool absolute = Has(name);
     if (absolute && Has(fraction_name)) return BothGiven(name, fraction_name);
@@ -87,14 +110,17 @@ class ParamReader {
   }
 
   // An interval U{lo..hi} in steps: whole numbers with 1 <= lo <= hi.
-  absl::Status Interval(const std::string& name, StepRange fallback, StepRange* out) {
+  absl::Status Interval(const std::string& name, absl::string_view meaning, StepRange fallback,
+                        StepRange* out) {
+    Describe(name, "interval", absl::StrCat("[", fallback.lo, ", ", fallback.hi, "]"),
+             "1 <= lo <= hi", meaning);
     Allow(name);
     *out = fallback;
     if (!Has(name)) return absl::OkStatus();
     double lo = 0;
     double hi = 0;
     DCS_RETURN_IF_ERROR(Pair(name, &lo, &hi));
-    if (lo != std::floor(lo) || hi != std::floor(hi) || lo < 1 || lo > hi || hi > 1e12) {
+    if (lo != std::floor(lo) || hi != std::floor(hi) || lo < 1 || lo > hi || hi > kMaxSteps) {
       return Error(name, absl::StrCat("must be [lo, hi] in whole steps with 1 <= lo <= hi, got [",
                                       lo, ", ", hi, "]"));
     }
@@ -103,12 +129,14 @@ class ParamReader {
   }
 
   // A whole number >= `lo`.
-  absl::Status Steps(const std::string& name, std::optional<int64_t> fallback, int64_t lo,
-                     int64_t* out) {
+  absl::Status Steps(const std::string& name, absl::string_view meaning,
+                     std::optional<int64_t> fallback, int64_t lo, int64_t* out) {
+    Describe(name, "integer", fallback.has_value() ? absl::StrCat(*fallback) : "required",
+             RangeText(static_cast<double>(lo), kMaxSteps), meaning);
     double value = 0;
-    DCS_RETURN_IF_ERROR(Number(
+    DCS_RETURN_IF_ERROR(ReadNumber(
         name, fallback.has_value() ? std::optional<double>(*fallback) : std::nullopt,
-        static_cast<double>(lo), 1e12, &value));
+        static_cast<double>(lo), kMaxSteps, &value));
     if (value != std::floor(value)) {
       return Error(name, absl::StrCat("must be a whole number of steps, got ", value));
     }
@@ -118,26 +146,37 @@ class ParamReader {
 
   // One of `choices`, by name; `fallback` if absent.
   template <typename T>
-  absl::Status Choice(const std::string& name, T fallback,
+  absl::Status Choice(const std::string& name, absl::string_view meaning, T fallback,
                       const std::vector<std::pair<std::string, T>>& choices, T* out) {
+    std::vector<std::string> names;
+    std::string fallback_name;
+    for (const auto& [choice_name, value] : choices) {
+      names.push_back(choice_name);
+      if (value == fallback) fallback_name = choice_name;
+    }
+    Describe(name, absl::StrCat("one of {", absl::StrJoin(names, ", "), "}"), fallback_name, "",
+             meaning);
     const ScheduleParam* param = Take(name);
     *out = fallback;
     if (param == nullptr) return absl::OkStatus();
     const std::string* word = std::get_if<std::string>(param);
-    std::vector<std::string> names;
     for (const auto& [choice_name, value] : choices) {
       if (word != nullptr && *word == choice_name) {
         *out = value;
         return absl::OkStatus();
       }
-      names.push_back(choice_name);
     }
     return Error(name, absl::StrCat("must be one of ", absl::StrJoin(names, ", ")));
   }
 
-  // A non-empty list of values within the schedule's bounds; `fallback` if absent.
-  absl::Status Values(const std::string& name, std::optional<std::vector<double>> fallback,
-                      std::vector<double>* out) {
+  // A non-empty list of values within the schedule's bounds; `fallback` if absent (nullopt:
+  // required), which `fallback_text` states in terms of the bounds.
+  absl::Status Values(const std::string& name, absl::string_view meaning,
+                      std::optional<std::vector<double>> fallback,
+                      absl::string_view fallback_text, std::vector<double>* out) {
+    Describe(name, "list of numbers",
+             fallback.has_value() ? std::string(fallback_text) : "required",
+             "each in [min, max]", meaning);
     const ScheduleParam* param = Take(name);
     if (param == nullptr) {
       if (!fallback.has_value()) return Error(name, "missing (a list of values)");
@@ -155,13 +194,46 @@ class ParamReader {
   }
 
   // An optional value within the schedule's bounds.
-  absl::Status OptionalValue(const std::string& name, std::optional<double>* out) {
+  absl::Status OptionalValue(const std::string& name, absl::string_view meaning,
+                             std::optional<double>* out) {
+    Describe(name, "number", "none", "in [min, max]", meaning);
     Allow(name);
     if (!Has(name)) return absl::OkStatus();
     double value = 0;
-    DCS_RETURN_IF_ERROR(Number(name, std::nullopt, min_, max_, &value));
+    DCS_RETURN_IF_ERROR(ReadNumber(name, std::nullopt, min_, max_, &value));
     *out = value;
     return absl::OkStatus();
+  }
+
+  // A level within the schedule's bounds: `name` in absolute units, the word "initial" (the
+  // episode-initial value: `*initial` set), or `fraction_name`, a fraction of the span above the
+  // minimum; `fallback_fraction` if none is given.
+  absl::Status LevelOrInitial(const std::string& name, const std::string& fraction_name,
+                              absl::string_view meaning, double fallback_fraction, double* out,
+                              bool* initial) {
+    Describe(absl::StrCat(name, ", ", fraction_name),
+             absl::StrCat("number, initial, or ", fraction_name, " (of span, from min)"),
+             absl::StrCat(fraction_name, " ", fallback_fraction),
+             absl::StrCat("in [min, max]; ", fraction_name, " ", RangeText(0, 1)), meaning);
+    Allow(name, fraction_name);
+    const ScheduleParam* level = Take(name);
+    if (level != nullptr && Has(fraction_name)) return BothGiven(name, fraction_name);
+    if (const std::string* word = level == nullptr ? nullptr : std::get_if<std::string>(level)) {
+      if (*word != "initial") return Error(name, "must be a number or 'initial'");
+      *initial = true;
+      return absl::OkStatus();
+    }
+    if (level != nullptr) return ReadNumber(name, std::nullopt, min_, min_ + span(), out);
+    double fraction = fallback_fraction;
+    absl::Status status = ReadNumber(fraction_name, fallback_fraction, 0, 1, &fraction);
+    *out = min_ + fraction * span();
+    return status;
+  }
+
+  // The parts of a sequential schedule (required).
+  const std::vector<ScheduleConfig>& Parts(absl::string_view meaning) {
+    Describe("parts", "list of schedules", "required", "", meaning);
+    return config_.parts;
   }
 
   bool Has(const std::string& name) const { return config_.params.contains(name); }
@@ -207,10 +279,33 @@ class ParamReader {
   }
 
  private:
-  absl::Status Fallback(const std::string& name, std::optional<double> fallback, double* out) {
-    if (!fallback.has_value()) return Error(name, "missing");
-    *out = *fallback;
-    return absl::OkStatus();
+  // Number's reading, for the methods that describe their parameter otherwise.
+  absl::Status ReadNumber(const std::string& name, std::optional<double> fallback, double lo,
+                          double hi, double* out) {
+    const ScheduleParam* param = Take(name);
+    if (param == nullptr) {
+      if (!fallback.has_value()) return Error(name, "missing");
+      *out = *fallback;
+      return absl::OkStatus();
+    }
+    const double* value = std::get_if<double>(param);
+    if (value == nullptr) return Error(name, "must be a number");
+    return InRange(name, *value, lo, hi, out);
+  }
+
+  static std::string Default(std::optional<double> fallback) {
+    return fallback.has_value() ? absl::StrCat(*fallback) : "required";
+  }
+
+  // Adds a parameter to the reference, if one is being made.
+  void Describe(std::string name, std::string type, std::string default_value, std::string range,
+                absl::string_view meaning) {
+    if (reference_ == nullptr) return;
+    reference_->push_back({.name = std::move(name),
+                           .type = std::move(type),
+                           .default_value = std::move(default_value),
+                           .range = std::move(range),
+                           .meaning = std::string(meaning)});
   }
 
   absl::Status InRange(const std::string& name, double value, double lo, double hi,
@@ -243,6 +338,7 @@ class ParamReader {
   const double min_;
   const double max_;
   const uint32_t seed_;
+  std::vector<KeyDoc>* const reference_;
   std::set<std::string> known_;
   std::vector<absl::Status> problems_;
 };
@@ -253,13 +349,25 @@ const std::vector<std::pair<std::string, Direction>> kDirections = {
 const std::vector<std::pair<std::string, EdgeMode>> kEdgeModes = {{"clip", EdgeMode::kClip},
                                                                   {"reflect", EdgeMode::kReflect}};
 
+// Meanings shared by several families.
+constexpr absl::string_view kPeriodMeaning = "steps of one full wave";
+constexpr absl::string_view kStepStdMeaning =
+    "standard deviation of the Gaussian change added each step";
+constexpr absl::string_view kJumpSizeMeaning = "size of each jump, drawn uniformly";
+constexpr absl::string_view kJumpIntervalMeaning = "steps between jumps";
+constexpr absl::string_view kDirectionProbMeaning = "probability of +1 when direction is both";
+constexpr absl::string_view kThetaMeaning = "rate of reversion per step";
+constexpr absl::string_view kSigmaMeaning = "standard deviation of each step's noise";
+
 absl::StatusOr<ScheduleParams> ParseSinusoidal(ParamReader& r) {
   SinusoidalParams p;
   using D = SinusoidalParams::InitialDirection;
-  r.Check(r.Magnitude("amplitude", "amplitude_frac", 0.5, 0.0, &p.amplitude));
+  r.Check(r.Magnitude("amplitude", "amplitude_frac", 0.5,
+                      "the wave's peak distance from the episode-initial value", 0.0,
+                      &p.amplitude));
   // The default was 0, which the wave reads as 1 (a period of one step): the same schedule.
-  r.Check(r.Number("period", 1.0, 1, kInf, &p.period));
-  r.Check(r.Choice("initial_direction", D::kRandom,
+  r.Check(r.Number("period", kPeriodMeaning, 1.0, 1, kInf, &p.period));
+  r.Check(r.Choice("initial_direction", "which way the value moves first", D::kRandom,
                    {{"random", D::kRandom}, {"down", D::kDown}, {"up", D::kUp}},
                    &p.initial_direction));
   return p;
@@ -268,129 +376,147 @@ absl::StatusOr<ScheduleParams> ParseSinusoidal(ParamReader& r) {
 absl::StatusOr<ScheduleParams> ParseCosineAnnealing(ParamReader& r) {
   using P = CosineAnnealingParams;
   P p;
-  r.Check(r.Choice("mode", P::Mode::kCycle,
-                   {{"cycle", P::Mode::kCycle}, {"once", P::Mode::kOnce}}, &p.mode));
-  r.Check(r.Steps("T_0", p.mode == P::Mode::kOnce ? std::optional<int64_t>(200)
-                                                    : std::nullopt,
-                  1, &p.t_0));
-  r.Check(r.Steps("T_mult", 1, 1, &p.t_mult));
-  r.Check(r.Steps("T_max", 1000, 1, &p.t_max));
-  r.Check(r.OptionalValue("start", &p.start));
-  r.Check(r.OptionalValue("end", &p.end));
+  r.Check(r.Choice("mode",
+                   "cycle: a new cycle every T_0 * T_mult^i steps, retargeted; once: one "
+                   "cycle of T_max steps",
+                   P::Mode::kCycle, {{"cycle", P::Mode::kCycle}, {"once", P::Mode::kOnce}},
+                   &p.mode));
+  r.Check(r.Steps("T_0", "the first cycle's length in steps (mode cycle; once needs none)",
+                  p.mode == P::Mode::kOnce ? std::optional<int64_t>(200) : std::nullopt, 1,
+                  &p.t_0));
+  r.Check(r.Steps("T_mult", "each cycle's length over the one before", 1, 1, &p.t_mult));
+  r.Check(r.Steps("T_max", "the cycle's length in steps (mode once)", 1000, 1, &p.t_max));
+  r.Check(r.OptionalValue("start", "the first cycle's start; none: the episode-initial value",
+                          &p.start));
+  r.Check(r.OptionalValue("end", "mode once's target; none: an edge chosen by direction",
+                          &p.end));
   if (p.end.has_value() && p.mode != P::Mode::kOnce) {
     return r.Error("end", "applies to mode once only (cycles choose their end by direction)");
   }
   double radius = 0;
-  r.Check(r.Magnitude("neighborhood_radius", "neighborhood_radius_frac", 0.5, 0.0,
+  r.Check(r.Magnitude("neighborhood_radius", "neighborhood_radius_frac", 0.5,
+                      "each cycle stays this close to its start; 0: anywhere in the range", 0.0,
                       &radius));
   if (radius > 0) p.neighborhood_radius = radius;
-  r.Check(r.Number("min_delta", 0.0, 0, kInf, &p.min_delta));
-  r.Check(r.Choice("direction", P::EndDirection::kAuto,
+  r.Check(r.Number("min_delta", "the least distance from a cycle's start to its end", 0.0, 0,
+                   kInf, &p.min_delta));
+  r.Check(r.Choice("direction",
+                   "the edge a cycle heads for: auto, the farther one; to_min; to_max; random",
+                   P::EndDirection::kAuto,
                    {{"auto", P::EndDirection::kAuto},
                     {"to_min", P::EndDirection::kToMin},
                     {"to_max", P::EndDirection::kToMax},
                     {"random", P::EndDirection::kRandom}},
                    &p.direction));
-  r.Check(r.Choice("retarget", P::Retarget::kRestart,
+  r.Check(r.Choice("retarget",
+                   "where the next cycle starts: swap, the last one's end; restart, the "
+                   "episode's start; random, either",
+                   P::Retarget::kRestart,
                    {{"swap", P::Retarget::kSwap},
                     {"restart", P::Retarget::kRestart},
                     {"random", P::Retarget::kRandom}},
                    &p.retarget));
-  r.Check(r.Number("repel_edge_eps_frac", 0.05, 0, 0.5, &p.repel_edge_eps_frac));
+  r.Check(r.Number("repel_edge_eps_frac",
+                   "a start this close to an edge (a fraction of the band) heads for the other",
+                   0.05, 0, 0.5, &p.repel_edge_eps_frac));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseContinuousIncrementer(ParamReader& r) {
   using P = ContinuousIncrementerParams;
   P p;
-  r.Check(r.Magnitude("delta", "delta_frac", 1.0, std::nullopt, &p.delta));
-  r.Check(r.Choice("direction", Direction::kBoth, kDirections, &p.direction));
-  r.Check(r.Number("direction_prob", 0.5, 0, 1, &p.direction_prob));
-  r.Check(r.Choice("edge_mode", EdgeMode::kReflect, kEdgeModes, &p.edge_mode));
-  r.Check(r.Choice("episode_direction", P::EpisodeDirection::kRandom,
+  r.Check(r.Magnitude("delta", "delta_frac", 1.0, "the change each step", std::nullopt,
+                      &p.delta));
+  r.Check(r.Choice("direction", "the sign of each step; both: drawn by direction_prob",
+                   Direction::kBoth, kDirections, &p.direction));
+  r.Check(r.Number("direction_prob", kDirectionProbMeaning, 0.5, 0, 1, &p.direction_prob));
+  r.Check(r.Choice("edge_mode", "a step past a bound: clipped, or reflected (the sign flips)",
+                   EdgeMode::kReflect, kEdgeModes, &p.edge_mode));
+  r.Check(r.Choice("episode_direction", "the sign fixed at each reset; none: per step",
+                   P::EpisodeDirection::kRandom,
                    {{"none", P::EpisodeDirection::kNone},
                     {"up", P::EpisodeDirection::kUp},
                     {"down", P::EpisodeDirection::kDown},
                     {"random", P::EpisodeDirection::kRandom}},
                    &p.episode_direction));
-  r.Check(r.Number("noise_std", 0.0, 0, kInf, &p.noise_std));
+  r.Check(r.Number("noise_std", "standard deviation of Gaussian noise added each step", 0.0, 0,
+                   kInf, &p.noise_std));
   double follow = 0;
-  r.Check(r.Number("follow_predefined_prob", 0.8, 0, 1, &follow));
+  r.Check(r.Number("follow_predefined_prob",
+                   "probability that a step keeps the sign (else it reverses)", 0.8, 0, 1,
+                   &follow));
   p.follow_predefined_prob = follow;
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseRandomWalk(ParamReader& r) {
   RandomWalkParams p;
-  r.Check(r.Magnitude("std", "std_frac", 1.0, 0.01, &p.std));
+  r.Check(r.Magnitude("std", "std_frac", 1.0, kStepStdMeaning, 0.01, &p.std));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParsePiecewiseConstant(ParamReader& r) {
   PiecewiseConstantParams p;
-  r.Check(r.Values("values", std::nullopt, &p.values));
-  r.Check(r.Interval("interval_range", {30, 50}, &p.interval));
+  r.Check(r.Values("values", "the levels; each interval holds one drawn uniformly", std::nullopt,
+                   "", &p.values));
+  r.Check(r.Interval("interval_range", "steps a level is held", {30, 50}, &p.interval));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseSuddenJump(ParamReader& r) {
   SuddenJumpParams p;
-  r.Check(r.MagnitudeRange("step_size_range", "step_size_frac_range", {0.1, 0.3}, &p.step_size));
-  r.Check(r.Interval("interval_range", {10, 30}, &p.interval));
-  r.Check(r.Choice("direction", Direction::kBoth, kDirections, &p.direction));
-  r.Check(r.Number("direction_prob", 0.5, 0, 1, &p.direction_prob));
-  r.Check(r.Choice("edge_mode", EdgeMode::kClip, kEdgeModes, &p.edge_mode));
+  r.Check(r.MagnitudeRange("step_size_range", "step_size_frac_range", kJumpSizeMeaning,
+                           {0.1, 0.3}, &p.step_size));
+  r.Check(r.Interval("interval_range", kJumpIntervalMeaning, {10, 30}, &p.interval));
+  r.Check(r.Choice("direction", "the sign of each jump; both: drawn by direction_prob",
+                   Direction::kBoth, kDirections, &p.direction));
+  r.Check(r.Number("direction_prob", kDirectionProbMeaning, 0.5, 0, 1, &p.direction_prob));
+  r.Check(r.Choice("edge_mode", "a jump past a bound: clipped, or reflected", EdgeMode::kClip,
+                   kEdgeModes, &p.edge_mode));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseOrnsteinUhlenbeck(ParamReader& r) {
-  const double min_value = r.min();
   OrnsteinUhlenbeckParams p;
-  r.Check(r.Number("theta", 0.05, 0, 1, &p.theta));
-  r.Check(r.Magnitude("sigma", "sigma_frac", 1.0, 0.08, &p.sigma));
-  r.Allow("mu", "mu_frac");
-  const ScheduleParam* mu = r.Take("mu");
-  if (mu != nullptr && r.Has("mu_frac")) {
-    return r.Error("mu", "is given twice: as mu and as mu_frac");
-  }
-  if (const std::string* word = mu == nullptr ? nullptr : std::get_if<std::string>(mu)) {
-    if (*word != "initial") return r.Error("mu", "must be a number or 'initial'");
-    p.mu_is_episode_initial = true;  // the paper's variant
-  } else if (mu != nullptr) {
-    r.Check(r.Number("mu", std::nullopt, min_value, min_value + r.span(), &p.mu));
-  } else {
-    double fraction = 0.5;
-    r.Check(r.Number("mu_frac", 0.5, 0, 1, &fraction));
-    p.mu = min_value + fraction * r.span();
-  }
+  r.Check(r.Number("theta", kThetaMeaning, 0.05, 0, 1, &p.theta));
+  r.Check(r.Magnitude("sigma", "sigma_frac", 1.0, kSigmaMeaning, 0.08, &p.sigma));
+  r.Check(r.LevelOrInitial("mu", "mu_frac",
+                           "the level reverted to; initial: the episode-initial value (the "
+                           "paper's variant)",
+                           0.5, &p.mu, &p.mu_is_episode_initial));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseSinusoidalJump(ParamReader& r) {
   SinusoidalJumpParams p;
-  r.Check(r.Magnitude("amplitude", "amplitude_frac", 0.5, 0.3, &p.amplitude));
-  r.Check(r.Number("period", 100.0, 1, kInf, &p.period));
-  r.Check(r.MagnitudeRange("step_size_range", "step_size_frac_range", {0.2, 0.4}, &p.step_size));
-  r.Check(r.Interval("interval_range", {80, 150}, &p.interval));
+  r.Check(r.Magnitude("amplitude", "amplitude_frac", 0.5,
+                      "the wave's peak distance from its baseline", 0.3, &p.amplitude));
+  r.Check(r.Number("period", kPeriodMeaning, 100.0, 1, kInf, &p.period));
+  r.Check(r.MagnitudeRange("step_size_range", "step_size_frac_range",
+                           "size of each jump of the baseline, drawn uniformly", {0.2, 0.4},
+                           &p.step_size));
+  r.Check(r.Interval("interval_range", kJumpIntervalMeaning, {80, 150}, &p.interval));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParsePhasedOu(ParamReader& r) {
   const double min_value = r.min();
   PhasedOuParams p;
-  r.Check(r.Number("theta", 0.05, 0, 1, &p.theta));
-  r.Check(r.Magnitude("sigma", "sigma_frac", 1.0, 0.04, &p.sigma));
-  r.Check(r.Values(
-      "values", std::vector<double>{min_value, r.midpoint(), min_value + r.span()}, &p.values));
-  r.Check(r.Interval("interval_range", {100, 150}, &p.interval));
+  r.Check(r.Number("theta", kThetaMeaning, 0.05, 0, 1, &p.theta));
+  r.Check(r.Magnitude("sigma", "sigma_frac", 1.0, kSigmaMeaning, 0.04, &p.sigma));
+  r.Check(r.Values("values", "the anchors reverted to; each interval holds one drawn uniformly",
+                   std::vector<double>{min_value, r.midpoint(), min_value + r.span()},
+                   "[min, midpoint, max]", &p.values));
+  r.Check(r.Interval("interval_range", "steps an anchor is held", {100, 150}, &p.interval));
   return p;
 }
 
 absl::StatusOr<ScheduleParams> ParseLevyWalk(ParamReader& r) {
   LevyWalkParams p;
-  r.Check(r.Magnitude("std", "std_frac", 1.0, 0.008, &p.std));
-  r.Check(r.MagnitudeRange("step_size_range", "step_size_frac_range", {0.2, 0.4}, &p.step_size));
-  r.Check(r.Interval("interval_range", {40, 80}, &p.interval));
+  r.Check(r.Magnitude("std", "std_frac", 1.0, kStepStdMeaning, 0.008, &p.std));
+  r.Check(r.MagnitudeRange("step_size_range", "step_size_frac_range", kJumpSizeMeaning,
+                           {0.2, 0.4}, &p.step_size));
+  r.Check(r.Interval("interval_range", kJumpIntervalMeaning, {40, 80}, &p.interval));
   return p;
 }
 
@@ -405,7 +531,8 @@ CheckedSchedule CheckSchedule(const ScheduleConfig& config, double min_value, do
                               uint32_t seed);
 
 absl::StatusOr<ScheduleParams> ParseSequential(ParamReader& r) {
-  const std::vector<ScheduleConfig>& parts = r.config().parts;
+  const std::vector<ScheduleConfig>& parts =
+      r.Parts("schedules applied in order each step, each to the value the one before made");
   if (parts.empty()) return r.Error("parts", "missing (a list of schedules)");
   SequentialParams sequential;
   for (size_t i = 0; i < parts.size(); ++i) {
@@ -489,6 +616,20 @@ CheckedSchedule CheckSchedule(const ScheduleConfig& config, double min_value, do
 
 absl::string_view ScheduleFamilyName(ScheduleFamily family) {
   return kFamilies[static_cast<int>(family)].name;
+}
+
+std::vector<ScheduleFamilyDoc> ScheduleFamilyReference() {
+  std::vector<ScheduleFamilyDoc> families;
+  for (const Family& family : kFamilies) {
+    ScheduleFamilyDoc& doc = families.emplace_back();
+    doc.name = std::string(family.name);
+    if (family.family == ScheduleFamily::kIdentity) doc.alias = std::string(kIdentityAlias);
+    const ScheduleConfig config{.family = doc.name};
+    ParamReader reader(config, 0, 1, 0, &doc.parameters);
+    // Each parameter is described as it is read; a required one is missing here.
+    family.parse(reader).status().IgnoreError();
+  }
+  return families;
 }
 
 std::vector<std::string> ScheduleFamilyNames() {

@@ -12,48 +12,10 @@
 // Every magnitude may be given in absolute units or as a fraction of the schedule's range
 // (`<name>_frac`, as the reference builder takes them: docs/reference.md, "Parameters as
 // fractions of the range"), not both; what is not given takes the builder's default. Intervals
-// and periods are in environment steps. Parameters per family, each with its allowed range and
-// the builder's default in brackets (span = max - min). Kinds of value that need no range of
-// their own:
-//   magnitude      a number >= 0, absolute or as `<name>_frac` (>= 0, times the scale given)
-//   magnitude range  [lo, hi] of magnitudes with 0 <= lo <= hi
-//   interval       [lo, hi] in whole steps with 1 <= lo <= hi: each one drawn from U{lo..hi}
-//   values         numbers within [min, max]
-//   probability    a number in [0, 1]
+// and periods are in environment steps. Each family's parameters, with their kinds, defaults and
+// allowed ranges, are in docs/config.md ("Schedules"), which ScheduleFamilyReference makes from
+// the readers in schedule_config.cc: what a reader checks is what the reference says.
 //
-//   identity (alias constant)   -
-//   sinusoidal          amplitude | amplitude_frac: magnitude (of span/2) [0];
-//                       period >= 1 [1]; initial_direction random|down|up [random]
-//   cosine_annealing    T_0: whole steps >= 1 (required; mode once: [200]);
-//                       T_mult: whole >= 1 [1]; mode cycle|once [cycle];
-//                       T_max: whole steps >= 1 [1000];
-//                       start, end (once only): in [min, max] [the episode-initial value, an
-//                       edge]; neighborhood_radius | neighborhood_radius_frac: magnitude (of
-//                       span/2) [none]; direction auto|to_min|to_max|random [auto];
-//                       retarget swap|restart|random [restart]; min_delta >= 0 [0];
-//                       repel_edge_eps_frac in [0, 0.5] [0.05]
-//   continuous_incrementer  delta | delta_frac: magnitude (of span) (required);
-//                       direction positive|negative|both [both]; direction_prob: probability
-//                       [0.5]; edge_mode clip|reflect [reflect]; episode_direction
-//                       none|up|down|random [random]; noise_std >= 0 [0];
-//                       follow_predefined_prob: probability [0.8]
-//   random_walk         std | std_frac: magnitude (of span) [0.01]
-//   piecewise_constant  values (required); interval_range: interval [30, 50]
-//   sudden_jump         step_size_range | step_size_frac_range: magnitude range [0.1, 0.3];
-//                       interval_range: interval [10, 30]; direction [both];
-//                       direction_prob: probability [0.5]; edge_mode [clip]
-//   ornstein_uhlenbeck  theta in [0, 1] [0.05]; mu: in [min, max], or initial |
-//                       mu_frac in [0, 1] [midpoint]; sigma | sigma_frac: magnitude (of
-//                       span) [0.08]
-//   sinusoidal_jump     amplitude | amplitude_frac: magnitude (of span/2) [0.3];
-//                       period >= 1 [100]; step_size_range | step_size_frac_range: magnitude
-//                       range [0.2, 0.4]; interval_range: interval [80, 150]
-//   phased_ou           theta in [0, 1] [0.05]; sigma | sigma_frac: magnitude (of span)
-//                       [0.04]; values [min, mid, max]; interval_range: interval [100, 150]
-//   levy_walk           std | std_frac: magnitude (of span) [0.008]; step_size_range |
-//                       step_size_frac_range: magnitude range [0.2, 0.4]; interval_range:
-//                       interval [40, 80]
-//   sequential          parts: a list of schedule configs, applied in order
 // Thread-safe (pure functions).
 
 #include <cstdint>
@@ -63,6 +25,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "common/config_doc.h"
 #include "env/schedule_spec.h"
 
 namespace dcs::env {
@@ -92,6 +55,17 @@ std::vector<absl::Status> ScheduleConfigProblems(const ScheduleConfig& config, d
 
 // The names ParseScheduleSpec knows, in the order of env/schedule_spec.h.
 std::vector<std::string> ScheduleFamilyNames();
+
+// A family's parameters as docs/config.md shows them, each described by the family's reader as
+// it reads and checks it (kind, default, allowed range, meaning), in the order it reads them.
+// Ranges that depend on the schedule's bounds name them "min" and "max"; "span" is max - min.
+struct ScheduleFamilyDoc {
+  std::string name;
+  std::string alias;  // another name configs may use; empty if none
+  std::vector<KeyDoc> parameters;
+};
+// Every family, in the order of ScheduleFamilyNames().
+std::vector<ScheduleFamilyDoc> ScheduleFamilyReference();
 
 }  // namespace dcs::env
 

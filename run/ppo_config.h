@@ -40,11 +40,20 @@ struct PpoConfig {
   std::vector<int> context_layers;
 };
 
+template <typename S>
+class KeyTable;
+
+// The keys of a run config's `ppo` mapping (run/config_keys.h), in the order the run config's
+// reader lists them: each field of PpoConfig with its bound and meaning, which the reader, the
+// check below and docs/config.md take from it.
+const KeyTable<PpoConfig>& PpoConfigKeys();
+
 // Adds to `problems` each field of `config` out of range, by its path in a run config
-// (`ppo.gamma`; SB3's guards included: batch_size > 1 with advantage normalisation,
-// n_steps * n_envs > 1), through `errors` (with the config's file and line when read from one);
-// a field is named once, by the first of its rules it breaks (n_steps * n_envs only with
-// n_envs >= 1: a smaller n_envs is the run config's problem).
+// (`ppo.gamma`): first each field outside its bound in PpoConfigKeys(), then SB3's guards
+// between fields (batch_size > 1 with advantage normalisation, n_steps * n_envs > 1), through
+// `errors` (with the config's file and line when read from one); a field is named once, by the
+// first of its rules it breaks (n_steps * n_envs only with n_envs >= 1: a smaller n_envs is the
+// run config's problem).
 void CheckPpoConfig(const PpoConfig& config, int n_envs, const ConfigErrors& errors,
                     ConfigProblems& problems);
 // OK, or INVALID_ARGUMENT with CheckPpoConfig's problems (run/config_errors.h: ConfigProblems).

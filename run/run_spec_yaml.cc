@@ -22,6 +22,7 @@
 #include "env/context_feature.h"
 #include "env/env_registry.h"
 #include "env/schedule_config.h"
+#include "run/config_keys.h"
 #include "run/coverage.h"
 #include "run/ppo_config.h"
 #include "run/schedule_yaml.h"
@@ -37,6 +38,104 @@ constexpr int kMaxPoolSize = 10'000;  // env::ContextPool::OfSize's limit
 std::string SchedulePath(size_t index, bool schedule_key) {
   return schedule_key ? std::string("schedule")
                       : absl::StrCat(ItemPath("stages", index), ".schedule");
+}
+
+// "one of {a, b, c}", as the reference writes a word from a fixed list.
+template <typename Names>
+std::string OneOf(const Names& names) {
+  return absl::StrCat("one of {", absl::StrJoin(names, ", "), "}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The keys, one table per mapping (run/config_keys.h).
+
+const KeyTable<RunSpec>& PoolKeys() {
+  static const KeyTable<RunSpec>* const keys = new KeyTable<RunSpec>({
+      {.name = "size",
+       .meaning = "that many values spread evenly over the training range (1: its midpoint)",
+       .field = &RunSpec::pool_size,
+       .bound = Within(1, kMaxPoolSize)},
+      {.name = "values",
+       .meaning = "exactly these values, each within the training range",
+       .field = &RunSpec::pool_values,
+       .default_value = "none"},
+  });
+  return *keys;
+}
+
+const KeyTable<RunSpec::Stage>& StageKeys() {
+  static const KeyTable<RunSpec::Stage>* const keys = new KeyTable<RunSpec::Stage>({
+      {.name = "steps",
+       .meaning = "environment steps the stage runs for; the last one stays in force after them "
+                  "(0: a single stage that runs for the whole run)",
+       .field = &RunSpec::Stage::steps,
+       .bound = AtLeast(1)},
+      {.name = "schedule",
+       .meaning = "the stage's schedule ({family: constant} for none)",
+       .type = "schedule",
+       .default_value = "required"},
+  });
+  return *keys;
+}
+
+const KeyTable<RunSpec>& EvaluationKeys() {
+  static const KeyTable<RunSpec>* const keys = new KeyTable<RunSpec>({
+      {.name = "freq",
+       .meaning = "environment steps between evaluations (also one at each stage boundary and "
+                  "at the end)",
+       .field = &RunSpec::eval_freq,
+       .bound = AtLeast(1)},
+      {.name = "episodes",
+       .meaning = "deterministic episodes per evaluation context",
+       .field = &RunSpec::eval_episodes,
+       .bound = AtLeast(1)},
+      {.name = "contexts",
+       .meaning = "the varied feature's values evaluated, by split: at least one",
+       .type = "mapping",
+       .default_value = "required"},
+  });
+  return *keys;
+}
+
+std::string SplitMeaning(actor::Split split) {
+  switch (split) {
+    case actor::Split::kId:
+      return "values inside the training range";
+    case actor::Split::kOodLow:
+      return "values below it (out of distribution)";
+    case actor::Split::kOodHigh:
+      return "values above it (out of distribution)";
+  }
+  return "";
+}
+
+// Keyed by the splits' names (actor/split.h).
+const KeyTable<RunSpec>& EvaluationContextKeys() {
+  static const KeyTable<RunSpec>* const keys = [] {
+    std::vector<ConfigKey<RunSpec>> splits;
+    for (const auto& [split, name] : actor::kSplitNames) {
+      splits.push_back({.name = name,
+                        .meaning = SplitMeaning(split),
+                        .type = "list of numbers",
+                        .default_value = "[]"});
+    }
+    return new KeyTable<RunSpec>(std::move(splits));
+  }();
+  return *keys;
+}
+
+const KeyTable<CoverageSpec>& CoverageKeys() {
+  static const KeyTable<CoverageSpec>* const keys = new KeyTable<CoverageSpec>({
+      {.name = "window",
+       .meaning = "environment steps per window of counted cells",
+       .field = &CoverageSpec::window,
+       .bound = AtLeast(1)},
+      {.name = "projections",
+       .meaning = "the environment's state projections counted, by name",
+       .type = "list of names",
+       .default_value = "[] (every one the environment has)"},
+  });
+  return *keys;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -65,12 +164,14 @@ void CheckWithEnvironment(const RunSpec& spec, const env::ContextSpace& space,
   // The stages.
   const bool whole_run = spec.stages.size() == 1 && spec.stages[0].steps == 0;
   int64_t start = 0;
+  const Bound& steps = StageKeys()["steps"].bound;
   for (size_t i = 0; i < spec.stages.size(); ++i) {
     const RunSpec::Stage& stage = spec.stages[i];
-    if (!whole_run && stage.steps <= 0) {
+    if (!whole_run && !steps.Contains(static_cast<double>(stage.steps))) {
       problems.Add(errors.At(absl::StrCat(ItemPath("stages", i), ".steps"),
-                             absl::StrCat("must be at least 1 (0 only for a single stage, "
-                                          "which then runs for the whole run), got ",
+                             absl::StrCat("must be ", steps.Rule(),
+                                          " (0 only for a single stage, which then runs for the "
+                                          "whole run), got ",
                                           stage.steps)));
     }
     if (i > 0 && start >= spec.total_timesteps) {
@@ -139,9 +240,8 @@ void CheckWithEnvironment(const RunSpec& spec, const env::ContextSpace& space,
         check_full(value, path);
       }
     }
-  } else if (spec.pool_size < 1 || spec.pool_size > kMaxPoolSize) {
-    problems.Add(errors.At(
-        "pool.size", absl::StrCat("must be in [1, ", kMaxPoolSize, "], got ", spec.pool_size)));
+  } else {
+    CheckBounds(PoolKeys(), spec, "pool", errors, problems);
   }
 
   // The evaluation contexts: physical bounds only (OOD values lie outside the training range).
@@ -163,21 +263,8 @@ void CheckWithEnvironment(const RunSpec& spec, const env::ContextSpace& space,
 // checks run whatever the others found; an unknown environment stops the checks that need it.
 void Validate(const RunSpec& spec, const ConfigErrors& errors, bool schedule_key,
               ConfigProblems& problems) {
-  if (spec.total_timesteps < 1) {
-    problems.Add(errors.At("total_timesteps",
-                           absl::StrCat("must be at least 1, got ", spec.total_timesteps)));
-  }
-  if (spec.n_envs < 1) {
-    problems.Add(errors.At("n_envs", absl::StrCat("must be at least 1, got ", spec.n_envs)));
-  }
-  if (spec.eval_freq < 1) {
-    problems.Add(
-        errors.At("evaluation.freq", absl::StrCat("must be at least 1, got ", spec.eval_freq)));
-  }
-  if (spec.eval_episodes < 1) {
-    problems.Add(errors.At("evaluation.episodes",
-                           absl::StrCat("must be at least 1, got ", spec.eval_episodes)));
-  }
+  CheckBounds(RunConfigKeys(), spec, "", errors, problems);
+  CheckBounds(EvaluationKeys(), spec, "evaluation", errors, problems);
   if (std::all_of(spec.eval_contexts.begin(), spec.eval_contexts.end(),
                   [](const std::vector<double>& values) { return values.empty(); })) {
     problems.Add(errors.At("evaluation.contexts",
@@ -199,10 +286,7 @@ void Validate(const RunSpec& spec, const ConfigErrors& errors, bool schedule_key
                                             spec.env, "'s observation has no image")));
       }
       if (!spec.coverage.has_value()) return absl::OkStatus();
-      if (spec.coverage->window < 1) {
-        problems.Add(errors.At("coverage.window",
-                               absl::StrCat("must be at least 1, got ", spec.coverage->window)));
-      }
+      CheckBounds(CoverageKeys(), *spec.coverage, "coverage", errors, problems);
       absl::StatusOr<std::vector<env::StateProjection>> projections =
           SelectProjections(*spec.coverage, EnvironmentProjections<Env>());
       if (!projections.ok()) {
@@ -252,17 +336,17 @@ absl::Status Parser::Context(const YAML::Node& node, const std::string& path, Ru
 absl::Status Parser::Pool(const YAML::Node& node, const std::string& path, RunSpec& spec) {
   bool has_size = false;
   bool has_values = false;
+  const KeyTable<RunSpec>& keys = PoolKeys();
   DCS_RETURN_IF_ERROR(r_.ForEachKey(
-      node, path, {"size", "values"},
+      node, path, keys.names(),
       [&](const std::string& key, const YAML::Node& value,
           const std::string& key_path) -> absl::Status {
+        DCS_RETURN_IF_ERROR(ReadField(r_, keys[key], value, key_path, spec));
         if (key == "size") {
           has_size = true;
-          DCS_ASSIGN_OR_RETURN(spec.pool_size, r_.Int(value, key_path));
           return absl::OkStatus();
         }
         has_values = true;
-        DCS_ASSIGN_OR_RETURN(spec.pool_values, r_.Numbers(value, key_path));
         if (spec.pool_values.empty()) {
           return r_.Error(key_path, value, "must list at least one value");
         }
@@ -281,11 +365,11 @@ absl::Status Parser::Stages(const YAML::Node& node, RunSpec& spec) {
         RunSpec::Stage stage;
         bool has_schedule = false;
         DCS_RETURN_IF_ERROR(r_.ForEachKey(
-            stage_node, stage_path, {"steps", "schedule"},
+            stage_node, stage_path, StageKeys().names(),
             [&](const std::string& key, const YAML::Node& value,
                 const std::string& path) -> absl::Status {
               if (key == "steps") {
-                DCS_ASSIGN_OR_RETURN(stage.steps, r_.Int64(value, path));
+                DCS_RETURN_IF_ERROR(ReadField(r_, StageKeys()[key], value, path, stage));
               } else {
                 has_schedule = true;
                 DCS_ASSIGN_OR_RETURN(stage.schedule, ReadScheduleConfig(r_, value, path));
@@ -302,16 +386,15 @@ absl::Status Parser::Stages(const YAML::Node& node, RunSpec& spec) {
 }
 
 absl::Status Parser::Evaluation(const YAML::Node& node, RunSpec& spec) {
+  const KeyTable<RunSpec>& keys = EvaluationKeys();
   return r_.ForEachKey(
-      node, "evaluation", {"freq", "episodes", "contexts"},
+      node, "evaluation", keys.names(),
       [&](const std::string& key, const YAML::Node& value,
           const std::string& path) -> absl::Status {
-        if (key == "freq") {
-          DCS_ASSIGN_OR_RETURN(spec.eval_freq, r_.Int64(value, path));
-        } else if (key == "episodes") {
-          DCS_ASSIGN_OR_RETURN(spec.eval_episodes, r_.Int(value, path));
+        if (key != "contexts") {
+          DCS_RETURN_IF_ERROR(ReadField(r_, keys[key], value, path, spec));
         } else {
-          return r_.ForEachKey(value, path, NamesOf(actor::kSplitNames),
+          return r_.ForEachKey(value, path, EvaluationContextKeys().names(),
                                [&](const std::string& split, const YAML::Node& values,
                                    const std::string& split_path) -> absl::Status {
                                  DCS_ASSIGN_OR_RETURN(
@@ -326,12 +409,12 @@ absl::Status Parser::Evaluation(const YAML::Node& node, RunSpec& spec) {
 
 absl::Status Parser::Coverage(const YAML::Node& node, RunSpec& spec) {
   RunSpec::Coverage& coverage = spec.coverage.emplace();
-  return r_.ForEachKey(node, "coverage", {"window", "projections"},
+  const KeyTable<CoverageSpec>& keys = CoverageKeys();
+  return r_.ForEachKey(node, "coverage", keys.names(),
                        [&](const std::string& key, const YAML::Node& value,
                            const std::string& path) -> absl::Status {
                          if (key == "window") {
-                           DCS_ASSIGN_OR_RETURN(coverage.window, r_.Int64(value, path));
-                           return absl::OkStatus();
+                           return ReadField(r_, keys[key], value, path, coverage);
                          }
                          return r_.ForEachItem(
                              value, path, "a list of projection names",
@@ -345,47 +428,12 @@ absl::Status Parser::Coverage(const YAML::Node& node, RunSpec& spec) {
 }
 
 absl::Status Parser::Ppo(const YAML::Node& node, PpoConfig& ppo) {
-  const std::map<std::string, double*> numbers = {{"learning_rate", &ppo.learning_rate},
-                                                  {"gamma", &ppo.gamma},
-                                                  {"gae_lambda", &ppo.gae_lambda},
-                                                  {"clip_range", &ppo.clip_range},
-                                                  {"ent_coef", &ppo.ent_coef},
-                                                  {"vf_coef", &ppo.vf_coef},
-                                                  {"max_grad_norm", &ppo.max_grad_norm},
-                                                  {"log_std_init", &ppo.log_std_init},
-                                                  {"adam_eps", &ppo.adam_eps}};
-  const std::map<std::string, int*> integers = {{"n_steps", &ppo.n_steps},
-                                                {"batch_size", &ppo.batch_size},
-                                                {"n_epochs", &ppo.n_epochs},
-                                                {"cnn_features", &ppo.cnn_features}};
-  return r_.ForEachKey(
-      node, "ppo",
-      {"learning_rate", "n_steps", "batch_size", "n_epochs", "gamma", "gae_lambda", "clip_range",
-       "clip_range_vf", "normalize_advantage", "ent_coef", "vf_coef", "max_grad_norm", "target_kl",
-       "pi_layers", "vf_layers", "log_std_init", "adam_eps", "cnn_features", "context_layers"},
-      [&](const std::string& key, const YAML::Node& value,
-          const std::string& path) -> absl::Status {
-        if (auto it = numbers.find(key); it != numbers.end()) {
-          DCS_ASSIGN_OR_RETURN(*it->second, r_.Number(value, path));
-        } else if (auto entry = integers.find(key); entry != integers.end()) {
-          DCS_ASSIGN_OR_RETURN(*entry->second, r_.Int(value, path));
-        } else if (key == "clip_range_vf" || key == "target_kl") {
-          std::optional<double>& target = key == "target_kl" ? ppo.target_kl : ppo.clip_range_vf;
-          if (value.IsNull()) {
-            target.reset();
-          } else {
-            DCS_ASSIGN_OR_RETURN(target, r_.Number(value, path));
-          }
-        } else if (key == "normalize_advantage") {
-          DCS_ASSIGN_OR_RETURN(ppo.normalize_advantage, r_.Bool(value, path));
-        } else {
-          std::vector<int>& target = key == "pi_layers"   ? ppo.pi_layers
-                                     : key == "vf_layers" ? ppo.vf_layers
-                                                          : ppo.context_layers;
-          DCS_ASSIGN_OR_RETURN(target, r_.Ints(value, path));
-        }
-        return absl::OkStatus();
-      });
+  const KeyTable<PpoConfig>& keys = PpoConfigKeys();
+  return r_.ForEachKey(node, "ppo", keys.names(),
+                       [&](const std::string& key, const YAML::Node& value,
+                           const std::string& path) {
+                         return ReadField(r_, keys[key], value, path, ppo);
+                       });
 }
 
 void Parser::Document(const YAML::Node& root, RunSpec& spec, bool& schedule_key,
@@ -395,18 +443,10 @@ void Parser::Document(const YAML::Node& root, RunSpec& spec, bool& schedule_key,
   std::optional<YAML::Node> stages_node;
   auto read = [&](const std::string& key, const YAML::Node& value,
                   const std::string& path) -> absl::Status {
-    if (key == "env") {
-      DCS_ASSIGN_OR_RETURN(spec.env, r_.Word(value, path));
-    } else if (key == "seed") {
-      DCS_ASSIGN_OR_RETURN(spec.seed, r_.Uint64(value, path));
-    } else if (key == "total_timesteps") {
-      DCS_ASSIGN_OR_RETURN(spec.total_timesteps, r_.Int64(value, path));
-    } else if (key == "n_envs") {
-      DCS_ASSIGN_OR_RETURN(spec.n_envs, r_.Int(value, path));
+    if (const ConfigKey<RunSpec>& row = RunConfigKeys()[key]; row.has_field()) {
+      return ReadField(r_, row, value, path, spec);
     } else if (key == "context") {
       return Context(value, path, spec);
-    } else if (key == "feature") {
-      DCS_ASSIGN_OR_RETURN(spec.feature, r_.Word(value, path));
     } else if (key == "training_range") {
       DCS_ASSIGN_OR_RETURN(const std::vector<double> range, r_.Numbers(value, path));
       if (range.size() != 2) {
@@ -441,9 +481,7 @@ void Parser::Document(const YAML::Node& root, RunSpec& spec, bool& schedule_key,
     return absl::OkStatus();
   };
   problems.Add(r_.ForEachKey(
-      root, "",
-      {"env", "seed", "total_timesteps", "n_envs", "context", "feature", "training_range", "pool",
-       "schedule", "stages", "observe", "evaluation", "ppo", "coverage"},
+      root, "", RunConfigKeys().names(),
       [&](const std::string& key, const YAML::Node& value, const std::string& path) {
         problems.Add(read(key, value, path));
         return absl::OkStatus();
@@ -469,6 +507,81 @@ void Parser::Document(const YAML::Node& root, RunSpec& spec, bool& schedule_key,
 }
 
 }  // namespace
+
+const KeyTable<RunSpec>& RunConfigKeys() {
+  static const KeyTable<RunSpec>* const keys = [] {
+    const RunSpec defaults;
+    return new KeyTable<RunSpec>({
+        {.name = "env",
+         .meaning = "the environment",
+         .field = &RunSpec::env,
+         .type = OneOf(env::EnvironmentNames())},
+        {.name = "seed",
+         .meaning = "the run's seed: every random stream of the run derives from it",
+         .field = &RunSpec::seed},
+        {.name = "total_timesteps",
+         .meaning = "environment steps to train for",
+         .field = &RunSpec::total_timesteps,
+         .bound = AtLeast(1)},
+        {.name = "n_envs",
+         .meaning = "training environments stepped together, each taking the pool rotated by "
+                    "its index",
+         .field = &RunSpec::n_envs,
+         .bound = AtLeast(1)},
+        {.name = "context",
+         .meaning = "the other context features' values, by name, within their physical bounds",
+         .type = "mapping of names to numbers",
+         .default_value = "{} (their defaults)"},
+        {.name = "feature", .meaning = "the varied context feature", .field = &RunSpec::feature},
+        {.name = "training_range",
+         .meaning = "[lo, hi] of the varied feature in training: lo < hi, within its physical "
+                    "bounds",
+         .type = "list of two numbers",
+         .default_value = absl::StrCat("[", defaults.range_lo, ", ", defaults.range_hi, "]")},
+        {.name = "pool",
+         .meaning = "the values each episode starts from: size or values, not both",
+         .type = "mapping",
+         .default_value = absl::StrCat("{size: ", defaults.pool_size, "}")},
+        {.name = "schedule",
+         .meaning = "how the feature moves within each episode, for the whole run; not with "
+                    "stages",
+         .type = "schedule",
+         .default_value = "none (static)"},
+        {.name = "stages",
+         .meaning = "schedules in turn, each for its steps; not with schedule",
+         .type = "list of stages",
+         .default_value = "none"},
+        {.name = "observe",
+         .meaning = "what the policy sees of the feature: nothing, its episode-initial value, "
+                    "or its live value",
+         .type = OneOf(NamesOf(env::kObserveModeNames)),
+         .default_value = std::string(NameOf(env::kObserveModeNames, defaults.observe))},
+        {.name = "evaluation",
+         .meaning = "when the policy is evaluated, and on which values of the feature",
+         .type = "mapping",
+         .default_value = "required (its contexts)"},
+        {.name = "ppo",
+         .meaning = "PPO's settings",
+         .type = "mapping",
+         .default_value = "its keys' defaults"},
+        {.name = "coverage",
+         .meaning = "the coverage diagnostic, counted only if given",
+         .type = "mapping",
+         .default_value = "none (off)"},
+    });
+  }();
+  return *keys;
+}
+
+std::vector<KeySection> RunConfigReference() {
+  return {{"", Describe(RunConfigKeys())},
+          {"pool", Describe(PoolKeys())},
+          {"stages[i]", Describe(StageKeys())},
+          {"evaluation", Describe(EvaluationKeys())},
+          {"evaluation.contexts", Describe(EvaluationContextKeys())},
+          {"ppo", Describe(PpoConfigKeys())},
+          {"coverage", Describe(CoverageKeys())}};
+}
 
 absl::StatusOr<RunSpec> ParseRunSpecYaml(absl::string_view text, absl::string_view where) {
   YamlReader reader{std::string(where)};

@@ -3,14 +3,13 @@
 #define DCS_RUN_RUN_SPEC_YAML_H_
 
 // Training-run configs (run/run_spec.h) read from YAML, as `dcs train run.yaml`
-// and the files in configs/ write them, and their validation against the environment. A full
-// example (every key; all but the evaluation contexts are optional and default to RunSpec's
-// member initialisers):
+// and the files in configs/ write them, and their validation against the environment. An
+// example (docs/config.md lists every key with its type, default, range and meaning, made from
+// the tables the reader and the checks use: RunConfigReference):
 //
-//   env: cartpole             # cartpole | bipedal_walker | car_racing | car_racing_discrete
+//   env: cartpole
 //   seed: 0
 //   total_timesteps: 150000
-//   n_envs: 1
 //   context: {masspole: 0.1}  # other features' values, by name (default: their defaults)
 //   feature: length           # the varied feature
 //   training_range: [0.35, 0.75]
@@ -19,16 +18,12 @@
 //   stages:                   # multi-stage; not together with `schedule`
 //     - {steps: 30000, schedule: {family: constant}}
 //     - {steps: 120000, schedule: {family: cosine_annealing, T_0: 250}}
-//   observe: live             # none | initial | live
+//   observe: live
 //   evaluation:
 //     freq: 10000             # environment steps between evaluations (and one at the end)
 //     episodes: 30            # per context
 //     contexts: {id: [0.37, 0.5, 0.6, 0.71], ood_low: [0.06, 0.09, 0.12], ood_high: [0.92, 1.32]}
-//   ppo: {learning_rate: 3.0e-4, n_steps: 2048, batch_size: 64, n_epochs: 10, gamma: 0.99,
-//         gae_lambda: 0.95, clip_range: 0.2, clip_range_vf: null, normalize_advantage: true,
-//         ent_coef: 0.0, vf_coef: 0.5, max_grad_norm: 0.5, target_kl: null,
-//         pi_layers: [64, 64], vf_layers: [64, 64], log_std_init: 0.0, adam_eps: 1.0e-5,
-//         cnn_features: 256, context_layers: []}   # context_layers: image policies only
+//   ppo: {learning_rate: 3.0e-4, n_epochs: 10, context_layers: []}  # context_layers: images
 //
 // Meanings: docs/reference.md, "Parameters as fractions of the range" (schedule parameters, as
 // fractions of the training range), "Pools", "Multi-stage schedules", "Evaluation protocol";
@@ -51,11 +46,14 @@
 #include <yaml-cpp/yaml.h>
 
 #include <optional>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "common/config_doc.h"
 #include "run/config_errors.h"
+#include "run/config_keys.h"
 #include "run/run_spec.h"
 #include "run/yaml_reader.h"
 
@@ -81,6 +79,15 @@ absl::StatusOr<RunSpec> ReadRunSpec(YamlReader& reader, const YAML::Node& root);
 // The same, adding each problem to `problems`; the spec if there were none.
 std::optional<RunSpec> ReadRunSpec(YamlReader& reader, const YAML::Node& root,
                                    ConfigProblems& problems);
+
+// The run config's top-level keys (run/config_keys.h): the keys ReadRunSpec allows there, reads
+// and checks, which docs/config.md shows; a sweep spec's base keys are among them
+// (run/sweep_spec_yaml.h).
+const KeyTable<RunSpec>& RunConfigKeys();
+// Every mapping's keys of a run config as docs/config.md shows them, by the mapping's path:
+// "" (the top level), "pool", "stages[i]", "evaluation", "evaluation.contexts", "ppo" and
+// "coverage"; each from the table its reader and checks use.
+std::vector<KeySection> RunConfigReference();
 
 // OK if `spec` is a run its environment can carry out, else INVALID_ARGUMENT naming each
 // offending field (all of them, as ReadRunSpec) by its YAML path and saying what is allowed:

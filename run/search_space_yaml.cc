@@ -7,12 +7,63 @@
 
 #include "absl/strings/str_cat.h"
 #include "common/status_macros.h"
+#include "run/config_keys.h"
 
 namespace dcs::run {
 namespace {
 
-constexpr absl::string_view kParameterKeys[] = {"name", "type", "low",     "high",
-                                                "log",  "step", "choices", "when"};
+const KeyTable<SearchSpace>& SpaceKeys() {
+  static const KeyTable<SearchSpace>* const keys = new KeyTable<SearchSpace>({
+      {.name = "parameters",
+       .meaning = "the parameters, in the order a trial suggests them",
+       .type = "list of parameters",
+       .default_value = "required"},
+  });
+  return *keys;
+}
+
+const KeyTable<SearchParameter>& ParameterKeys() {
+  static const KeyTable<SearchParameter>* const keys = [] {
+    const FloatDistribution float_defaults;
+    const IntDistribution int_defaults;
+    return new KeyTable<SearchParameter>({
+        {.name = "name",
+         .meaning = "the parameter's name; in a study sweep, the run config's key path it sets",
+         .type = "string",
+         .default_value = "required"},
+        {.name = "type",
+         .meaning = "float and int: a value in [low, high]; categorical: one of the choices",
+         .type = "one of {float, int, categorical}",
+         .default_value = "required"},
+        {.name = "low",
+         .meaning = "the least value (an int's: an integer)",
+         .type = "number",
+         .default_value = "required (float, int)"},
+        {.name = "high",
+         .meaning = "the greatest value, at least low",
+         .type = "number",
+         .default_value = "required (float, int)"},
+        {.name = "log",
+         .meaning = "sampled uniformly in log space (low > 0; an int's low >= 1, step 1)",
+         .type = "bool",
+         .default_value = ValueText(float_defaults.log)},
+        {.name = "step",
+         .meaning = "values low, low + step, ..., high only (not with log)",
+         .type = "number",
+         .default_value = absl::StrCat("none (float), ", int_defaults.step, " (int)")},
+        {.name = "choices",
+         .meaning = "a categorical's names, each once",
+         .type = "list of names",
+         .default_value = "required (categorical)"},
+        {.name = "when",
+         .meaning = "{parent: choice or [choices]}: the parameter exists only when the earlier "
+                    "categorical parent took one of them",
+         .type = "mapping",
+         .default_value = "none (always)"},
+    });
+  }();
+  return *keys;
+}
 
 // Appends the words of the list `node` at `path` to `choices`.
 absl::Status ReadChoices(YamlReader& reader, const YAML::Node& node, const std::string& path,
@@ -34,7 +85,7 @@ absl::StatusOr<SearchParameter> ReadParameter(YamlReader& reader, const YAML::No
   bool log = false;
   std::vector<std::string> choices;
   DCS_RETURN_IF_ERROR(reader.ForEachKey(
-      node, path, kParameterKeys,
+      node, path, ParameterKeys().names(),
       [&](const std::string& key, const YAML::Node& value, const std::string& key_path) {
         if (key == "name") {
           DCS_ASSIGN_OR_RETURN(parameter.name, reader.Word(value, key_path));
@@ -115,9 +166,8 @@ absl::StatusOr<SearchParameter> ReadParameter(YamlReader& reader, const YAML::No
 absl::StatusOr<SearchSpace> ReadSearchSpace(YamlReader& reader, const YAML::Node& node,
                                             absl::string_view path) {
   SearchSpace space;
-  constexpr absl::string_view kKeys[] = {"parameters"};
   DCS_RETURN_IF_ERROR(reader.ForEachKey(
-      node, path, kKeys,
+      node, path, SpaceKeys().names(),
       [&](const std::string&, const YAML::Node& value, const std::string& key_path) {
         return reader.ForEachItem(value, key_path, "a list of parameters",
                                   [&](const YAML::Node& item, const std::string& item_path) {
@@ -131,6 +181,10 @@ absl::StatusOr<SearchSpace> ReadSearchSpace(YamlReader& reader, const YAML::Node
     return absl::InvalidArgumentError(absl::StrCat(reader.where(), ": ", status.message()));
   }
   return space;
+}
+
+std::vector<KeySection> SearchSpaceReference() {
+  return {{"", Describe(SpaceKeys())}, {"parameters[i]", Describe(ParameterKeys())}};
 }
 
 absl::StatusOr<SearchSpace> ParseSearchSpaceYaml(absl::string_view text, absl::string_view where) {

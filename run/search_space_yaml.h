@@ -15,10 +15,13 @@
 //        when: {mode: sinusoidal}}                            # or when: {mode: [a, b]}
 //
 // `when` makes a parameter conditional: it exists only when the named earlier categorical took
-// one of the choices. Thread-compatible.
+// one of the choices. docs/config.md lists every key (SearchSpaceReference). Thread-compatible.
+
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "common/config_doc.h"
 #include "run/search_space.h"
 #include "run/yaml_reader.h"
 
@@ -30,6 +33,10 @@ namespace dcs::run {
 // (ValidateSearchSpace).
 absl::StatusOr<SearchSpace> ReadSearchSpace(YamlReader& reader, const YAML::Node& node,
                                             absl::string_view path);
+
+// A search space's keys as docs/config.md shows them: the top level's ("") and a parameter's
+// ("parameters[i]"), from the tables the reader takes the keys it allows from.
+std::vector<KeySection> SearchSpaceReference();
 
 // The search space of a YAML document named `where`.
 absl::StatusOr<SearchSpace> ParseSearchSpaceYaml(absl::string_view text, absl::string_view where);

@@ -24,10 +24,6 @@ namespace {
 // The base keys whose mappings merge key by key with a condition's.
 constexpr absl::string_view kMergedKeys[] = {"context", "evaluation", "ppo", "coverage"};
 
-bool IsMergedKey(absl::string_view key) {
-  return std::find(std::begin(kMergedKeys), std::end(kMergedKeys), key) != std::end(kMergedKeys);
-}
-
 // The name of a condition that gives none, from its run keys: "static", its schedule's
 // family, or its stages' families joined by '>', as written ("?" where one is missing).
 std::string DerivedName(const YAML::Node& run_keys) {
@@ -56,6 +52,10 @@ std::string FamilyOf(const RunSpec& spec) {
 }
 
 }  // namespace
+
+bool IsMergedKey(absl::string_view key) {
+  return std::find(std::begin(kMergedKeys), std::end(kMergedKeys), key) != std::end(kMergedKeys);
+}
 
 std::string NameProblem(absl::string_view name) {
   if (name.empty()) return "may not be empty";

@@ -57,6 +57,10 @@ struct SpecCondition {
 // The base of every run: the spec's top-level run config keys with their values, in order.
 using SpecBase = std::vector<std::pair<std::string, YAML::Node>>;
 
+// Whether a condition's value of the base key `key` merges with the base's key by key (the
+// mappings context, evaluation, ppo and coverage) rather than replacing it.
+bool IsMergedKey(absl::string_view key);
+
 // What is wrong with `name` as a condition's or a sweep's name ("may not ..."), or empty.
 std::string NameProblem(absl::string_view name);
 

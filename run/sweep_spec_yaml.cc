@@ -16,6 +16,8 @@
 #include "absl/strings/str_join.h"
 #include "common/enum_names.h"
 #include "run/config_errors.h"
+#include "run/config_keys.h"
+#include "run/run_spec_yaml.h"
 #include "run/sweep_expansion.h"
 #include "run/yaml_reader.h"
 #include "run/yaml_splice.h"
@@ -32,27 +34,110 @@ using internal::SpecMode;
 
 constexpr int64_t kMaxRuns = 10'000;
 
-// The run config's keys the top level gives as the base of every run; a condition may
-// override each.
-constexpr absl::string_view kBaseKeys[] = {
-    "env",  "total_timesteps", "n_envs", "context", "feature", "training_range",
-    "pool", "evaluation",      "ppo",    "coverage"};
-// The run config's keys a condition may give, and its grid vary.
-constexpr absl::string_view kConditionRunKeys[] = {
-    "schedule", "stages", "env",        "total_timesteps", "n_envs",  "context",
-    "feature",  "training_range", "pool", "evaluation",    "ppo",     "coverage"};
-// The keys allowed, as error messages list them.
-constexpr absl::string_view kTopLevelKeys[] = {
-    "name",    "seeds",   "observe", "conditions",     "env",  "total_timesteps",
-    "n_envs",  "context", "feature", "training_range", "pool", "evaluation",
-    "ppo",     "coverage", "study"};
-constexpr absl::string_view kConditionKeys[] = {
-    "name",    "grid",    "observe", "schedule",       "stages", "env",        "total_timesteps",
-    "n_envs",  "context", "feature", "training_range", "pool",   "evaluation", "ppo",
-    "coverage"};
+// The observation mode of every condition of a sweep that gives none.
+constexpr env::ObserveMode kDefaultMode = env::ObserveMode::kNone;
+
+// The run config's keys a sweep gives in a way of its own: `seeds` instead of `seed`, its
+// modes for `observe`, and each condition its schedule or stages.
+constexpr absl::string_view kSweepOwnRunKeys[] = {"seed", "observe"};
+constexpr absl::string_view kConditionScheduleKeys[] = {"schedule", "stages"};
 
 bool Contains(absl::Span<const absl::string_view> names, absl::string_view name) {
   return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// A sweep spec's keys (run/config_keys.h), the run config's among them taken from its table
+// (run/run_spec_yaml.h), in its order.
+struct SweepKeys {
+  KeyTable<SweepSpec> top_level;
+  KeyTable<SweepSpec> condition;
+  // The run config's keys the top level gives as the base of every run (a condition may
+  // override each), and those a condition gives (its grid varies them).
+  std::vector<absl::string_view> base;
+  std::vector<absl::string_view> condition_run;
+};
+
+const SweepKeys& Keys() {
+  static const SweepKeys* const keys = [] {
+    std::vector<absl::string_view> base;
+    for (absl::string_view key : RunConfigKeys().names()) {
+      if (!Contains(kSweepOwnRunKeys, key) && !Contains(kConditionScheduleKeys, key)) {
+        base.push_back(key);
+      }
+    }
+    std::vector<absl::string_view> condition_run(std::begin(kConditionScheduleKeys),
+                                                 std::end(kConditionScheduleKeys));
+    condition_run.insert(condition_run.end(), base.begin(), base.end());
+
+    const std::string modes = absl::StrCat(
+        "one of {", absl::StrJoin(NamesOf(env::kObserveModeNames), ", "), "}, or a list of them");
+    std::vector<ConfigKey<SweepSpec>> top = {
+        {.name = "name",
+         .meaning = "the sweep's name",
+         .type = "string",
+         .default_value = "none (dcs submit: the file's name)"},
+        {.name = "seeds",
+         .meaning = "N for seeds 0..N-1, or a list of distinct seeds: each trial runs once with "
+                    "each",
+         .bound = AtLeast(1),
+         .type = "integer, or list of integers",
+         .default_value = "required"},
+        {.name = "observe",
+         .meaning = "the observation modes every condition runs in, in order",
+         .type = modes,
+         .default_value = absl::StrCat("[", NameOf(env::kObserveModeNames, kDefaultMode), "]")},
+        {.name = "conditions",
+         .meaning = absl::StrCat("the conditions, in order; at most ", kMaxRuns,
+                                 " runs in all (trials times seeds)"),
+         .type = "list of conditions",
+         .default_value = "required"},
+    };
+    std::vector<ConfigKey<SweepSpec>> condition = {
+        {.name = "name",
+         .meaning = "the condition's name: by default \"static\", its schedule's family, or its "
+                    "stages' families joined by '>'",
+         .type = "string",
+         .default_value = "derived"},
+        {.name = "grid",
+         .meaning = "key paths of its run config to lists of values: a condition per "
+                    "combination, the first key slowest",
+         .type = "mapping of key paths to lists",
+         .default_value = "none"},
+        {.name = "observe",
+         .meaning = "the condition's own modes, instead of the sweep's",
+         .type = modes,
+         .default_value = "the sweep's"},
+    };
+    for (absl::string_view key : kConditionScheduleKeys) {
+      const ConfigKey<RunSpec>& run = RunConfigKeys()[key];
+      condition.push_back({.name = key,
+                           .meaning = run.meaning,
+                           .type = run.type,
+                           .default_value = run.default_value});
+    }
+    for (absl::string_view key : base) {
+      top.push_back({.name = key,
+                     .meaning = "the base of every run",
+                     .type = "as in a run config",
+                     .default_value = "the run config's"});
+      condition.push_back(
+          {.name = key,
+           .meaning = internal::IsMergedKey(key) ? "merged into the base's, key by key"
+                                                 : "replaces the base's",
+           .type = "as in a run config",
+           .default_value = "the base's"});
+    }
+    top.push_back({.name = "study",
+                   .meaning = "makes the sweep a search over its one condition's run config "
+                              "(coordinator/study_sweep_spec.h)",
+                   .type = "mapping",
+                   .default_value = "none"});
+    return new SweepKeys{.top_level = KeyTable<SweepSpec>(std::move(top)),
+                         .condition = KeyTable<SweepSpec>(std::move(condition)),
+                         .base = std::move(base),
+                         .condition_run = std::move(condition_run)};
+  }();
+  return *keys;
 }
 
 // `a * b`, at most kCountCap (counts of trials and runs, refused long before).
@@ -186,7 +271,7 @@ void SweepParser::TopLevel(const YAML::Node& root) {
               } else {
                 Problem(path, value, "must be a mapping: the study's trials, sampler and space");
               }
-            } else if (Contains(kBaseKeys, key)) {
+            } else if (Contains(Keys().base, key)) {
               base_.emplace_back(key, value);
             } else if (key == "seed") {
               Problem(path, key_node,
@@ -199,7 +284,7 @@ void SweepParser::TopLevel(const YAML::Node& root) {
                                    "differ in their schedules (conditions: [{",
                                    key, ": ...}])"));
             } else {
-              UnknownKey(path, key_node, "at the top level", kTopLevelKeys);
+              UnknownKey(path, key_node, "at the top level", Keys().top_level.names());
             }
           });
 }
@@ -230,7 +315,9 @@ void SweepParser::Seeds(const YAML::Node& node, const std::string& path) {
   }
   absl::StatusOr<int64_t> count = reader_.Int64(node, path);
   if (!count.ok()) return Problem(count.status());
-  if (*count < 1) return Problem(path, node, absl::StrCat("must be at least 1, got ", *count));
+  if (const Bound& bound = Keys().top_level["seeds"].bound; !bound.Contains(*count)) {
+    return Problem(path, node, absl::StrCat("must be ", bound.Rule(), ", got ", *count));
+  }
   seed_count_ = *count;  // listed once CheckRuns has found it small enough
 }
 
@@ -308,7 +395,7 @@ void SweepParser::ReadCondition(const YAML::Node& node, const std::string& path)
           } else {
             condition.ok = false;
           }
-        } else if (Contains(kConditionRunKeys, key)) {
+        } else if (Contains(Keys().condition_run, key)) {
           condition.spec.run_keys.force_insert(key_node, value);
         } else if (key == "seed") {
           condition.ok = false;
@@ -317,7 +404,7 @@ void SweepParser::ReadCondition(const YAML::Node& node, const std::string& path)
                   "with each of them");
         } else {
           condition.ok = false;
-          UnknownKey(key_path, key_node, absl::StrCat("in ", path), kConditionKeys);
+          UnknownKey(key_path, key_node, absl::StrCat("in ", path), Keys().condition.names());
         }
       });
   condition.ok = condition.ok && clean;
@@ -341,10 +428,10 @@ void SweepParser::ReadGrid(const YAML::Node& node, const std::string& path,
                   absl::StrCat("'", key,
                                "' is not a key path: names joined by '.', list items as [i] "
                                "(e.g. schedule.period, stages[1].steps)"));
-        } else if (!Contains(kConditionRunKeys, steps->front().key)) {
+        } else if (!Contains(Keys().condition_run, steps->front().key)) {
           Problem(key_path, key_node,
                   absl::StrCat("a grid varies keys of the condition's run config (",
-                               absl::StrJoin(kConditionRunKeys, ", "), "), not '",
+                               absl::StrJoin(Keys().condition_run, ", "), "), not '",
                                steps->front().key, "'"));
         } else {
           for (const SpecGridKey& other : condition.spec.grid) {
@@ -443,7 +530,9 @@ absl::StatusOr<SweepSpec> SweepParser::ReadSpec(const YAML::Node& root) {
     if (!has_modes_) {
       modes_.emplace();
       modes_->push_back(
-          {.mode = env::ObserveMode::kNone, .node = YAML::Node("none"), .path = "observe"});
+          {.mode = kDefaultMode,
+           .node = YAML::Node(std::string(NameOf(env::kObserveModeNames, kDefaultMode))),
+           .path = "observe"});
     }
     if (!conditions_node_.has_value()) {
       Problem(reader_.errors().At(
@@ -492,6 +581,10 @@ absl::StatusOr<SweepSpec> SweepParser::ReadSpec(const YAML::Node& root) {
 }
 
 }  // namespace
+
+std::vector<KeySection> SweepSpecReference() {
+  return {{"", Describe(Keys().top_level)}, {"conditions[i]", Describe(Keys().condition)}};
+}
 
 absl::StatusOr<SweepSpec> ParseSweepSpecYaml(absl::string_view text, absl::string_view where) {
   const YamlReader reader{std::string(where)};

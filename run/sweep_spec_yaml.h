@@ -4,15 +4,16 @@
 
 // Sweep specs (run/sweep_spec.h) read from YAML, as `dcs submit` and configs/ write them,
 // and validated whole: every run the sweep would make is checked as a run config is
-// (run/run_spec_yaml.h) before anything is stored. An example:
+// (run/run_spec_yaml.h) before anything is stored. An example (docs/config.md lists every key,
+// made from the tables the reader takes its keys from: SweepSpecReference):
 //
 //   name: quickstart          # optional (default: none; the client uses the file's name)
 //   seeds: 3                  # required. N: seeds 0..N-1; or a list of distinct seeds [0, 5, 7]
 //   observe: [none, live]     # each condition in each of these modes, in order; a single mode
 //                             # is a list of one; absent: [none]
 //   env: cartpole             # the base of every run: the run config's keys but seed,
-//   total_timesteps: 150000   # schedule, stages and observe (env, total_timesteps, n_envs,
-//   feature: length           # context, feature, training_range, pool, evaluation, ppo)
+//   total_timesteps: 150000   # schedule, stages and observe
+//   feature: length
 //   training_range: [0.35, 0.75]
 //   pool: {size: 7}
 //   evaluation: {contexts: {id: [0.4, 0.5], ood_low: [0.1], ood_high: [1.0]}}
@@ -80,12 +81,19 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <vector>
+
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "common/config_doc.h"
 #include "run/sweep_spec.h"
 #include "run/yaml_reader.h"
 
 namespace dcs::run {
+
+// A sweep spec's keys as docs/config.md shows them: the top level's ("") and a condition's
+// ("conditions[i]"), from the tables the reader takes the keys it allows from.
+std::vector<KeySection> SweepSpecReference();
 
 // The sweep spec in `text`, expanded and validated; `where` names it in errors (its file path).
 // INVALID_ARGUMENT for every problem listed above, and as ParseRunSpecYaml for each trial.

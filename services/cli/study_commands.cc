@@ -94,7 +94,7 @@ absl::StatusOr<run::SearchSpace> SpaceOf(const coordinator::StudyRecord& study) 
   return run::ParseSearchSpaceYaml(study.submission.space, study.id);
 }
 
-// The space of `study create --space`, checked here first, to name the file in errors, and
+// The space of `study create SPACE`, checked here first, to name the file in errors, and
 // before a store is made for a study that cannot be.
 absl::StatusOr<std::string> ReadSpace(const CreateFlags& flags) {
   DCS_ASSIGN_OR_RETURN(std::string space, ReadFile(flags.space));

@@ -8,12 +8,16 @@
 
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+#include "absl/strings/string_view.h"
 #include "common/status_util.h"
 #include "env/schedule_spec.h"
 #include "gmock/gmock.h"
@@ -87,6 +91,63 @@ TEST(ScheduleConfigTest, EveryFamilyNameParsesToItsFamily) {
   absl::StatusOr<ScheduleSpec> constant = ParseScheduleSpec(Config("constant"), 0, 1, 3);
   ASSERT_TRUE(constant.ok()) << constant.status();
   EXPECT_EQ(constant->family(), ScheduleFamily::kIdentity);
+}
+
+// The reference (docs/config.md) names every family in order, and of each exactly the
+// parameters its reader allows: those an unknown parameter's error lists, both spellings of a
+// magnitude included.
+TEST(ScheduleConfigTest, TheReferenceListsEveryParameterTheReaderAllows) {
+  const std::vector<ScheduleFamilyDoc> reference = ScheduleFamilyReference();
+  std::vector<std::string> families;
+  for (const ScheduleFamilyDoc& family : reference) families.push_back(family.name);
+  EXPECT_EQ(families, ScheduleFamilyNames());
+  EXPECT_EQ(reference.front().alias, "constant");
+
+  for (const ScheduleFamilyDoc& family : reference) {
+    SCOPED_TRACE(family.name);
+    std::set<std::string> described;
+    for (const KeyDoc& parameter : family.parameters) {
+      for (absl::string_view name : absl::StrSplit(parameter.name, ", ")) {
+        described.emplace(name);
+      }
+    }
+    described.erase("parts");  // a sequential schedule's parts are no parameter
+    std::set<std::string> allowed;
+    for (const absl::Status& problem :
+         ScheduleConfigProblems(Config(family.name, {{"no_such_parameter", 1.0}}), 0, 1)) {
+      const absl::string_view message = problem.message();
+      const size_t start = message.find("(allowed: ");
+      if (start == absl::string_view::npos) continue;
+      const absl::string_view list =
+          message.substr(start + 10, message.rfind(')') - start - 10);
+      for (absl::string_view name : absl::StrSplit(list, ", ")) {
+        if (name != "none") allowed.emplace(name);
+      }
+    }
+    EXPECT_EQ(described, allowed);
+  }
+}
+
+// Each parameter's row says what its reader checks: its default and range are those of the
+// call that reads it.
+TEST(ScheduleConfigTest, TheReferenceGivesEachParametersDefaultAndRange) {
+  std::map<std::string, KeyDoc> sinusoidal;
+  for (const ScheduleFamilyDoc& family : ScheduleFamilyReference()) {
+    if (family.name != "sinusoidal") continue;
+    for (const KeyDoc& parameter : family.parameters) sinusoidal[parameter.name] = parameter;
+  }
+  ASSERT_TRUE(sinusoidal.contains("period"));
+  EXPECT_EQ(sinusoidal["period"].default_value, "1");
+  EXPECT_EQ(sinusoidal["period"].range, "in [1, inf]");
+  EXPECT_THAT(ErrorOf(Config("sinusoidal", {{"period", 0.0}})),
+              HasSubstr(absl::StrCat("period must be ", sinusoidal["period"].range)));
+  ASSERT_TRUE(sinusoidal.contains("amplitude, amplitude_frac"));
+  EXPECT_EQ(sinusoidal["amplitude, amplitude_frac"].type, "magnitude (of span/2)");
+  EXPECT_EQ(sinusoidal["amplitude, amplitude_frac"].default_value, "amplitude_frac 0");
+  EXPECT_EQ(sinusoidal["initial_direction"].type, "one of {random, down, up}");
+  EXPECT_EQ(sinusoidal["initial_direction"].default_value, "random");
+  EXPECT_EQ(ParseAs<SinusoidalParams>(Config("sinusoidal"), 0, 1).initial_direction,
+            SinusoidalParams::InitialDirection::kRandom);
 }
 
 TEST(ScheduleConfigTest, UnknownFamilyListsTheKnownOnes) {
