@@ -5,7 +5,9 @@
 #include <SQLiteCpp/Statement.h>
 
 #include <algorithm>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "common/enum_names.h"
@@ -87,6 +89,52 @@ absl::StatusOr<RunRecord> RunTable::CancelRun(absl::string_view run_id, absl::Ti
     DCS_RETURN_IF_ERROR(CancelRunRow(db, run, "cancelled by a client", now));
     return FindRun(db, run_id);
   });
+}
+
+absl::StatusOr<std::vector<RunRecord>> RunTable::DeleteRuns(
+    absl::Span<const std::string> run_ids) {
+  if (run_ids.empty()) return absl::InvalidArgumentError("name a run to remove");
+  return connection_.Transaction(
+      [&](SQLite::Database& db) -> absl::StatusOr<std::vector<RunRecord>> {
+        std::vector<RunRecord> removed;
+        for (const std::string& run_id : run_ids) {
+          DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(db, run_id));
+          if (std::ranges::any_of(removed, [&](const RunRecord& r) { return r.id == run.id; })) {
+            continue;
+          }
+          if (!run.sweep_id.empty()) {
+            return absl::FailedPreconditionError(absl::StrCat(
+                run.id, " belongs to ", run.sweep_id, ", whose report needs all its runs: ",
+                "remove the sweep with `dcs sweeps rm ", run.sweep_id, "`"));
+          }
+          DCS_RETURN_IF_ERROR(
+              CheckRemovable(db, run, absl::StrCat("`dcs runs cancel ", run.id, "`")));
+          removed.push_back(std::move(run));
+        }
+        for (const RunRecord& run : removed) DeleteRunRows(db, *RunNumber(run.id));
+        return removed;
+      });
+}
+
+absl::StatusOr<std::vector<std::string>> RunTable::RemovedRuns(
+    absl::Span<const std::string> names) {
+  return connection_.Transaction(
+      [&](SQLite::Database& db) -> absl::StatusOr<std::vector<std::string>> {
+        // AUTOINCREMENT: the highest number ever given, kept after its row goes.
+        SQLite::Statement highest(db, "SELECT seq FROM sqlite_sequence WHERE name = 'runs'");
+        const int64_t given = highest.executeStep() ? highest.getColumn(0).getInt64() : 0;
+        highest.reset();
+        SQLite::Statement kept(db, "SELECT 1 FROM runs WHERE number = ?");
+        std::vector<std::string> removed;
+        for (const std::string& name : names) {
+          const absl::StatusOr<int64_t> number = RunNumber(name);
+          if (!number.ok() || *number < 1 || *number > given || RunId(*number) != name) continue;
+          kept.bind(1, *number);
+          if (!kept.executeStep()) removed.push_back(name);
+          kept.reset();
+        }
+        return removed;
+      });
 }
 
 absl::StatusOr<std::optional<LearnerLease>> RunTable::AcquireRun(absl::string_view holder,

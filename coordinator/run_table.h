@@ -106,6 +106,18 @@ class RunTable {
   // it already ended.
   absl::StatusOr<RunRecord> CancelRun(absl::string_view run_id, absl::Time now);
 
+  // Removes runs for good, every one of `run_ids` or, on an error, none, with every row the
+  // store holds of them (leases, checkpoints' index, evaluations and their results); returns
+  // them as they were, in `run_ids`' order, each once. Their ids are never given again. Their
+  // directories are the caller's to remove once this returns (coordinator/run_removal.h).
+  // INVALID_ARGUMENT for no id; NOT_FOUND for an unknown one; FAILED_PRECONDITION (naming it)
+  // for a run CheckRemovable refuses (queued, running, a grid evaluation open) or one of a
+  // sweep: a sweep's runs go with it (SweepTable::DeleteSweeps), as its report needs them all.
+  absl::StatusOr<std::vector<RunRecord>> DeleteRuns(absl::Span<const std::string> run_ids);
+  // Those of `names` that are the ids of removed runs: ids this store gave that no run has now.
+  // What is left of a removal that ended before its directories went (coordinator/run_removal.h).
+  absl::StatusOr<std::vector<std::string>> RemovedRuns(absl::Span<const std::string> names);
+
   // A queued run a learner with `numerics` may take, leased to `holder` (listening at
   // `address`) until now + lease_duration; the run becomes running. Fair across sweeps: the
   // run whose sweep has the fewest running runs (a run alone counts as a sweep of its own),

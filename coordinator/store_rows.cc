@@ -192,6 +192,45 @@ absl::Status CancelRunRow(SQLite::Database& db, const RunRecord& run, absl::stri
   return absl::OkStatus();
 }
 
+absl::Status CheckRemovable(SQLite::Database& db, const RunRecord& run,
+                            absl::string_view how_to_stop) {
+  if (!IsTerminal(run.state)) {
+    return absl::FailedPreconditionError(absl::StrCat(run.id, " is ",
+                                                      NameOf(kRunStateNames, run.state),
+                                                      ": stop it first with ", how_to_stop));
+  }
+  SQLite::Statement open(db, "SELECT count(*) FROM evaluation_jobs WHERE run = ? AND "
+                             "policy_version < 0 AND done = 0");
+  open.bind(1, *RunNumber(run.id));
+  open.executeStep();
+  if (const int64_t cells = open.getColumn(0).getInt64(); cells > 0) {
+    // A client waits for it, and actors may hold its cells.
+    return absl::FailedPreconditionError(absl::StrCat(
+        run.id, " has a grid evaluation (`dcs eval --on-actors`) with ", cells,
+        " cells still to evaluate: remove it once they are in"));
+  }
+  return absl::OkStatus();
+}
+
+void DeleteRowAndChildren(SQLite::Database& db, absl::string_view table, int64_t number,
+                          absl::string_view column,
+                          std::initializer_list<absl::string_view> children) {
+  for (absl::string_view child : children) {
+    SQLite::Statement remove(db, absl::StrCat("DELETE FROM ", child, " WHERE ", column, " = ?"));
+    remove.bind(1, number);
+    remove.exec();
+  }
+  SQLite::Statement remove(db, absl::StrCat("DELETE FROM ", table, " WHERE number = ?"));
+  remove.bind(1, number);
+  remove.exec();
+}
+
+void DeleteRunRows(SQLite::Database& db, int64_t number) {
+  DeleteRowAndChildren(db, "runs", number, "run",
+                       {"evaluation_returns", "evaluation_jobs", "grid_evaluations",
+                        "evaluations", "checkpoints", "leases"});
+}
+
 absl::Status CorruptStore(const std::string& path, absl::string_view what) {
   return absl::DataLossError(absl::StrCat(path, " is corrupt: ", what));
 }

@@ -12,6 +12,7 @@
 #include <SQLiteCpp/Statement.h>
 
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -75,6 +76,21 @@ void DropEvaluationWeights(SQLite::Database& db, int64_t number);
 absl::Status CancelRunRow(SQLite::Database& db, const RunRecord& run, absl::string_view reason,
                           absl::Time now);
 
+// OK if run `run` may be removed for good: it ended, and no grid evaluation of it is still
+// open. FAILED_PRECONDITION naming what still works on it, and `how_to_stop` it when it still
+// runs (the command that cancels it: the run's own, or its sweep's).
+absl::Status CheckRemovable(SQLite::Database& db, const RunRecord& run,
+                            absl::string_view how_to_stop);
+// Deletes row `number` of `table` and, before it, the rows of `children` (in that order) whose
+// `column` is `number`: the connection enforces foreign keys, so a row goes after those that
+// refer to it.
+void DeleteRowAndChildren(SQLite::Database& db, absl::string_view table, int64_t number,
+                          absl::string_view column,
+                          std::initializer_list<absl::string_view> children);
+// Deletes run `number` and every row that hangs off it: its leases, its checkpoints' index,
+// its evaluations (grid evaluations too) with their jobs and results.
+void DeleteRunRows(SQLite::Database& db, int64_t number);
+
 // OK if `key` names the lease as it is held now: same epoch, still held, run not ended.
 // FAILED_PRECONDITION saying which it is not; NOT_FOUND for an unknown run or slot.
 absl::Status CheckHeld(SQLite::Database& db, const LeaseKey& key);
@@ -96,6 +112,8 @@ int64_t InsertStudy(SQLite::Database& db, const StudySubmission& submission,
                     std::optional<int64_t> sweep, absl::Time now);
 // Fails the running trials of the study sweep `sweep` drives (it was cancelled).
 void FailRunningStudyTrials(SQLite::Database& db, int64_t sweep, absl::Time now);
+// Deletes study `number` and its trials with their values, reports and rungs.
+void DeleteStudyRows(SQLite::Database& db, int64_t number);
 
 // DATA_LOSS naming the store at `path`: it holds `what`, which its schema or its writers
 // forbid, so the file was damaged (never the caller's fault, never to be indexed with).

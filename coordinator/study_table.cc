@@ -235,6 +235,12 @@ void FailRunningStudyTrials(SQLite::Database& db, int64_t sweep, absl::Time now)
   fail.exec();
 }
 
+void DeleteStudyRows(SQLite::Database& db, int64_t number) {
+  DeleteRowAndChildren(db, "studies", number, "study",
+                       {"study_trial_values", "study_trial_rungs", "study_trial_reports",
+                        "study_trials"});
+}
+
 }  // namespace store_rows
 
 absl::StatusOr<StudyRecord> StudyTable::CreateStudy(const StudySubmission& submission,

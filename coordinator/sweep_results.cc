@@ -29,6 +29,11 @@ absl::StatusOr<v1::EvaluationLog> CompletedRunLogs::Get(const RunRecord& run) {
   return logs_.try_emplace(run.id, *std::move(log)).first->second;
 }
 
+void CompletedRunLogs::Forget(const std::string& run_id) {
+  absl::MutexLock lock(&mu_);
+  logs_.erase(run_id);
+}
+
 void KeepScoresOnly(v1::EvaluationLog& log) {
   const int last = log.evaluations_size() - 1;
   const int best = log.best_anytime_index();

@@ -31,6 +31,8 @@ class CompletedRunLogs {
   // The log of `run`. REQUIRES: the run completed. DATA_LOSS naming the run if its log is
   // missing or unreadable.
   absl::StatusOr<v1::EvaluationLog> Get(const RunRecord& run) ABSL_LOCKS_EXCLUDED(mu_);
+  // Drops the log of run `run_id`, if kept: the run was removed.
+  void Forget(const std::string& run_id) ABSL_LOCKS_EXCLUDED(mu_);
 
  private:
   const std::string data_dir_;

@@ -4,6 +4,7 @@
 #include <SQLiteCpp/Database.h>
 #include <SQLiteCpp/Statement.h>
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -252,6 +253,47 @@ absl::StatusOr<SweepRecord> SweepTable::CancelSweep(absl::string_view sweep_id, 
     TouchSweep(db, number, now);
     return FindSweep(db, sweep_id);
   });
+}
+
+absl::StatusOr<std::vector<RemovedSweep>> SweepTable::DeleteSweeps(
+    absl::Span<const std::string> sweep_ids) {
+  if (sweep_ids.empty()) return absl::InvalidArgumentError("name a sweep to remove");
+  return connection_.Transaction(
+      [&](SQLite::Database& db) -> absl::StatusOr<std::vector<RemovedSweep>> {
+        std::vector<RemovedSweep> removed;
+        for (const std::string& sweep_id : sweep_ids) {
+          DCS_ASSIGN_OR_RETURN(SweepRecord sweep, FindSweep(db, sweep_id));
+          if (std::ranges::any_of(removed, [&](const RemovedSweep& r) {
+                return r.sweep.id == sweep.id;
+              })) {
+            continue;
+          }
+          const std::string how_to_stop = absl::StrCat("`dcs sweeps cancel ", sweep.id, "`");
+          int64_t active = 0;
+          for (const auto& [state, count] : sweep.runs_by_state) {
+            if (!IsTerminal(state)) active += count;
+          }
+          if (active > 0 || sweep.open) {
+            return absl::FailedPreconditionError(absl::StrCat(
+                sweep.id, " is ", NameOf(kSweepStateNames, sweep.state), " (", active,
+                " of its runs queued or running", sweep.open ? ", its study asking for more" : "",
+                "): stop it first with ", how_to_stop));
+          }
+          std::vector<RunRecord> runs = FindRuns(db, "sweep = ?", *SweepNumber(sweep.id));
+          for (const RunRecord& run : runs) {
+            DCS_RETURN_IF_ERROR(CheckRemovable(db, run, how_to_stop));
+          }
+          removed.push_back({.sweep = std::move(sweep), .runs = std::move(runs)});
+        }
+        for (const RemovedSweep& sweep : removed) {
+          for (const RunRecord& run : sweep.runs) DeleteRunRows(db, *RunNumber(run.id));
+          if (!sweep.sweep.study_id.empty()) {
+            DeleteStudyRows(db, *StudyNumber(sweep.sweep.study_id));
+          }
+          DeleteRowAndChildren(db, "sweeps", *SweepNumber(sweep.sweep.id), "sweep", {"trials"});
+        }
+        return removed;
+      });
 }
 
 absl::StatusOr<std::pair<SweepRecord, int>> SweepTable::RetrySweep(absl::string_view sweep_id,

@@ -20,6 +20,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "absl/time/time.h"
+#include "absl/types/span.h"
 #include "coordinator/run_state.h"
 #include "coordinator/run_table.h"
 #include "coordinator/study_table.h"
@@ -70,6 +71,12 @@ struct SweepRecord {
   absl::Time updated_at;
 };
 
+// A sweep removed for good, as it was, with its runs (SweepTable::DeleteSweeps).
+struct RemovedSweep {
+  SweepRecord sweep;
+  std::vector<RunRecord> runs;  // oldest first
+};
+
 class SweepTable {
  public:
   SweepTable(const SweepTable&) = delete;
@@ -104,6 +111,14 @@ class SweepTable {
   // study trials fail. NOT_FOUND; FAILED_PRECONDITION if none of its runs was queued or running
   // and it was not open.
   absl::StatusOr<SweepRecord> CancelSweep(absl::string_view sweep_id, absl::Time now);
+  // Removes sweeps for good, every one of `sweep_ids` or, on an error, none, with their trials,
+  // their runs as RunTable::DeleteRuns removes them, and a study sweep's study; returns them as
+  // they were, in `sweep_ids`' order, each once. Their ids (and their runs' and study's) are
+  // never given again. Their runs' directories are the caller's to remove once this returns
+  // (coordinator/run_removal.h). INVALID_ARGUMENT for no id; NOT_FOUND for an unknown one;
+  // FAILED_PRECONDITION, naming it, for a sweep with a run queued or running, one that still
+  // adds trials (an open study sweep), or a run CheckRemovable refuses otherwise.
+  absl::StatusOr<std::vector<RemovedSweep>> DeleteSweeps(absl::Span<const std::string> sweep_ids);
   // Queues the sweep's failed runs again (each resumes from its last checkpoint, as a run whose
   // learner was lost does) and returns how many. NOT_FOUND; FAILED_PRECONDITION if none failed,
   // or for a study sweep (its study was told those trials failed).

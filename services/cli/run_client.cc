@@ -113,6 +113,18 @@ absl::StatusOr<v1::Sweep> CancelSweep(const std::string& address, const std::str
   return response.sweep();
 }
 
+absl::StatusOr<v1::DeleteSweepsResponse> DeleteSweeps(const std::string& address,
+                                                      const std::vector<std::string>& sweep_ids,
+                                                      absl::Duration timeout) {
+  v1::DeleteSweepsRequest request;
+  request.mutable_sweep_ids()->Add(sweep_ids.begin(), sweep_ids.end());
+  v1::DeleteSweepsResponse response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address),
+                                &v1::CoordinatorService::Stub::DeleteSweeps, request, response,
+                                timeout, Peer(address)));
+  return response;
+}
+
 absl::StatusOr<v1::RetrySweepResponse> RetrySweep(const std::string& address,
                                                   const std::string& sweep_id,
                                                   absl::Duration timeout) {
@@ -163,6 +175,17 @@ absl::StatusOr<v1::Run> CancelRun(const std::string& address, const std::string&
   DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address), &v1::CoordinatorService::Stub::CancelRun,
                                 request, response, timeout, Peer(address)));
   return response.run();
+}
+
+absl::StatusOr<std::vector<v1::Run>> DeleteRuns(const std::string& address,
+                                                const std::vector<std::string>& run_ids,
+                                                absl::Duration timeout) {
+  v1::DeleteRunsRequest request;
+  request.mutable_run_ids()->Add(run_ids.begin(), run_ids.end());
+  v1::DeleteRunsResponse response;
+  DCS_RETURN_IF_ERROR(CallUnary(*Coordinator(address), &v1::CoordinatorService::Stub::DeleteRuns,
+                                request, response, timeout, Peer(address)));
+  return std::vector<v1::Run>(response.runs().begin(), response.runs().end());
 }
 
 absl::StatusOr<v1::Run> WatchRun(const std::string& address, const std::string& run_id,

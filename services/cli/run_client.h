@@ -39,6 +39,11 @@ absl::StatusOr<std::vector<v1::Run>> ListRuns(const std::string& address,
                                               absl::Duration timeout);
 absl::StatusOr<v1::Run> CancelRun(const std::string& address, const std::string& run_id,
                                   absl::Duration timeout);
+// Removes ended runs for good, all of them or none (DeleteRuns), and returns them as they were.
+// Not retried: a removal whose answer was lost would then be NOT_FOUND.
+absl::StatusOr<std::vector<v1::Run>> DeleteRuns(const std::string& address,
+                                                const std::vector<std::string>& run_ids,
+                                                absl::Duration timeout);
 
 // Follows run `run_id` until it ends, on one stream from the coordinator, which sends only
 // changes (services/cli/watch_call.h): `on_update` gets the run whenever its progress or state
@@ -81,6 +86,10 @@ absl::StatusOr<std::vector<v1::Sweep>> ListSweeps(const std::string& address,
                                                   absl::Duration timeout);
 absl::StatusOr<v1::Sweep> CancelSweep(const std::string& address, const std::string& sweep_id,
                                       absl::Duration timeout);
+// Removes ended sweeps with their runs for good, as DeleteRuns removes runs.
+absl::StatusOr<v1::DeleteSweepsResponse> DeleteSweeps(const std::string& address,
+                                                      const std::vector<std::string>& sweep_ids,
+                                                      absl::Duration timeout);
 absl::StatusOr<v1::RetrySweepResponse> RetrySweep(const std::string& address,
                                                   const std::string& sweep_id,
                                                   absl::Duration timeout);

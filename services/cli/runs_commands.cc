@@ -65,6 +65,20 @@ int CancelRunCommand(const GlobalFlags& flags, const std::string& run_id) {
   return kExitOk;
 }
 
+int RemoveRunsCommand(const GlobalFlags& flags, const std::vector<std::string>& run_ids) {
+  absl::StatusOr<std::vector<v1::Run>> removed =
+      DeleteRuns(CoordinatorAddress(flags), run_ids, flags.timeout);
+  if (!removed.ok()) return FailCommand(removed.status());
+  if (flags.output == OutputFormat::kJson) {
+    v1::DeleteRunsResponse response;
+    for (const v1::Run& run : *removed) *response.add_runs() = run;
+    std::cout << CommandJson(response) << std::endl;
+    return kExitOk;
+  }
+  for (const v1::Run& run : *removed) std::cout << run.run_id() << " removed" << std::endl;
+  return kExitOk;
+}
+
 int GetRunCommand(const GlobalFlags& flags, const std::string& run_id, std::string out) {
   if (out.empty()) out = DefaultOut(flags, run_id);
   if (absl::Status status = DownloadRun(CoordinatorAddress(flags), run_id, out, flags.timeout);
@@ -79,7 +93,8 @@ int GetRunCommand(const GlobalFlags& flags, const std::string& run_id, std::stri
 
 std::vector<CliCommand> AddRunsCommands(CLI::App& dcs, const GlobalFlags& flags) {
   CLI::App* runs = dcs.add_subcommand(
-      "runs", "The cluster's runs: list them (no subcommand), watch, cancel or get one");
+      "runs", "The cluster's runs: list them (no subcommand), watch, cancel or get one, "
+              "remove ended ones");
   auto run_id = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto sweep_id = std::make_shared<std::string>();
@@ -99,6 +114,12 @@ std::vector<CliCommand> AddRunsCommands(CLI::App& dcs, const GlobalFlags& flags)
   get->add_option("run", *run_id, "the run's id")->required();
   AddOutDirectory(*get, out.get(), "where its files go (default: <data-dir>/runs/<run id>)");
 
+  auto run_ids = std::make_shared<std::vector<std::string>>();
+  CLI::App* rm = runs->add_subcommand(
+      "rm", "Remove ended runs for good: their records and files on the coordinator, every one "
+            "named or none (a sweep's runs go with their sweep: dcs sweeps rm)");
+  rm->add_option("run", *run_ids, "the runs' ids, e.g. run-1 run-2")->required();
+
   return {
       {watch,
        [&flags, run_id, out] {
@@ -108,6 +129,7 @@ std::vector<CliCommand> AddRunsCommands(CLI::App& dcs, const GlobalFlags& flags)
        kTableOrJson},
       {cancel, [&flags, run_id] { return CancelRunCommand(flags, *run_id); }, kTableOrJson},
       {get, [&flags, run_id, out] { return GetRunCommand(flags, *run_id, *out); }},
+      {rm, [&flags, run_ids] { return RemoveRunsCommand(flags, *run_ids); }, kTableOrJson},
       {runs, [&flags, sweep_id] { return ListRunsCommand(flags, *sweep_id); }, kEveryFormat},
   };
 }

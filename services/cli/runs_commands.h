@@ -4,7 +4,8 @@
 
 // `dcs runs`: the runs of a cluster. `dcs runs` lists them (state, step, steps/s, latest
 // avg_combined); `runs watch RUN` follows one to its end (run_follower.h); `runs cancel RUN`
-// stops one; `runs get RUN --out DIR` downloads its files as `dcs train` lays them out.
+// stops one; `runs get RUN --out DIR` downloads its files as `dcs train` lays them out; `runs rm
+// RUN...` removes ended runs for good (a copy `runs get` downloaded stays).
 
 #include <vector>
 

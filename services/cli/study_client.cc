@@ -32,6 +32,9 @@ class LocalStudies : public StudyClient {
   absl::StatusOr<StudyRecord> Get(const std::string& study_id) override {
     return store_->studies().GetStudy(study_id);
   }
+  absl::StatusOr<std::vector<StudyRecord>> List() override {
+    return store_->studies().ListStudies();
+  }
   absl::StatusOr<std::vector<StudyTrial>> Trials(const std::string& study_id) override {
     return store_->studies().ListStudyTrials(study_id);
   }
@@ -70,6 +73,16 @@ class RemoteStudies : public StudyClient {
   absl::StatusOr<StudyRecord> Get(const std::string& study_id) override {
     DCS_ASSIGN_OR_RETURN(const v1::GetStudyResponse response, GetStudy(study_id));
     return StudyFromProto(response.study());
+  }
+  absl::StatusOr<std::vector<StudyRecord>> List() override {
+    v1::ListStudiesResponse response;
+    DCS_RETURN_IF_ERROR(
+        Call(&v1::CoordinatorService::Stub::ListStudies, v1::ListStudiesRequest(), response));
+    std::vector<StudyRecord> studies;
+    for (const v1::Study& study : response.studies()) {
+      DCS_ASSIGN_OR_RETURN(studies.emplace_back(), StudyFromProto(study));
+    }
+    return studies;
   }
   absl::StatusOr<std::vector<StudyTrial>> Trials(const std::string& study_id) override {
     DCS_ASSIGN_OR_RETURN(const v1::GetStudyResponse response, GetStudy(study_id));

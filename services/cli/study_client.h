@@ -24,6 +24,8 @@ class StudyClient {
   virtual absl::StatusOr<coordinator::StudyRecord> Create(
       const coordinator::StudySubmission& submission) = 0;
   virtual absl::StatusOr<coordinator::StudyRecord> Get(const std::string& study_id) = 0;
+  // Every study, oldest first.
+  virtual absl::StatusOr<std::vector<coordinator::StudyRecord>> List() = 0;
   // The study's trials, by number.
   virtual absl::StatusOr<std::vector<coordinator::StudyTrial>> Trials(
       const std::string& study_id) = 0;

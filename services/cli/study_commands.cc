@@ -1,12 +1,14 @@
 // Copyright 2026 The DCS Authors.
 #include "services/cli/study_commands.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <limits>
 #include <memory>
 #include <string>
 
+#include "absl/strings/ascii.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
@@ -22,6 +24,7 @@
 #include "services/cli/figure_render.h"
 #include "services/cli/run_client.h"
 #include "services/cli/study_client.h"
+#include "services/coordinator/study_proto.h"
 #include "services/command_line.h"
 #include "services/exit_codes.h"
 
@@ -189,6 +192,43 @@ absl::Status Trials(const std::string& study_id, const GlobalFlags& flags, Study
   return absl::OkStatus();
 }
 
+// Every study: a row each with its trials by state and its best value, or with -o json the
+// studies as the coordinator answers them.
+absl::Status List(const GlobalFlags& flags, StudyClient& studies) {
+  DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::StudyRecord> all, studies.List());
+  if (flags.output == OutputFormat::kJson) {
+    v1::ListStudiesResponse response;
+    for (const coordinator::StudyRecord& study : all) *response.add_studies() = StudyToProto(study);
+    std::cout << CommandJson(response) << std::endl;
+    return absl::OkStatus();
+  }
+  std::vector<std::vector<std::string>> rows = {
+      {"STUDY", "NAME", "DIRECTION", "SAMPLER", "TRIALS"}};
+  for (const EnumName<TrialState>& state : coordinator::kTrialStateNames) {
+    rows[0].push_back(absl::AsciiStrToUpper(state.name));
+  }
+  rows[0].insert(rows[0].end(), {"BEST", "SWEEP"});
+  for (const coordinator::StudyRecord& study : all) {
+    std::vector<std::string>& row = rows.emplace_back();
+    int64_t total = 0;
+    for (const auto& [state, count] : study.trials_by_state) total += count;
+    row = {study.id, study.submission.name.empty() ? "-" : study.submission.name,
+           std::string(NameOf(coordinator::kDirectionNames, study.submission.direction)),
+           std::string(NameOf(coordinator::kSamplerKindNames, study.submission.sampler)),
+           absl::StrCat(total)};
+    for (const EnumName<TrialState>& state : coordinator::kTrialStateNames) {
+      const auto counted = std::find_if(
+          study.trials_by_state.begin(), study.trials_by_state.end(),
+          [&](const std::pair<TrialState, int64_t>& entry) { return entry.first == state.value; });
+      row.push_back(absl::StrCat(counted == study.trials_by_state.end() ? 0 : counted->second));
+    }
+    row.push_back(study.best.has_value() ? absl::StrFormat("%.6g", study.best->value) : "-");
+    row.push_back(study.sweep_id.empty() ? "-" : study.sweep_id);
+  }
+  std::cout << FormatRows(rows, flags.output) << std::flush;
+  return absl::OkStatus();
+}
+
 struct PlotFlags {
   std::string study;
   std::string out;
@@ -301,6 +341,10 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
                   "svg, png or pdf");
   add_store(plot);
 
+  CLI::App* studies = study->add_subcommand(
+      "list", "List the studies: direction, sampler, trials by state, the best value");
+  add_store(studies);
+
   CLI::App* best = study->add_subcommand("best", "Print the best complete trial (JSON)");
   best->add_option("study", *study_id, "the study's id")->required();
   add_store(best);
@@ -324,7 +368,9 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
           {list, on_studies([=, &flags](StudyClient& s) { return Trials(*study_id, flags, s); }),
            kEveryFormat},
           {plot, on_studies([=](StudyClient& s) { return Plot(*plot_flags, s); })},
-          {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); }), kTableOrJson}};
+          {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); }), kTableOrJson},
+          {studies, on_studies([&flags](StudyClient& s) { return List(flags, s); }),
+           kEveryFormat}};
 }
 
 }  // namespace dcs::services::cli

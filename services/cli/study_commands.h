@@ -13,6 +13,7 @@
 //   dcs study tell STUDY TRIAL VALUE   (or --state pruned|failed, and no VALUE)
 //   dcs study best STUDY     {"trial": 7, "state": "complete", "value": 0.4, "params": {...}}
 //   dcs study trials STUDY   a table of every trial (-o json: a JSON line per trial)
+//   dcs study list           a row per study: trials by state, best value, its sweep if any
 //   dcs study plot STUDY --out DIR [--format svg|png|pdf]   the optimisation history (gnuplot)
 //
 // `create` prints the study's id. A study lives on the coordinator (--addr, default the local

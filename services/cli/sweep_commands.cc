@@ -182,27 +182,57 @@ int RetrySweepCommand(const GlobalFlags& flags, const std::string& sweep_id) {
   return PrintSweepState(flags, retried->sweep());
 }
 
-// A command on one sweep, named by its id.
+int RemoveSweepsCommand(const GlobalFlags& flags, const std::vector<std::string>& sweep_ids) {
+  absl::StatusOr<v1::DeleteSweepsResponse> removed =
+      DeleteSweeps(CoordinatorAddress(flags), sweep_ids, flags.timeout);
+  if (!removed.ok()) return FailCommand(removed.status());
+  if (flags.output == OutputFormat::kJson) {
+    std::cout << CommandJson(*removed) << std::endl;
+    return kExitOk;
+  }
+  for (const v1::Sweep& sweep : removed->sweeps()) {
+    std::cout << sweep.sweep_id() << " removed: " << sweep.runs() << " runs"
+              << (sweep.study_id().empty() ? "" : " and " + sweep.study_id()) << std::endl;
+  }
+  return kExitOk;
+}
+
+// A verb of one sweep, as the table runs it: on the one id its command line takes.
+template <int (*Run)(const GlobalFlags&, const std::string&)>
+int OnOneSweep(const GlobalFlags& flags, const std::vector<std::string>& sweep_ids) {
+  return Run(flags, sweep_ids.front());
+}
+
+// A command on sweeps named by their ids.
 struct SweepVerb {
   const char* name;
   const char* help;
-  int (*run)(const GlobalFlags& flags, const std::string& sweep_id);
+  int (*run)(const GlobalFlags& flags, const std::vector<std::string>& sweep_ids);
+  bool several;  // takes SWEEP..., not one SWEEP
+  // Also spelt `dcs VERB`, the first verbs' first spelling; not a verb added since, so that the
+  // top level does not fill with one noun's verbs (`dcs rm` would not say what it removes).
+  bool top_level;
 };
 constexpr SweepVerb kSweepVerbs[] = {
     {"watch",
      "Follow a sweep live (Ctrl-C detaches): runs by state per trial, steps/s, ETA, the best "
      "trial so far; exit 0 once it completed, 1 if it failed",
-     WatchSweepCommand},
-    {"cancel", "Stop a sweep's queued and running runs", CancelSweepCommand},
+     OnOneSweep<WatchSweepCommand>, false, true},
+    {"cancel", "Stop a sweep's queued and running runs", OnOneSweep<CancelSweepCommand>, false,
+     true},
     {"retry", "Queue a sweep's failed runs again (each resumes from its last checkpoint)",
-     RetrySweepCommand},
+     OnOneSweep<RetrySweepCommand>, false, true},
+    {"rm",
+     "Remove ended sweeps for good with their runs (records and files on the coordinator) and a "
+     "search's study, every one named or none",
+     RemoveSweepsCommand, true, false},
 };
 
 }  // namespace
 
 std::vector<CliCommand> AddSweepCommands(CLI::App& dcs, const GlobalFlags& flags) {
   auto submit_flags = std::make_shared<SubmitFlags>();
-  auto sweep_id = std::make_shared<std::string>();
+  auto sweep_ids = std::make_shared<std::vector<std::string>>();
 
   CLI::App* submit = dcs.add_subcommand(
       "submit", "Submit a sweep (a grid of conditions x observation modes x seeds; see "
@@ -217,20 +247,26 @@ std::vector<CliCommand> AddSweepCommands(CLI::App& dcs, const GlobalFlags& flags
 
   CLI::App* sweeps = dcs.add_subcommand(
       "sweeps", "The cluster's sweeps: list them with progress (no subcommand), watch, cancel or "
-                "retry one");
+                "retry one, remove ended ones");
 
   std::vector<CliCommand> commands;
-  // The verbs on one sweep, as `dcs sweeps VERB`, beside `dcs runs VERB`; and at the top level,
-  // their first spelling, kept.
+  // The verbs on sweeps, as `dcs sweeps VERB`, beside `dcs runs VERB`; and at the top level,
+  // the first verbs' first spelling, kept.
   for (const SweepVerb& verb : kSweepVerbs) {
     for (CLI::App* parent : {sweeps, &dcs}) {
+      if (parent == &dcs && !verb.top_level) continue;
       CLI::App* command = parent->add_subcommand(
           verb.name, parent == sweeps
                          ? std::string(verb.help)
                          : absl::StrCat(verb.help, " (as `dcs sweeps ", verb.name, "`)"));
-      command->add_option("sweep", *sweep_id, "the sweep's id, e.g. sweep-1")->required();
+      CLI::Option* sweep =
+          command->add_option("sweep", *sweep_ids,
+                              verb.several ? "the sweeps' ids, e.g. sweep-1 sweep-2"
+                                           : "the sweep's id, e.g. sweep-1")
+              ->required();
+      if (!verb.several) sweep->expected(1);
       commands.push_back({command,
-                          [&flags, sweep_id, run = verb.run] { return run(flags, *sweep_id); },
+                          [&flags, sweep_ids, run = verb.run] { return run(flags, *sweep_ids); },
                           kTableOrJson});
     }
   }

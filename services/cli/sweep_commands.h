@@ -2,8 +2,9 @@
 #ifndef DCS_SERVICES_CLI_SWEEP_COMMANDS_H_
 #define DCS_SERVICES_CLI_SWEEP_COMMANDS_H_
 
-// `dcs submit SPEC [--watch] [--dry-run]`, `dcs sweeps`, `dcs watch SWEEP`, `dcs cancel SWEEP`
-// and `dcs retry SWEEP`: sweeps on the coordinator at --addr (default: the local cluster).
+// `dcs submit SPEC [--watch] [--dry-run]`, `dcs sweeps`, `dcs sweeps watch|cancel|retry SWEEP`
+// (also `dcs watch|cancel|retry SWEEP`) and `dcs sweeps rm SWEEP...`: sweeps on the coordinator
+// at --addr (default: the local cluster).
 // `submit` prints the sweep's id and returns at once unless --watch, which follows the sweep
 // to its end and exits with its outcome (0 completed, 1 failed or cancelled), as `watch` does.
 

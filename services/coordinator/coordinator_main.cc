@@ -7,7 +7,9 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "absl/synchronization/notification.h"
@@ -15,6 +17,7 @@
 #include "common/status_macros.h"
 #include "coordinator/lease_reaper.h"
 #include "coordinator/library_versions.h"
+#include "coordinator/run_removal.h"
 #include "coordinator/store.h"
 #include "coordinator/study_sweep_driver.h"
 #include "coordinator/sweep_results.h"
@@ -67,6 +70,16 @@ class CoordinatorRole final : public ServiceRole {
                              (std::filesystem::path(runs_.data_dir) / "coordinator.db").string(),
                              {.lease_duration = runs_.lease_duration}, absl::Now()));
     runs_.store = store_.get();
+    // What a removal cut short left: nothing reads it, so a failure only costs disk space.
+    const absl::StatusOr<std::vector<std::string>> leftovers =
+        coordinator::RemoveLeftoverRunDirectories(*store_, runs_.data_dir);
+    if (!leftovers.ok()) {
+      Log(LogLevel::kWarning, "cannot remove the directories of removed runs",
+          {{"error", leftovers.status().ToString()}});
+    }
+    for (const std::string& run_id : leftovers.value_or(std::vector<std::string>{})) {
+      Log(LogLevel::kInfo, "a removed run's directory removed", {{"run_id", run_id}});
+    }
     reaper_ = std::make_unique<coordinator::LeaseReaper>(*store_);
     study_logs_ = std::make_unique<coordinator::CompletedRunLogs>(runs_.data_dir);
     study_sweeps_ = std::make_unique<coordinator::StudySweepDriver>(*store_, runs_.data_dir,

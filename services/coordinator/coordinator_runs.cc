@@ -18,6 +18,7 @@
 #include "common/status_macros.h"
 #include "common/status_util.h"
 #include "coordinator/run_files.h"
+#include "coordinator/run_removal.h"
 #include "coordinator/run_submission.h"
 #include "dcs/v1/trajectory.pb.h"
 #include "services/coordinator/coordinator_service.h"
@@ -186,6 +187,33 @@ grpc::ServerUnaryReactor* CoordinatorService::CancelRun(grpc::CallbackServerCont
     }
     return run.status();
   });
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::DeleteRuns(grpc::CallbackServerContext* context,
+                                                         const v1::DeleteRunsRequest* request,
+                                                         v1::DeleteRunsResponse* response) {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
+    const std::vector<std::string> run_ids(request->run_ids().begin(), request->run_ids().end());
+    DCS_ASSIGN_OR_RETURN(const coordinator::RunRemoval removal,
+                         coordinator::RemoveRuns(*runs_.store, runs_.data_dir, run_ids));
+    for (const coordinator::RunRecord& run : removal.runs) {
+      Log(LogLevel::kInfo, "run removed", {{"run_id", run.id}});
+      *response->add_runs() = RunToProto(run);
+    }
+    RunsRemoved(removal.runs);
+    LogLeftDirectories(removal.files);
+    return absl::OkStatus();
+  });
+}
+
+void CoordinatorService::RunsRemoved(const std::vector<coordinator::RunRecord>& runs) {
+  for (const coordinator::RunRecord& run : runs) completed_logs_.Forget(run.id);
+}
+
+void CoordinatorService::LogLeftDirectories(const absl::Status& files) {
+  if (files.ok()) return;
+  Log(LogLevel::kWarning, "removed runs' directories left for the next start to remove",
+      {{"error", files.ToString()}});
 }
 
 grpc::ServerWriteReactor<v1::RunFile>* CoordinatorService::GetRunFiles(

@@ -24,6 +24,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "absl/time/time.h"
@@ -89,6 +90,10 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   grpc::ServerUnaryReactor* CancelRun(grpc::CallbackServerContext* context,
                                       const v1::CancelRunRequest* request,
                                       v1::CancelRunResponse* response) override;
+  // Ended runs removed for good, store first, then files (coordinator/run_removal.h).
+  grpc::ServerUnaryReactor* DeleteRuns(grpc::CallbackServerContext* context,
+                                       const v1::DeleteRunsRequest* request,
+                                       v1::DeleteRunsResponse* response) override;
   grpc::ServerWriteReactor<v1::RunFile>* GetRunFiles(
       grpc::CallbackServerContext* context, const v1::GetRunFilesRequest* request) override;
   grpc::ServerWriteReactor<v1::BackupPiece>* BackupStore(
@@ -109,6 +114,9 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   grpc::ServerUnaryReactor* RetrySweep(grpc::CallbackServerContext* context,
                                        const v1::RetrySweepRequest* request,
                                        v1::RetrySweepResponse* response) override;
+  grpc::ServerUnaryReactor* DeleteSweeps(grpc::CallbackServerContext* context,
+                                         const v1::DeleteSweepsRequest* request,
+                                         v1::DeleteSweepsResponse* response) override;
   grpc::ServerUnaryReactor* GetSweepResults(grpc::CallbackServerContext* context,
                                             const v1::GetSweepResultsRequest* request,
                                             v1::SweepResults* response) override;
@@ -131,6 +139,9 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   grpc::ServerUnaryReactor* GetStudy(grpc::CallbackServerContext* context,
                                      const v1::GetStudyRequest* request,
                                      v1::GetStudyResponse* response) override;
+  grpc::ServerUnaryReactor* ListStudies(grpc::CallbackServerContext* context,
+                                        const v1::ListStudiesRequest* request,
+                                        v1::ListStudiesResponse* response) override;
   grpc::ServerUnaryReactor* AskTrial(grpc::CallbackServerContext* context,
                                      const v1::AskTrialRequest* request,
                                      v1::AskTrialResponse* response) override;
@@ -219,6 +230,12 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
                                          const google::protobuf::Duration& wait,
                                          std::string topic, std::string question,
                                          std::function<absl::StatusOr<bool>()> attempt);
+  // After runs were removed (coordinator/run_removal.h): their kept logs are dropped. Their
+  // watches need no word: a removed run ended, and so did its watch, or it will at the look its
+  // end asked for, finding the run gone (NOT_FOUND).
+  void RunsRemoved(const std::vector<coordinator::RunRecord>& runs);
+  // Logs the error removing removed runs' directories, if any: the next start removes them.
+  static void LogLeftDirectories(const absl::Status& files);
   // The actors heartbeating now, who share each evaluation's jobs.
   int AliveActors() const;
   // Stores a checkpoint a learner streamed (PutCheckpoint), with the evaluation log as of it

@@ -4,6 +4,7 @@
 // wire.
 
 #include <string>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
@@ -40,6 +41,19 @@ grpc::ServerUnaryReactor* CoordinatorService::GetStudy(grpc::CallbackServerConte
     *response->mutable_study() = StudyToProto(study);
     for (const coordinator::StudyTrial& trial : trials) {
       *response->add_trials() = StudyTrialToProto(trial);
+    }
+    return absl::OkStatus();
+  });
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::ListStudies(
+    grpc::CallbackServerContext* context, const v1::ListStudiesRequest* /*request*/,
+    v1::ListStudiesResponse* response) {
+  return calls_.Offloaded(context, [this, response]() -> absl::Status {
+    DCS_ASSIGN_OR_RETURN(const std::vector<coordinator::StudyRecord> studies,
+                         runs_.store->studies().ListStudies());
+    for (const coordinator::StudyRecord& study : studies) {
+      *response->add_studies() = StudyToProto(study);
     }
     return absl::OkStatus();
   });

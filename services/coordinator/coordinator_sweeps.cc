@@ -12,6 +12,7 @@
 #include "absl/time/clock.h"
 #include "common/status_macros.h"
 #include "coordinator/run_files.h"
+#include "coordinator/run_removal.h"
 #include "coordinator/sweep_results.h"
 #include "coordinator/sweep_submission.h"
 #include "services/coordinator/coordinator_service.h"
@@ -117,6 +118,28 @@ grpc::ServerUnaryReactor* CoordinatorService::RetrySweep(grpc::CallbackServerCon
       RunsChanged();  // its runs, which their watches follow too
     }
     return retried.status();
+  });
+}
+
+grpc::ServerUnaryReactor* CoordinatorService::DeleteSweeps(
+    grpc::CallbackServerContext* context, const v1::DeleteSweepsRequest* request,
+    v1::DeleteSweepsResponse* response) {
+  return calls_.Offloaded(context, [this, request, response]() -> absl::Status {
+    const std::vector<std::string> sweep_ids(request->sweep_ids().begin(),
+                                             request->sweep_ids().end());
+    DCS_ASSIGN_OR_RETURN(const coordinator::SweepRemoval removal,
+                         coordinator::RemoveSweeps(*runs_.store, runs_.data_dir, sweep_ids));
+    for (const coordinator::RemovedSweep& removed : removal.sweeps) {
+      Log(LogLevel::kInfo, "sweep removed",
+          {{"sweep_id", removed.sweep.id}, {"runs", std::to_string(removed.runs.size())}});
+      *response->add_sweeps() = SweepToProto(removed.sweep);
+      for (const coordinator::RunRecord& run : removed.runs) {
+        *response->add_runs() = RunToProto(run);
+      }
+      RunsRemoved(removed.runs);
+    }
+    LogLeftDirectories(removal.files);
+    return absl::OkStatus();
   });
 }
 

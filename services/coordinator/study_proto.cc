@@ -65,6 +65,7 @@ v1::Study StudyToProto(const coordinator::StudyRecord& study) {
   }
   if (study.best.has_value()) *proto.mutable_best() = StudyTrialToProto(*study.best);
   *proto.mutable_create_time() = TimeToProto(study.created_at);
+  proto.set_sweep_id(study.sweep_id);
   const coordinator::PrunerOptions& pruner = s.pruner;
   v1::PrunerOptions& wire = *proto.mutable_pruner();
   wire.set_kind(std::string(NameOf(coordinator::kPrunerKindNames, pruner.kind)));
@@ -82,6 +83,7 @@ v1::Study StudyToProto(const coordinator::StudyRecord& study) {
 
 absl::StatusOr<coordinator::StudyRecord> StudyFromProto(const v1::Study& proto) {
   coordinator::StudyRecord study{.id = proto.study_id()};
+  study.sweep_id = proto.sweep_id();
   coordinator::StudySubmission& s = study.submission;
   s.name = proto.name();
   s.space = proto.space();

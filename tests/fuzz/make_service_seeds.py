@@ -90,6 +90,9 @@ def coordinator_calls():
         "BackupStore": [[""]],
         "WatchRun": [['run_id: "run-1"']],
         "WatchSweep": [['sweep_id: "sweep-1"']],
+        "DeleteRuns": [['run_ids: "run-1"'], ['run_ids: ["run-2", "run-1", "run-2"]']],
+        "DeleteSweeps": [['sweep_ids: "sweep-1"']],
+        "ListStudies": [[""]],
         "SubmitSweep": [[f'request_id: "sweep-a" spec: {quoted(sweep_spec)} '
                          'spec_name: "quickstart.yaml" name: "quickstart"'],
                         [f'request_id: "sweep-b" spec: {quoted(sweep_spec)} validate_only: true']],

@@ -180,6 +180,14 @@ TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
   ASSERT_EQ(DcsStdout({"study", "tell", "study-1", "0", "0.5", "--store", store}).exit_code, 0);
   JsonLines({"study", "trials", "study-1", "--store", store});
   JsonLines({"study", "best", "study-1", "--store", store});
+  const std::vector<google::protobuf::Value> studies =
+      JsonLines({"study", "list", "--store", store});
+  ASSERT_FALSE(studies.empty());
+  ASSERT_EQ(Field(studies[0], "studies").list_value().values_size(), 1);
+  EXPECT_EQ(Field(Field(Field(studies[0], "studies").list_value().values(0), "best"), "value")
+                .number_value(),
+            0.5);
+  JsonLines({"study", "list", addr});
   JsonLines({"train", DCS_SOURCE_DIR "/configs/cartpole_length_pool7_static_blind.yaml", "--out",
              dir + "/trained"});
 
@@ -193,6 +201,33 @@ TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
   JsonLines({"runs", "cancel", "run-9", addr});
   JsonLines({"sweeps", "cancel", "sweep-2", addr});
   JsonLines({"cancel", "sweep-3", addr});
+
+  // Removals: a run alone, then two ended sweeps with their runs, each printed as it was.
+  const std::string tiny = dir + "/tiny.yaml";
+  ASSERT_TRUE(WriteFileAtomically(tiny, "env: cartpole\ntotal_timesteps: 512\n"
+                                        "evaluation: {freq: 256, episodes: 2, "
+                                        "contexts: {id: [0.5]}}\n"
+                                        "ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}\n")
+                  .ok());
+  ASSERT_EQ(DcsStdout({"train", "--cluster", tiny, "--out", dir + "/alone", addr}).exit_code, 0);
+  const std::vector<google::protobuf::Value> removed_run =
+      JsonLines({"runs", "rm", "run-25", addr});
+  ASSERT_FALSE(removed_run.empty());
+  EXPECT_EQ(Field(Field(removed_run[0], "runs").list_value().values(0), "state").string_value(),
+            "completed");
+  const std::vector<google::protobuf::Value> removed =
+      JsonLines({"sweeps", "rm", "sweep-1", "sweep-2", addr});
+  ASSERT_FALSE(removed.empty());
+  ASSERT_EQ(Field(removed[0], "sweeps").list_value().values_size(), 2);
+  EXPECT_EQ(Field(Field(removed[0], "sweeps").list_value().values(0), "state").string_value(),
+            "completed");
+  EXPECT_EQ(Field(removed[0], "runs").list_value().values_size(), 16);
+  const std::vector<google::protobuf::Value> left = JsonLines({"runs", addr});
+  ASSERT_FALSE(left.empty());
+  ASSERT_EQ(Field(left[0], "runs").list_value().values_size(), 8);
+  for (const google::protobuf::Value& run : Field(left[0], "runs").list_value().values()) {
+    EXPECT_EQ(Field(run, "sweep_id").string_value(), "sweep-3");
+  }
 
   // Every command that says it prints JSON ran above, but retry: it needs a failed run, which
   // no command can make, and prints what is left as cancel does (sweep_commands.cc).
@@ -298,6 +333,14 @@ TEST(CliConventionTest, EachExitCodeOfTheTableComesFromWhatItNames) {
   ExpectExit(services::kExitNoInput, {"runs", "--sweep", "sweep-99", local}, "sweep-99");
   ExpectExit(services::kExitNoInput, {"sweeps", "cancel", "sweep-99", local}, "sweep-99");
   ExpectExit(services::kExitNoInput, {"retry", "sweep-99", local}, "sweep-99");
+  ExpectExit(services::kExitNoInput, {"sweeps", "rm", "sweep-99", local}, "sweep-99");
+  ExpectExit(services::kExitNoInput, {"runs", "rm", "run-99", local}, "run-99");
+  // Removing what still runs: the state forbids it, as cancelling a finished sweep.
+  ExpectExit(services::kExitFailure, {"sweeps", "rm", "sweep-1", local},
+             "stop it first with `dcs sweeps cancel sweep-1`");
+  ExpectExit(services::kExitFailure, {"runs", "rm", "run-1", local},
+             "remove the sweep with `dcs sweeps rm sweep-1`");
+  ExpectExit(services::kExitUsage, {"rm", "sweep-1", local}, "unknown command 'rm' for `dcs`");
   const std::string nobody = absl::StrCat("127.0.0.1:", testing::PickFreePort());
   ExpectExit(services::kExitUnavailable, {"health", "--addr", nobody, "--timeout=2s"},
              "UNAVAILABLE");
