@@ -38,7 +38,7 @@
 // best avg_combined at a stage boundary or the end (EvaluationLog.best_anytime); `last_iqm` the
 // interquartile mean over seeds of the last evaluation's avg_combined.
 //
-// The pruner's options are those of `dcs study create`: median takes percentile [50],
+// The pruner's options are those of `dcs studies create`: median takes percentile [50],
 // startup_trials [5], warmup_steps [0], interval_steps [1], min_trials [1]; successive_halving
 // takes min_resource [auto], reduction_factor [4], min_early_stopping_rate [0],
 // bootstrap_count [0]. A trial reports the objective as it stands at each stage boundary (the

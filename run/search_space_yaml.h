@@ -2,7 +2,7 @@
 #ifndef DCS_RUN_SEARCH_SPACE_YAML_H_
 #define DCS_RUN_SEARCH_SPACE_YAML_H_
 
-// Search spaces (run/search_space.h) read from YAML, as `dcs study create FILE` takes
+// Search spaces (run/search_space.h) read from YAML, as `dcs studies create FILE` takes
 // them: the parameters in the order a trial suggests them.
 //
 //   parameters:

@@ -122,7 +122,7 @@ not edit. Regenerate it with `)", kRegenerate, R"(`; `make test` fails while it 
 
 Every key of DCS's YAML files, with its type, its default, the range its check allows and its
 meaning: run configs (`dcs train CONFIG`), schedules, sweep specs (`dcs submit`) and search
-spaces (`dcs study create SPACE`). This page is generated from the tables the readers take
+spaces (`dcs studies create SPACE`). This page is generated from the tables the readers take
 their keys from and the checks their ranges, so it says what the code does (`)",
                                  kRegenerate, R"(` regenerates
 it). What the keys stand for in the paper's experiments is in [reference.md](reference.md).
@@ -175,7 +175,7 @@ keys. The keys of the `study` block are those of `coordinator/study_sweep_spec.h
   absl::StrAppend(&out, Tables(run::SweepSpecReference()));
   absl::StrAppend(&out, R"(## Search space
 
-The parameters a study searches: `dcs study create FILE`, and a study sweep's
+The parameters a study searches: `dcs studies create FILE`, and a study sweep's
 `study.space`.
 
 )");

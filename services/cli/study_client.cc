@@ -156,7 +156,7 @@ absl::StatusOr<std::unique_ptr<StudyClient>> OpenLocalStudies(const std::string&
                                                               MissingStore missing) {
   if (missing == MissingStore::kRefuse && !std::filesystem::exists(path)) {
     return absl::NotFoundError(
-        absl::StrCat("no study store ", path, " (dcs study create --store makes one)"));
+        absl::StrCat("no study store ", path, " (dcs studies create --store makes one)"));
   }
   DCS_ASSIGN_OR_RETURN(std::unique_ptr<coordinator::Store> store,
                        coordinator::Store::Open(path, coordinator::StoreOptions{}, absl::Now()));

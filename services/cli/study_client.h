@@ -39,7 +39,7 @@ class StudyClient {
                                       double value) = 0;
 };
 
-// What opening a study store file that does not exist does: only `dcs study create` makes one;
+// What opening a study store file that does not exist does: only `dcs studies create` makes one;
 // every other command refuses it, so that a mistyped path creates no file.
 enum class MissingStore { kCreate, kRefuse };
 

@@ -97,7 +97,7 @@ absl::StatusOr<run::SearchSpace> SpaceOf(const coordinator::StudyRecord& study) 
   return run::ParseSearchSpaceYaml(study.submission.space, study.id);
 }
 
-// The space of `study create SPACE`, checked here first, to name the file in errors, and
+// The space of `studies create SPACE`, checked here first, to name the file in errors, and
 // before a store is made for a study that cannot be.
 absl::StatusOr<std::string> ReadSpace(const CreateFlags& flags) {
   DCS_ASSIGN_OR_RETURN(std::string space, ReadFile(flags.space));
@@ -235,14 +235,18 @@ struct PlotFlags {
   report::FigureFormat format = report::FigureFormat::kSvg;
 };
 
-// The study's optimisation history drawn by gnuplot into --out, beside its data and script.
-absl::Status Plot(const PlotFlags& flags, StudyClient& studies) {
+// The study's optimisation history drawn by gnuplot into --out (default
+// <data-dir>/reports/<study id>), beside its data and script.
+absl::Status Plot(const PlotFlags& flags, const GlobalFlags& global, StudyClient& studies) {
   DCS_ASSIGN_OR_RETURN(const coordinator::StudyRecord study, studies.Get(flags.study));
   DCS_ASSIGN_OR_RETURN(const std::vector<StudyTrial> trials, studies.Trials(flags.study));
   DCS_ASSIGN_OR_RETURN(const report::GnuplotFigure figure,
                        report::StudyHistoryFigure(study, trials));
-  DCS_ASSIGN_OR_RETURN(const RenderedFigure rendered,
-                       RenderFigure(figure, flags.format, flags.out));
+  DCS_ASSIGN_OR_RETURN(
+      const RenderedFigure rendered,
+      RenderFigure(figure, flags.format,
+                   flags.out.empty() ? absl::StrCat(global.data_dir, "/reports/", flags.study)
+                                     : flags.out));
   if (!rendered.gnuplot_output.empty()) std::cerr << rendered.gnuplot_output << std::endl;
   std::cout << rendered.path << std::endl;
   return absl::OkStatus();
@@ -261,15 +265,19 @@ int RunOn(const std::string& store, MissingStore missing, const GlobalFlags& fla
 }  // namespace
 
 std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags) {
-  CLI::App* study =
-      dcs.add_subcommand("study", "Ask-and-tell studies (TPE or random search), as Optuna's");
-  study->require_subcommand(1);
+  // Spelt as `runs` and `sweeps` are, and as first spelt, `study`.
+  CLI::App* study = dcs.add_subcommand(
+      "studies", "Ask-and-tell studies (TPE or random search), as Optuna's: list them (no "
+                 "subcommand), create one, ask, tell, report, best, trials, plot");
+  study->alias("study");
+  study->require_subcommand(0, 1);
   auto store = std::make_shared<std::string>();
   const auto add_store = [store](CLI::App* command) {
     command->add_option("--store", *store,
                         "keep the study in this SQLite file rather than on the coordinator "
-                        "(`study create` makes it if missing)");
+                        "(`studies create` makes it if missing)");
   };
+  add_store(study);
 
   auto create_flags = std::make_shared<CreateFlags>();
   CLI::App* create = study->add_subcommand("create", "Create a study and print its id");
@@ -328,22 +336,24 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
   report->add_option("value", trial_flags->value, "its intermediate value")->required();
   add_store(report);
 
-  CLI::App* list = study->add_subcommand("trials", "List the study's trials and their values");
-  list->add_option("study", *study_id, "the study's id")->required();
-  add_store(list);
+  CLI::App* trials = study->add_subcommand("trials", "List the study's trials and their values");
+  trials->add_option("study", *study_id, "the study's id")->required();
+  add_store(trials);
 
   auto plot_flags = std::make_shared<PlotFlags>();
   CLI::App* plot = study->add_subcommand(
       "plot", "Draw the study's optimisation history with gnuplot; print the image's path");
   plot->add_option("study", plot_flags->study, "the study's id")->required();
-  AddOutDirectory(*plot, &plot_flags->out, "the directory to write")->required();
+  AddOutDirectory(*plot, &plot_flags->out,
+                  "the directory to write (default: <data-dir>/reports/<study id>)");
   AddChoiceOption(*plot, "--format", &plot_flags->format, ChoicesOf(report::kFigureFormatNames),
                   "svg, png or pdf");
   add_store(plot);
 
-  CLI::App* studies = study->add_subcommand(
-      "list", "List the studies: direction, sampler, trials by state, the best value");
-  add_store(studies);
+  CLI::App* list_studies = study->add_subcommand(
+      "list", "List the studies: direction, sampler, trials by state, the best value (as `dcs "
+              "studies` alone)");
+  add_store(list_studies);
 
   CLI::App* best = study->add_subcommand("best", "Print the best complete trial (JSON)");
   best->add_option("study", *study_id, "the study's id")->required();
@@ -354,6 +364,8 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
                                           MissingStore missing = MissingStore::kRefuse) {
     return [store, &flags, command, missing] { return RunOn(*store, missing, flags, command); };
   };
+  const std::function<int()> list =
+      on_studies([&flags](StudyClient& s) { return List(flags, s); });
   return {{create,
            [=, &flags] {
              const absl::StatusOr<std::string> space = ReadSpace(*create_flags);
@@ -365,12 +377,13 @@ std::vector<CliCommand> AddStudyCommands(CLI::App& dcs, const GlobalFlags& flags
           {ask, on_studies([=](StudyClient& s) { return Ask(*study_id, s); }), kTableOrJson},
           {tell, on_studies([=](StudyClient& s) { return Tell(*trial_flags, s); })},
           {report, on_studies([=](StudyClient& s) { return Report(*trial_flags, s); })},
-          {list, on_studies([=, &flags](StudyClient& s) { return Trials(*study_id, flags, s); }),
+          {trials,
+           on_studies([=, &flags](StudyClient& s) { return Trials(*study_id, flags, s); }),
            kEveryFormat},
-          {plot, on_studies([=](StudyClient& s) { return Plot(*plot_flags, s); })},
+          {plot, on_studies([=, &flags](StudyClient& s) { return Plot(*plot_flags, flags, s); })},
           {best, on_studies([=](StudyClient& s) { return Best(*study_id, s); }), kTableOrJson},
-          {studies, on_studies([&flags](StudyClient& s) { return List(flags, s); }),
-           kEveryFormat}};
+          {list_studies, list, kEveryFormat},
+          {study, list, kEveryFormat}};
 }
 
 }  // namespace dcs::services::cli

@@ -76,6 +76,8 @@ const google::protobuf::Value& Field(const google::protobuf::Value& value,
 // The help of `dcs command...` and of each command under it, depth first, by command path.
 void CollectHelp(const std::vector<std::string>& command,
                  std::map<std::string, std::string>& help) {
+  // dcs's commands nest two deep (`dcs studies ask`): deeper, the walk misreads the help.
+  ASSERT_LE(command.size(), 2u) << absl::StrJoin(command, " ");
   std::vector<std::string> args = command;
   args.push_back("--help");
   const RunResult result = DcsStdout(args);
@@ -87,7 +89,8 @@ void CollectHelp(const std::vector<std::string>& command,
       in_subcommands = true;
     } else if (in_subcommands && absl::StartsWith(line, "  ") && line[2] != ' ') {
       std::vector<std::string> subcommand = command;
-      subcommand.push_back(line.substr(2, line.find(' ', 2) - 2));
+      // "  studies, study   Ask-and-tell ...": a command, its aliases, its description.
+      subcommand.push_back(line.substr(2, line.find_first_of(", ", 2) - 2));
       CollectHelp(subcommand, help);
     } else if (!absl::StartsWith(line, "  ")) {
       in_subcommands = false;
@@ -173,21 +176,22 @@ TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
   ASSERT_TRUE(WriteFileAtomically(dir + "/space.yaml",
                                   "parameters:\n  - {name: x, type: float, low: 0, high: 1}\n")
                   .ok());
-  ASSERT_EQ(DcsStdout({"study", "create", dir + "/space.yaml", "--store", store})
-                .exit_code,
-            0);
-  JsonLines({"study", "ask", "study-1", "--store", store});
-  ASSERT_EQ(DcsStdout({"study", "tell", "study-1", "0", "0.5", "--store", store}).exit_code, 0);
-  JsonLines({"study", "trials", "study-1", "--store", store});
-  JsonLines({"study", "best", "study-1", "--store", store});
-  const std::vector<google::protobuf::Value> studies =
-      JsonLines({"study", "list", "--store", store});
-  ASSERT_FALSE(studies.empty());
-  ASSERT_EQ(Field(studies[0], "studies").list_value().values_size(), 1);
-  EXPECT_EQ(Field(Field(Field(studies[0], "studies").list_value().values(0), "best"), "value")
-                .number_value(),
-            0.5);
-  JsonLines({"study", "list", addr});
+  ASSERT_EQ(DcsStdout({"studies", "create", dir + "/space.yaml", "--store", store}).exit_code, 0);
+  JsonLines({"studies", "ask", "study-1", "--store", store});
+  ASSERT_EQ(DcsStdout({"studies", "tell", "study-1", "0", "0.5", "--store", store}).exit_code, 0);
+  JsonLines({"studies", "trials", "study-1", "--store", store});
+  JsonLines({"studies", "best", "study-1", "--store", store});
+  // The studies listed as runs and sweeps are, and by a verb of their own.
+  for (const std::vector<std::string>& list : std::vector<std::vector<std::string>>{
+           {"studies", "--store", store}, {"studies", "list", "--store", store}}) {
+    const std::vector<google::protobuf::Value> studies = JsonLines(list);
+    ASSERT_FALSE(studies.empty());
+    ASSERT_EQ(Field(studies[0], "studies").list_value().values_size(), 1);
+    EXPECT_EQ(Field(Field(Field(studies[0], "studies").list_value().values(0), "best"), "value")
+                  .number_value(),
+              0.5);
+  }
+  JsonLines({"studies", addr});
   JsonLines({"train", DCS_SOURCE_DIR "/configs/cartpole_length_pool7_static_blind.yaml", "--out",
              dir + "/trained"});
 
@@ -262,7 +266,7 @@ TEST(CliConventionTest, AFormatACommandCannotPrintIsRefused) {
 TEST(CliConventionTest, EveryOutSaysWhetherItIsADirectoryOrAFile) {
   std::map<std::string, std::string> help;
   CollectHelp({}, help);
-  EXPECT_TRUE(help.contains("study plot")) << "the walk reaches nested commands";
+  EXPECT_TRUE(help.contains("studies plot")) << "the walk reaches nested commands";
   int outs = 0;
   for (const auto& [command, text] : help) {
     for (const std::string& line : Lines(text)) {
