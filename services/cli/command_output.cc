@@ -3,8 +3,10 @@
 
 #include <google/protobuf/struct.pb.h>
 
-#include <algorithm>
+#include <nlohmann/json.hpp>
+
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,122 +27,52 @@ namespace {
 using google::protobuf::Descriptor;
 using google::protobuf::FieldDescriptor;
 
-bool Is64BitInteger(const FieldDescriptor& field) {
-  return field.cpp_type() == FieldDescriptor::CPPTYPE_INT64 ||
-         field.cpp_type() == FieldDescriptor::CPPTYPE_UINT64;
-}
-
 bool IsWellKnown(const Descriptor& message) {
   return absl::StartsWith(message.file()->name(), "google/protobuf/");
 }
 
-// Copies protobuf's JSON of a message to `out_`, rewriting the values CommandJson names. The
-// input is the printer's own output, so it is well formed; a value the walk does not expect
-// (an enum value this build does not know prints as its number) is copied as it is.
-class JsonRewriter {
- public:
-  explicit JsonRewriter(absl::string_view json) : in_(json) {}
+void RewriteMessage(const Descriptor& message, nlohmann::ordered_json& json);
 
-  std::string Rewrite(const Descriptor& message) {
-    Message(message);
-    absl::StrAppend(&out_, in_.substr(pos_));
-    return std::move(out_);
+// One value of `field` (an element, if it is repeated) in protobuf's JSON, rewritten as
+// CommandJson says. A value the walk does not expect (an enum value this build does not know
+// prints as its number) stays as it is.
+void RewriteValue(const FieldDescriptor& field, nlohmann::ordered_json& value) {
+  if (field.cpp_type() == FieldDescriptor::CPPTYPE_MESSAGE) {
+    return RewriteMessage(*field.message_type(), value);
   }
-
- private:
-  char Peek() const { return pos_ < in_.size() ? in_[pos_] : '\0'; }
-  void Put() { out_.push_back(in_[pos_++]); }
-
-  void CopyWhitespace() {
-    while (pos_ < in_.size() && absl::ascii_isspace(static_cast<unsigned char>(in_[pos_]))) Put();
-  }
-
-  // Reads the string token at pos_ and returns it whole, quotes included.
-  absl::string_view ReadString() {
-    const size_t start = pos_++;
-    while (pos_ < in_.size() && in_[pos_] != '"') pos_ += in_[pos_] == '\\' ? 2 : 1;
-    pos_ = std::min(pos_ + 1, in_.size());
-    return in_.substr(start, pos_ - start);
-  }
-
-  // Copies the object or array at pos_, calling `value(key)` to copy each entry's value (`key`:
-  // an object entry's key without its quotes; empty in an array). Copies any other value as it
-  // is.
-  template <typename ValueFunction>
-  void Container(ValueFunction value) {
-    if (Peek() == '"') {
-      absl::StrAppend(&out_, ReadString());
-      return;
-    }
-    if (Peek() != '{' && Peek() != '[') {
-      while (pos_ < in_.size() && !absl::StrContains(",}] \n", in_[pos_])) Put();
-      return;
-    }
-    const char close = Peek() == '{' ? '}' : ']';
-    Put();
-    for (CopyWhitespace(); pos_ < in_.size() && Peek() != close; CopyWhitespace()) {
-      const size_t start = pos_;
-      absl::string_view key;
-      if (close == '}') {
-        key = ReadString();
-        absl::StrAppend(&out_, key);
-        key = key.substr(1, key.size() - 2);
-        CopyWhitespace();
-        if (Peek() == ':') Put();
-        CopyWhitespace();
-      }
-      value(key);
-      CopyWhitespace();
-      if (Peek() == ',' || pos_ == start) Put();  // (the second: never stuck on a stray byte)
-    }
-    if (pos_ < in_.size()) Put();
-  }
-
-  void CopyValue() {
-    Container([this](absl::string_view) { CopyValue(); });
-  }
-
-  // An object whose keys name `message`'s fields.
-  void Message(const Descriptor& message) {
-    if (IsWellKnown(message)) return CopyValue();
-    Container([this, &message](absl::string_view key) {
-      const FieldDescriptor* field = message.FindFieldByName(std::string(key));
-      if (field == nullptr) {
-        CopyValue();
-      } else if (field->is_map()) {  // keys stay as they are
-        const FieldDescriptor& value = *field->message_type()->map_value();
-        Container([this, &value](absl::string_view) { Single(value); });
-      } else if (field->is_repeated()) {
-        Container([this, field](absl::string_view) { Single(*field); });
-      } else {
-        Single(*field);
-      }
-    });
-  }
-
-  // One value of `field` (an element, if it is repeated).
-  void Single(const FieldDescriptor& field) {
-    if (field.cpp_type() == FieldDescriptor::CPPTYPE_MESSAGE) return Message(*field.message_type());
-    if (Peek() != '"') return CopyValue();
-    const absl::string_view text = ReadString();
-    const std::string inner(text.substr(1, text.size() - 2));
+  if (!value.is_string()) return;
+  const std::string& text = value.get_ref<const std::string&>();
+  int64_t signed_number = 0;
+  uint64_t unsigned_number = 0;
+  if (field.cpp_type() == FieldDescriptor::CPPTYPE_INT64 &&
+      absl::SimpleAtoi(text, &signed_number)) {
+    value = signed_number;
+  } else if (field.cpp_type() == FieldDescriptor::CPPTYPE_UINT64 &&
+             absl::SimpleAtoi(text, &unsigned_number)) {
+    value = unsigned_number;
+  } else if (field.cpp_type() == FieldDescriptor::CPPTYPE_ENUM) {
     const google::protobuf::EnumValueDescriptor* enum_value =
-        field.cpp_type() == FieldDescriptor::CPPTYPE_ENUM
-            ? field.enum_type()->FindValueByName(inner)
-            : nullptr;
-    if (Is64BitInteger(field)) {
-      absl::StrAppend(&out_, inner);  // the printer writes the number's decimal digits
-    } else if (enum_value != nullptr) {
-      absl::StrAppend(&out_, "\"", EnumWord(*enum_value), "\"");
+        field.enum_type()->FindValueByName(text);
+    if (enum_value != nullptr) value = EnumWord(*enum_value);
+  }
+}
+
+// `json`, an object whose keys name `message`'s fields, rewritten field by field; a map's keys
+// stay as they are.
+void RewriteMessage(const Descriptor& message, nlohmann::ordered_json& json) {
+  if (IsWellKnown(message) || !json.is_object()) return;
+  for (auto& [key, value] : json.items()) {
+    const FieldDescriptor* field = message.FindFieldByName(key);
+    if (field == nullptr) continue;
+    if (field->is_map()) {
+      for (auto& entry : value) RewriteValue(*field->message_type()->map_value(), entry);
+    } else if (field->is_repeated()) {
+      for (auto& element : value) RewriteValue(*field, element);
     } else {
-      absl::StrAppend(&out_, text);
+      RewriteValue(*field, value);
     }
   }
-
-  absl::string_view in_;
-  size_t pos_ = 0;
-  std::string out_;
-};
+}
 
 // A header's cell as a CSV column's or a JSON key's name: "LAST HEARTBEAT" -> "last_heartbeat".
 std::string Key(absl::string_view header) {
@@ -162,7 +94,13 @@ std::string EnumWord(const google::protobuf::EnumValueDescriptor& value) {
 }
 
 std::string CommandJson(const google::protobuf::Message& message) {
-  return JsonRewriter(ProtoToJsonLine(message)).Rewrite(*message.GetDescriptor());
+  const std::string printed = ProtoToJsonLine(message);
+  nlohmann::ordered_json json =
+      nlohmann::ordered_json::parse(printed, nullptr, /*allow_exceptions=*/false);
+  if (json.is_discarded()) return printed;  // protobuf prints JSON: not expected
+  RewriteMessage(*message.GetDescriptor(), json);
+  // Protobuf's strings are UTF-8; `replace` only keeps dump() from throwing if one were not.
+  return json.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
 std::string FormatRows(const std::vector<std::vector<std::string>>& rows, OutputFormat format) {
