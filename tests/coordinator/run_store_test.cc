@@ -254,7 +254,7 @@ TEST_F(RunStoreTest, ProgressAndCheckpointsAreRecorded) {
                                   kStart)
                   .ok());
   ASSERT_TRUE(
-      store->checkpoints().RecordCheckpoint(lease.key, {"000000000256", 256, "abc"}, kStart).ok());
+      store->checkpoints().RecordCheckpoint(lease.key, {"000000000256", 256, "abc"}, std::nullopt, kStart).ok());
   absl::StatusOr<RunRecord> run = store->runs().GetRun("run-1");
   ASSERT_TRUE(run.ok());
   EXPECT_EQ(run->progress.timesteps, 256);
@@ -300,7 +300,7 @@ TEST_F(RunStoreTest, EverythingSurvivesAReopenAndHoldersGetAFullLease) {
     std::unique_ptr<Store> store = Open();
     key = SubmitAndAcquire(*store).key;
     ASSERT_TRUE(
-        store->checkpoints().RecordCheckpoint(key, {"000000000256", 256, "abc"}, kStart).ok());
+        store->checkpoints().RecordCheckpoint(key, {"000000000256", 256, "abc"}, std::nullopt, kStart).ok());
   }
   // The coordinator was down for longer than a lease.
   const absl::Time restart = kStart + absl::Seconds(60);
