@@ -54,20 +54,22 @@ using google::protobuf::Value;
 const fs::path kDeploy = fs::path(DCS_SOURCE_DIR) / "deploy";
 constexpr char kDatasourceUid[] = "prometheus";  // deploy/grafana/provisioning/datasources
 
-// Two conditions, one seed: CartPole learns at tens of thousands of steps per second here, so
-// each run takes some 15 s, for several scrapes and evaluations of each.
-constexpr char kSpec[] = R"(name: watched
-seeds: 1
-env: cartpole
-total_timesteps: 655360
+// A CartPole sweep of `conditions` (the YAML list's items), one seed, each run of `total` steps
+// evaluated every `evaluation_freq` (and checkpointed after each evaluation).
+std::string CartPoleSpec(const std::string& name, int64_t total, int64_t evaluation_freq,
+                         const std::string& conditions) {
+  return absl::StrCat("name: ", name, "\nseeds: 1\nenv: cartpole\ntotal_timesteps: ", total,
+                      R"(
 feature: length
 training_range: [0.35, 0.75]
-evaluation: {freq: 131072, episodes: 2, contexts: {id: [0.5], ood_low: [0.1], ood_high: [1.0]}}
+evaluation: {freq: )",
+                      evaluation_freq, R"(, episodes: 2,
+             contexts: {id: [0.5], ood_low: [0.1], ood_high: [1.0]}}
 ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
 conditions:
-  - name: static
-  - schedule: {family: sinusoidal, amplitude_frac: 0.5, period: 40}
-)";
+)",
+                      conditions);
+}
 
 absl::StatusOr<Struct> ParseJson(const std::string& text) {
   Struct parsed;
@@ -278,7 +280,14 @@ TEST(PrometheusTest, EveryDashboardQueryAndRecordingRuleReturnsDataFromARealProm
 
   // The sweep, watched to its end; then two more scrapes and rule evaluations.
   const std::string spec = absl::StrCat(dir, "/watched.yaml");
-  ASSERT_TRUE(WriteFileAtomically(spec, kSpec).ok());
+  // Two conditions: CartPole learns at tens of thousands of steps per second here, so each
+  // run takes some 15 s, for several scrapes and evaluations of each.
+  ASSERT_TRUE(WriteFileAtomically(
+                  spec, CartPoleSpec("watched", 655360, 131072,
+                                     "  - name: static\n"
+                                     "  - schedule: {family: sinusoidal, amplitude_frac: 0.5, "
+                                     "period: 40}\n"))
+                  .ok());
   const absl::Time start = absl::Now();
   const RunResult submitted =
       DcsAt({"submit", spec, "--watch"}, (*cluster)->state().coordinator_address, absl::Minutes(5));
@@ -370,18 +379,9 @@ TEST(PrometheusTest, ARunsStepNeverGoesDownAcrossALearnerHandover) {
   // One run, checkpointed after its evaluations half way and at the end.
   constexpr int64_t kTotal = 4194304;
   const std::string spec = absl::StrCat(cluster.dir(), "/one.yaml");
-  ASSERT_TRUE(WriteFileAtomically(spec, absl::StrCat(R"(name: one
-seeds: 1
-env: cartpole
-total_timesteps: )", kTotal, R"(
-feature: length
-training_range: [0.35, 0.75]
-evaluation: {freq: 2097152, episodes: 2, contexts: {id: [0.5], ood_low: [0.1], ood_high: [1.0]}}
-ppo: {n_steps: 256, batch_size: 64, n_epochs: 2}
-conditions:
-  - name: static
-)"))
-                  .ok());
+  ASSERT_TRUE(
+      WriteFileAtomically(spec, CartPoleSpec("one", kTotal, kTotal / 2, "  - name: static\n"))
+          .ok());
   const absl::Time start = absl::Now();
   const RunResult submitted = DcsAt({"submit", spec}, cluster.coordinator_address());
   ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
