@@ -10,6 +10,7 @@
 // the transaction committed. Times are passed in (tests drive the clock).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,15 +28,31 @@ struct CheckpointRecord {
   std::string sha256;  // of the checkpoint's MANIFEST
 };
 
+// What evaluations a checkpoint brings (its evaluation log's new part) say of the run, for
+// metrics: the latest of them (the highest step) and the best (the highest avg_combined, the
+// earliest of equals). A split without contexts has a NaN mean.
+struct EvaluationScores {
+  int64_t latest_step = 0;
+  double latest_avg_combined = 0;
+  double latest_id_return = 0;  // the split means of the latest
+  double latest_ood_low_return = 0;
+  double latest_ood_high_return = 0;
+  int64_t best_step = 0;
+  double best_avg_combined = 0;
+};
+
 class CheckpointTable {
  public:
   CheckpointTable(const CheckpointTable&) = delete;
   CheckpointTable& operator=(const CheckpointTable&) = delete;
 
   // The learner holding `key` indexes a checkpoint it has stored durably; it becomes the run's
-  // latest (RunRecord::checkpoint). Errors as RunTable::RenewLease.
+  // latest (RunRecord::checkpoint). `scores`, of the evaluations it brought (none: nullopt),
+  // update the run's latest evaluation if they are of a later step and its best if higher, so
+  // neither goes back when a learner resumed from an older checkpoint sends evaluations again
+  // (StoreCounts reads them). Errors as RunTable::RenewLease.
   absl::Status RecordCheckpoint(const LeaseKey& key, const CheckpointRecord& checkpoint,
-                                absl::Time now);
+                                const std::optional<EvaluationScores>& scores, absl::Time now);
   // A run's checkpoints, oldest first.
   absl::StatusOr<std::vector<CheckpointRecord>> ListCheckpoints(absl::string_view run_id);
 

@@ -178,6 +178,16 @@ absl::StatusOr<IqmSummary> SummarizeIqm(std::span<const double> values) {
                     .q3 = QuantileOfSorted(sorted, 0.75)};
 }
 
+std::optional<HighestIqmGroup> HighestIqm(const std::vector<std::vector<double>>& groups) {
+  std::optional<HighestIqmGroup> highest;
+  for (size_t i = 0; i < groups.size(); ++i) {
+    if (groups[i].empty()) continue;
+    const absl::StatusOr<double> iqm = InterquartileMean(groups[i]);
+    if (iqm.ok() && (!highest.has_value() || *iqm > highest->iqm)) highest = {i, *iqm};
+  }
+  return highest;
+}
+
 absl::StatusOr<ConfidenceInterval> BootstrapIqmInterval(
     const std::vector<std::vector<double>>& strata, double confidence, int repetitions,
     uint64_t seed) {

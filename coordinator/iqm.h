@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -38,6 +39,16 @@ struct IqmSummary {
 
 // IQM [Q1, Q3] of `values`. Errors as InterquartileMean.
 absl::StatusOr<IqmSummary> SummarizeIqm(std::span<const double> values);
+
+// Of several groups' values (a sweep's trials, each with its completed runs' last
+// avg_combined), the group with the highest IQM, the first of equals; a group without values
+// or whose IQM fails (a NaN) is passed over. nullopt if none is left. How `dcs watch` and the
+// coordinator's metrics name a sweep's best condition so far.
+struct HighestIqmGroup {
+  size_t index = 0;
+  double iqm = 0;
+};
+std::optional<HighestIqmGroup> HighestIqm(const std::vector<std::vector<double>>& groups);
 
 struct ConfidenceInterval {
   double lo = 0;

@@ -1,7 +1,11 @@
 // Copyright 2026 The DCS Authors.
 #include "coordinator/run_files.h"
 
+#include <sys/statvfs.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
 #include <filesystem>
 
 #include "absl/status/status.h"
@@ -42,6 +46,37 @@ absl::StatusOr<CheckpointRecord> StoreCheckpoint(const std::string& run_dir,
   DCS_RETURN_IF_ERROR(RetryableWhenFull(run::WritePackedCheckpoint(run_dir, checkpoint, keep)));
   return CheckpointRecord{
       .name = checkpoint.name, .timesteps = timesteps, .sha256 = checkpoint.learner_sha256};
+}
+
+std::optional<EvaluationScores> ScoreEvaluations(const v1::EvaluationLog& log) {
+  if (log.evaluations().empty()) return std::nullopt;
+  const v1::Evaluation* latest = &log.evaluations(0);
+  const v1::Evaluation* best = nullptr;
+  for (const v1::Evaluation& evaluation : log.evaluations()) {
+    if (evaluation.step() > latest->step()) latest = &evaluation;
+    // NaN is never the best: every comparison with it is false.
+    if (best == nullptr ? !std::isnan(evaluation.avg_combined())
+                        : evaluation.avg_combined() > best->avg_combined()) {
+      best = &evaluation;
+    }
+  }
+  return EvaluationScores{
+      .latest_step = latest->step(),
+      .latest_avg_combined = latest->avg_combined(),
+      .latest_id_return = latest->id().mean(),
+      .latest_ood_low_return = latest->ood_low().mean(),
+      .latest_ood_high_return = latest->ood_high().mean(),
+      .best_step = best == nullptr ? latest->step() : best->step(),
+      .best_avg_combined = best == nullptr ? std::nan("") : best->avg_combined()};
+}
+
+absl::StatusOr<DiskSpace> DiskSpaceOf(const std::string& data_dir) {
+  struct statvfs space;
+  if (::statvfs(data_dir.c_str(), &space) != 0) {
+    return FileError(errno, "cannot measure the free space of", data_dir);
+  }
+  return DiskSpace{.free_bytes = static_cast<int64_t>(space.f_bavail * space.f_frsize),
+                   .capacity_bytes = static_cast<int64_t>(space.f_blocks * space.f_frsize)};
 }
 
 absl::StatusOr<run::PackedCheckpoint> LatestCheckpoint(const std::string& run_dir) {

@@ -10,6 +10,7 @@
 // Thread-compatible (one writer per run: its learner lease holder).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,9 +44,22 @@ absl::StatusOr<CheckpointRecord> StoreCheckpoint(const std::string& run_dir,
                                                  int64_t first_evaluation,
                                                  const v1::EvaluationLog& log_since, int keep);
 
+// The scores of `log`'s evaluations (a checkpoint's new part: StoreCheckpoint's `log_since`) as
+// CheckpointTable::RecordCheckpoint records them; nullopt if it holds none.
+std::optional<EvaluationScores> ScoreEvaluations(const v1::EvaluationLog& log);
+
 // The newest readable checkpoint of `run_dir` as a learner receives it. Errors as
 // run::ReadLatestCheckpoint (NOT_FOUND when there is none yet).
 absl::StatusOr<run::PackedCheckpoint> LatestCheckpoint(const std::string& run_dir);
+
+// The file system holding `data_dir`, as statvfs(3) sees it: bytes free for an unprivileged
+// user (what the coordinator, not running as root, may still write) and its size.
+struct DiskSpace {
+  int64_t free_bytes = 0;
+  int64_t capacity_bytes = 0;
+};
+// An error naming `data_dir` if it cannot be read.
+absl::StatusOr<DiskSpace> DiskSpaceOf(const std::string& data_dir);
 
 // Every file under `run_dir`, by path, as `dcs train` would have left them: the appended
 // evaluation log as evaluations.csv and .json (run::EvaluationLogFiles). NOT_FOUND if there is

@@ -20,16 +20,19 @@ namespace {
 
 using namespace store_rows;  // NOLINT: the store's own rows
 
-// Grants lease (number, slot) to `holder`: next epoch, deadline from now. Returns the epoch.
+// Grants lease (number, slot) to `holder` at `now`: next epoch, lasting `duration`. Returns the
+// epoch.
 int64_t Grant(SQLite::Database& db, int64_t number, int slot, absl::string_view holder,
-              absl::string_view address, absl::Time deadline) {
+              absl::string_view address, absl::Time now, absl::Duration duration) {
   SQLite::Statement update(db, "UPDATE leases SET epoch = epoch + 1, holder = ?, address = ?, "
-                               "deadline = ? WHERE run = ? AND slot = ? RETURNING epoch");
+                               "deadline = ?, granted_at = ? WHERE run = ? AND slot = ? "
+                               "RETURNING epoch");
   update.bind(1, std::string(holder));
   update.bind(2, std::string(address));
-  update.bind(3, Micros(deadline));
-  update.bind(4, number);
-  update.bind(5, slot);
+  update.bind(3, Micros(now + duration));
+  update.bind(4, Micros(now));
+  update.bind(5, number);
+  update.bind(6, slot);
   update.executeStep();
   return update.getColumn(0).getInt64();
 }
@@ -163,7 +166,7 @@ absl::StatusOr<std::optional<LearnerLease>> RunTable::AcquireRun(absl::string_vi
         PinNumerics(db, "learner_numerics", number, numerics);
         FreeLeases(db, number, /*learner=*/false);
         const int64_t epoch =
-            Grant(db, number, kLearnerSlot, holder, address, now + connection_.lease_duration());
+            Grant(db, number, kLearnerSlot, holder, address, now, connection_.lease_duration());
         DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(db, RunId(number)));
         LearnerLease lease{.key = {.run_id = run.id, .slot = kLearnerSlot, .epoch = epoch},
                            .run = std::move(run)};
@@ -206,7 +209,7 @@ absl::StatusOr<std::optional<SlotLease>> RunTable::AcquireSlot(
           query.reset();
           DCS_ASSIGN_OR_RETURN(RunRecord run, FindRun(db, run_id));
           const int64_t epoch =
-              Grant(db, number, slot, holder, "", now + connection_.lease_duration());
+              Grant(db, number, slot, holder, "", now, connection_.lease_duration());
           PinNumerics(db, "actor_numerics", number, numerics);
           return SlotLease{.key = {.run_id = run.id, .slot = slot, .epoch = epoch},
                            .learner_address = std::move(learner_address),
@@ -254,7 +257,7 @@ absl::Status RunTable::ReportProgress(const LeaseKey& key, const RunProgress& pr
   return connection_.Transaction([&](SQLite::Database& db) -> absl::Status {
     DCS_RETURN_IF_ERROR(CheckHeld(db, key));
     SQLite::Statement update(db,
-                             "UPDATE runs SET timesteps = ?, policy_version = ?, "
+                             "UPDATE runs SET timesteps = max(timesteps, ?), policy_version = ?, "
                              "steps_per_second = ?, recent_return = ?, avg_combined = ?, "
                              "evaluation_step = ?, updated_at = ? WHERE number = ?");
     update.bind(1, progress.timesteps);

@@ -61,7 +61,7 @@ struct RunRecord {
   std::string error;     // why it failed or was cancelled
   std::string learner_numerics;  // the numeric fingerprint of its learners
   std::string actor_numerics;    // of its actors
-  RunProgress progress;
+  RunProgress progress;  // as its learners last reported, timesteps the furthest of them
   std::string checkpoint;  // the latest checkpoint's name; empty before the first
   absl::Time created_at;
   absl::Time updated_at;
@@ -150,7 +150,10 @@ class RunTable {
   // synced: a release the machine's crash loses lapses instead.
   absl::Status ReleaseLease(const LeaseKey& key, absl::Time now);
 
-  // The learner holding `key` (a learner lease) reports progress. Errors as RenewLease. Not
+  // The learner holding `key` (a learner lease) reports progress. The run's timesteps never go
+  // down: they are the furthest step any of its learners reported, so a learner that resumed
+  // from a checkpoint older than its predecessor's last report leaves them until it passes
+  // them (a handover repeats steps, it does not undo progress). Errors as RenewLease. Not
   // synced: the learner reports again.
   absl::Status ReportProgress(const LeaseKey& key, const RunProgress& progress, absl::Time now);
 

@@ -84,53 +84,6 @@ absl::StatusOr<int> Store::ExpireLeases(absl::Time now) {
 
 int64_t Store::LeasesLapsed() { return connection_->LeasesLapsed(); }
 
-absl::StatusOr<StoreCounts> Store::Counts() {
-  return connection_->Transaction([&](SQLite::Database& db) -> absl::StatusOr<StoreCounts> {
-    StoreCounts counts;
-    for (const auto& [state, name] : kRunStateNames) {
-      SQLite::Statement query(db, "SELECT count(*) FROM runs WHERE state = ?");
-      query.bind(1, std::string(name));
-      query.executeStep();
-      counts.runs_by_state.emplace_back(state, query.getColumn(0).getInt64());
-    }
-    counts.free_learner_leases =
-        db.execAndGet("SELECT count(*) FROM runs WHERE state = 'queued'").getInt64();
-    counts.free_slot_leases =
-        db.execAndGet("SELECT count(*) FROM leases s JOIN runs r ON r.number = s.run "
-                        "WHERE s.slot >= 0 AND s.holder = '' AND r.state = 'running'")
-            .getInt64();
-    counts.free_evaluation_jobs =
-        db.execAndGet("SELECT count(*) FROM evaluation_jobs j JOIN runs r ON r.number = j.run "
-                        "WHERE j.done = 0 AND j.holder = '' "
-                        "AND (r.state = 'running' OR j.policy_version < 0)")
-            .getInt64();
-    SQLite::Statement sweeps(
-        db,
-        "SELECT r.sweep, r.state, count(*), "
-        "sum(CASE WHEN r.state IN ('queued', 'running') "
-        "THEN max(0, r.total_timesteps - r.timesteps) ELSE 0 END) "
-        "FROM runs r JOIN sweeps s ON s.number = r.sweep WHERE s.open != 0 OR EXISTS "
-        "(SELECT 1 FROM runs a WHERE a.sweep = s.number AND a.state IN ('queued', 'running')) "
-        "GROUP BY r.sweep, r.state ORDER BY r.sweep");
-    while (sweeps.executeStep()) {
-      const std::string sweep_id = SweepId(sweeps.getColumn(0).getInt64());
-      if (counts.active_sweeps.empty() || counts.active_sweeps.back().sweep_id != sweep_id) {
-        ActiveSweepCounts& sweep = counts.active_sweeps.emplace_back();
-        sweep.sweep_id = sweep_id;
-        for (const auto& [state, name] : kRunStateNames) sweep.runs_by_state.emplace_back(state, 0);
-      }
-      ActiveSweepCounts& sweep = counts.active_sweeps.back();
-      // The schema's CHECK keeps states to the table's names: another means a damaged file.
-      DCS_ASSIGN_OR_RETURN(const RunState state,
-                           StoredValue(db, kRunStateNames, sweeps.getColumn(1).getString(),
-                                       absl::StrCat("the state of a run of ", sweep_id)));
-      sweep.runs_by_state[static_cast<int>(state)].second = sweeps.getColumn(2).getInt64();
-      sweep.steps_remaining += sweeps.getColumn(3).getInt64();
-    }
-    return counts;
-  });
-}
-
 absl::StatusOr<BackupCounts> Store::Backup(const std::string& path) {
   const std::string temporary = absl::StrCat(path, ".tmp.", ::getpid());
   // Everything after the copy's file exists: on an error, the temporary file goes.

@@ -13,7 +13,8 @@
 //                  (coordinator/evaluation_table.h)
 //   checkpoints()  the index of runs' checkpoints (coordinator/checkpoint_table.h)
 //
-// and itself does what spans them: lapsed leases of every kind, counts for metrics, backups.
+// and itself does what spans them: lapsed leases of every kind, counts for metrics
+// (coordinator/store_counts.h), backups.
 // Every call is one transaction and returns after it committed, so whatever a caller
 // acknowledges on the strength of a call survives the coordinator's crash, and the machine's:
 // a commit is synced to the disk before the call returns. The frequent calls of workers are
@@ -39,6 +40,7 @@
 #include "coordinator/evaluation_table.h"
 #include "coordinator/run_state.h"
 #include "coordinator/run_table.h"
+#include "coordinator/store_counts.h"
 #include "coordinator/study_table.h"
 #include "coordinator/sweep_table.h"
 
@@ -46,23 +48,6 @@ namespace dcs::coordinator {
 
 struct StoreOptions {
   absl::Duration lease_duration = absl::Seconds(10);
-};
-
-// Counts for metrics.
-// A sweep that has work ahead: runs queued or running, or (a study sweep) trials to add.
-struct ActiveSweepCounts {
-  std::string sweep_id;
-  std::vector<std::pair<RunState, int64_t>> runs_by_state;  // every state, zeros included
-  int64_t steps_remaining = 0;  // environment steps its queued and running runs have left
-};
-
-struct StoreCounts {
-  std::vector<std::pair<RunState, int64_t>> runs_by_state;  // every state, zeros included
-  int64_t free_learner_leases = 0;  // runs waiting for a learner
-  int64_t free_slot_leases = 0;     // slots of running runs waiting for an actor
-  // Evaluation jobs waiting for an actor: of running runs, and cells of grid evaluations.
-  int64_t free_evaluation_jobs = 0;
-  std::vector<ActiveSweepCounts> active_sweeps;  // in sweep order
 };
 
 // What a backup of the store holds (Store::Backup).
@@ -99,6 +84,7 @@ class Store {
   // (ExpireLeases or an Acquire): counted once each, when the expiring transaction commits.
   int64_t LeasesLapsed();
 
+  // What metrics show of the store (coordinator/store_counts.h), in one transaction.
   absl::StatusOr<StoreCounts> Counts();
 
   // Writes a consistent copy of the store as of one moment (SQLite's online backup) to `path`,

@@ -213,6 +213,20 @@ CREATE TABLE grid_evaluations (
   FOREIGN KEY (run, policy_version) REFERENCES evaluations(run, policy_version)
 );
 )sql",
+    // 6 -> 7: what metrics read at each scrape (coordinator/store_counts.h): each run's latest
+    // evaluation (its step, avg_combined and split means) and its best (highest avg_combined)
+    // as its checkpoints brought them, when its lease was granted, and runs by state.
+    R"sql(
+ALTER TABLE runs ADD COLUMN latest_evaluation_step INTEGER;
+ALTER TABLE runs ADD COLUMN latest_avg_combined REAL;
+ALTER TABLE runs ADD COLUMN latest_id_return REAL;
+ALTER TABLE runs ADD COLUMN latest_ood_low_return REAL;
+ALTER TABLE runs ADD COLUMN latest_ood_high_return REAL;
+ALTER TABLE runs ADD COLUMN best_evaluation_step INTEGER;
+ALTER TABLE runs ADD COLUMN best_avg_combined REAL;
+ALTER TABLE leases ADD COLUMN granted_at INTEGER NOT NULL DEFAULT 0;
+CREATE INDEX runs_by_state ON runs(state);
+)sql",
 };
 
 int UserVersion(SQLite::Database& db) {

@@ -232,6 +232,7 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
   // Sums over minibatches of what SB3 logs.
   PpoLoss sums;
   int minibatches = 0;
+  double grad_norms = 0;  // summed over gradient steps
   Eigen::MatrixXf d_head;
   Eigen::MatrixXf d_values;
   std::vector<float> d_log_std(spec.discrete() ? 0 : spec.action_size);
@@ -303,9 +304,11 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
       // torch.nn.utils.clip_grad_norm_ over every parameter: one norm of the flat gradient,
       // coefficient max_norm / (norm + 1e-6) in float32 as torch computes it, clamped to 1;
       // Adam's step applies it to the gradient.
-      const float coefficient = static_cast<float>(config.max_grad_norm) /
-                                (Norm(Floats(flat_gradients)) + static_cast<float>(1e-6));
+      const float grad_norm = Norm(Floats(flat_gradients));
+      const float coefficient =
+          static_cast<float>(config.max_grad_norm) / (grad_norm + static_cast<float>(1e-6));
       AdamStep(*optimizer, flat_parameters, std::min(coefficient, 1.0f));
+      grad_norms += grad_norm;
       ++stats.gradient_steps;
     }
   }
@@ -324,9 +327,14 @@ absl::StatusOr<UpdateStats> PpoLearner::Impl::Update(const actor::Rollout& r) {
       return_variance == 0
           ? std::nan("")
           : 1 - Variance(std::span<const double>(residuals)) / return_variance;
+  if (stats.gradient_steps > 0) stats.grad_norm = grad_norms / stats.gradient_steps;
+  stats.learning_rate =
+      static_cast<const torch::optim::AdamOptions&>(optimizer->param_groups().front().options())
+          .lr();
   if (!spec.discrete()) {
-    for (float log_std : LogStd()) stats.std += std::exp(static_cast<double>(log_std));
-    stats.std /= spec.action_size;
+    double std = 0;
+    for (float log_std : LogStd()) std += std::exp(static_cast<double>(log_std));
+    stats.std = std / spec.action_size;
   }
   return stats;
 }

@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -45,7 +46,12 @@ struct UpdateStats {
   double clip_fraction = 0;
   double loss = 0;  // of the last minibatch, as SB3 logs it
   double explained_variance = 0;
-  double std = 0;  // mean of exp(log_std); 0 for discrete policies
+  // A Gaussian policy's mean of exp(log_std) after the update; nullopt for a categorical one.
+  std::optional<double> std;
+  // The gradient's global norm before clipping (what clip_grad_norm_ returns), mean over the
+  // gradient steps; 0 if none was taken (target_kl stopped the first minibatch).
+  double grad_norm = 0;
+  double learning_rate = 0;  // Adam's, as the update applied it
   int gradient_steps = 0;
   bool stopped_early = false;  // target_kl reached
 };

@@ -200,6 +200,7 @@ absl::StatusOr<HostStep> RunHost::Step() {
                    .steps_per_second =
                        static_cast<double>(state.timesteps - first_timesteps_) / seconds,
                    .recent_return = session_->recent_return(),
+                   .recent_episode_length = session_->recent_episode_length(),
                    .update = update.stats,
                    .evaluation = state.evaluations.empty() ? nullptr : &state.evaluations.back()},
       .steps = static_cast<int64_t>(n_envs_) * shape_.num_steps,

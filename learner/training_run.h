@@ -49,6 +49,7 @@ struct TrainingProgress {
   // The mean return of the last 100 finished training episodes (SB3's ep_rew_mean); NaN
   // before the first.
   double recent_return = 0;
+  double recent_episode_length = 0;  // their mean length (SB3's ep_len_mean); NaN before one
   UpdateStats update;
   const actor::EvaluationResult* evaluation = nullptr;  // the latest, if any
 };
@@ -162,6 +163,7 @@ absl::StatusOr<TrainingResult> Train(const run::RunSpec& spec, const TrainingOpt
            .updates = session->policy_version(),
            .steps_per_second = static_cast<double>(state.timesteps - first_timesteps) / elapsed,
            .recent_return = session->recent_return(),
+           .recent_episode_length = session->recent_episode_length(),
            .update = update.stats,
            .evaluation = state.evaluations.empty() ? nullptr : &state.evaluations.back()});
     }

@@ -15,6 +15,19 @@ namespace {
 
 constexpr size_t kRecentEpisodes = 100;  // SB3's ep_info_buffer
 
+// Drops all but the last `count` of `values`.
+template <typename T>
+void KeepLast(size_t count, std::vector<T>& values) {
+  if (values.size() > count) values.erase(values.begin(), values.end() - count);
+}
+
+// The mean of `values`; NaN if there are none.
+template <typename T>
+double MeanOrNaN(const std::vector<T>& values) {
+  if (values.empty()) return std::nan("");
+  return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+}
+
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<TrainingSession>> TrainingSession::Create(
@@ -83,11 +96,10 @@ absl::StatusOr<std::optional<EvaluationDue>> TrainingSession::AddRollout(
   }
   for (const actor::EpisodeSummary& episode : finished) {
     state_.recent_returns.push_back(episode.episode_return);
+    state_.recent_lengths.push_back(episode.length);
   }
-  if (state_.recent_returns.size() > kRecentEpisodes) {
-    state_.recent_returns.erase(state_.recent_returns.begin(),
-                                state_.recent_returns.end() - kRecentEpisodes);
-  }
+  KeepLast(kRecentEpisodes, state_.recent_returns);
+  KeepLast(kRecentEpisodes, state_.recent_lengths);
   state_.journals = std::move(journals);
   waiting_from_ = state_.timesteps;
   if (spec_.coverage.has_value()) {
@@ -155,11 +167,10 @@ v1::EvaluationLog TrainingSession::EvaluationLog() const {
   return log;
 }
 
-double TrainingSession::recent_return() const {
-  const std::vector<double>& returns = state_.recent_returns;
-  if (returns.empty()) return std::nan("");
-  return std::accumulate(returns.begin(), returns.end(), 0.0) /
-         static_cast<double>(returns.size());
+double TrainingSession::recent_return() const { return MeanOrNaN(state_.recent_returns); }
+
+double TrainingSession::recent_episode_length() const {
+  return MeanOrNaN(state_.recent_lengths);
 }
 
 }  // namespace dcs::learner

@@ -118,6 +118,8 @@ class TrainingSession {
   // The mean return of the last 100 finished training episodes (SB3's ep_rew_mean); NaN before
   // the first.
   double recent_return() const;
+  // Their mean length in environment steps (SB3's ep_len_mean); NaN before the first.
+  double recent_episode_length() const;
 
   // Every parameter, flattened in a fixed order (runs are compared with it).
   std::vector<float> Parameters() const { return learner_->Parameters(); }

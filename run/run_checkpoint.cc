@@ -159,6 +159,7 @@ std::string EncodeRunState(const RunState& state) {
   out << YAML::Key << "rollouts" << YAML::Value << state.rollouts;
   out << YAML::Key << "recent_returns" << YAML::Value;
   EmitNumbers(out, state.recent_returns);
+  out << YAML::Key << "recent_lengths" << YAML::Value << YAML::Flow << state.recent_lengths;
   out << YAML::Key << "journals" << YAML::Value << YAML::BeginSeq;
   for (const actor::SlotJournal& journal : state.journals) {
     out << YAML::BeginMap;
@@ -204,6 +205,9 @@ absl::StatusOr<RunState> DecodeRunState(const std::string& text, const std::stri
     state.timesteps = root["timesteps"].as<int64_t>();
     state.rollouts = root["rollouts"].as<int64_t>();
     state.recent_returns = root["recent_returns"].as<std::vector<double>>();
+    if (root["recent_lengths"]) {
+      state.recent_lengths = root["recent_lengths"].as<std::vector<int64_t>>();
+    }
     for (const YAML::Node& node : root["journals"]) {
       state.journals.push_back({.episode = node["episode"].as<int64_t>(),
                                 .reset_step = node["reset_step"].as<int64_t>(),

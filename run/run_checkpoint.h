@@ -32,6 +32,9 @@ struct RunState {
   int64_t rollouts = 0;   // rollouts collected (and updates made)
   std::vector<actor::SlotJournal> journals;
   std::vector<double> recent_returns;  // the last finished training episodes' returns
+  // Their lengths in environment steps, in the same order; empty in a checkpoint written before
+  // DCS kept them (its run's episode length counts only the episodes after it).
+  std::vector<int64_t> recent_lengths;
   std::vector<actor::EvaluationResult> evaluations;
   std::vector<ProjectionCounts> coverage;  // empty unless the run counts coverage
 };

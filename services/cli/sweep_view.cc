@@ -82,19 +82,13 @@ std::string SweepHeadline(const v1::GetSweepResponse& response) {
                                            absl::FormatDuration(absl::Seconds(
                                                std::round(steps_left / steps_per_second)))));
   }
-  const std::vector<TrialCount> trials = CountTrials(response);
-  std::optional<double> best;
-  int best_trial = -1;
-  for (size_t t = 0; t < trials.size(); ++t) {
-    const std::optional<absl::StatusOr<double>> iqm = Iqm(trials[t].last);
-    if (iqm.has_value() && iqm->ok() && (!best.has_value() || **iqm > *best)) {
-      best = **iqm;
-      best_trial = static_cast<int>(t);
-    }
-  }
-  if (best.has_value()) {
+  std::vector<std::vector<double>> last_by_trial;
+  for (TrialCount& trial : CountTrials(response)) last_by_trial.push_back(std::move(trial.last));
+  if (const std::optional<coordinator::HighestIqmGroup> best =
+          coordinator::HighestIqm(last_by_trial)) {
     absl::StrAppend(&line, absl::StrFormat(", best: %s %.1f",
-                                           TrialName(sweep.trials(best_trial)), *best));
+                                           TrialName(sweep.trials(static_cast<int>(best->index))),
+                                           best->iqm));
   }
   return line;
 }

@@ -86,7 +86,7 @@ class CoordinatorRole final : public ServiceRole {
                                                                     *study_logs_);
     runs_.study_sweeps = study_sweeps_.get();
     metrics.AddCollectable(std::make_shared<WorkerCollector>(*registry_));
-    metrics.AddCollectable(std::make_shared<RunCollector>(*store_));
+    metrics.AddCollectable(std::make_shared<RunCollector>(*store_, runs_.data_dir));
     expired_ = &prometheus::BuildCounter()
                     .Name("dcs_leases_expired_total")
                     .Help("Leases that lapsed (their holders stopped renewing) and went back to "

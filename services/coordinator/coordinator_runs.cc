@@ -384,7 +384,8 @@ absl::Status CoordinatorService::StoreCheckpoint(const coordinator::LeaseKey& ke
                        coordinator::StoreCheckpoint(
                            coordinator::RunDirectory(runs_.data_dir, key.run_id), checkpoint,
                            first_evaluation, log_since, runs_.keep_checkpoints));
-  DCS_RETURN_IF_ERROR(runs_.store->checkpoints().RecordCheckpoint(key, stored, absl::Now()));
+  DCS_RETURN_IF_ERROR(runs_.store->checkpoints().RecordCheckpoint(
+      key, stored, coordinator::ScoreEvaluations(log_since), absl::Now()));
   watchers_.Notify(RunTopic(key.run_id));
   return absl::OkStatus();
 }
@@ -434,6 +435,8 @@ grpc::ServerUnaryReactor* CoordinatorService::FinishRun(grpc::CallbackServerCont
     DCS_ASSIGN_OR_RETURN(const coordinator::LeaseKey key, LeaseFromProto(request->lease()));
     DCS_ASSIGN_OR_RETURN(const coordinator::RunState state, RunStateFromProto(request->state()));
     DCS_RETURN_IF_ERROR(runs_.store->runs().FinishRun(key, state, request->error(), absl::Now()));
+    // Once: a second FinishRun of the same lease is refused, the lease being freed.
+    if (state == coordinator::RunState::kFailed) runs_failed_.Increment();
     watchers_.Notify(RunTopic(key.run_id));
     Log(LogLevel::kInfo, "run finished",
         {{"run_id", key.run_id}, {"state", std::string(NameOf(coordinator::kRunStateNames, state))},

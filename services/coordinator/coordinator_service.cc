@@ -55,6 +55,12 @@ CoordinatorService::CoordinatorService(coordinator::WorkerRegistry& registry, Ru
       learner_leases_(LeasesFamily(metrics).Add({{"kind", "run"}})),
       slot_leases_(LeasesFamily(metrics).Add({{"kind", "slot"}})),
       evaluation_leases_(LeasesFamily(metrics).Add({{"kind", "evaluation"}})),
+      runs_failed_(prometheus::BuildCounter()
+                       .Name("dcs_runs_failed_total")
+                       .Help("Runs that entered the failed state (their learner finished them "
+                             "so) since the coordinator started.")
+                       .Register(metrics)
+                       .Add({})),
       rejected_(metrics, "dcs_requests_rejected_total",
                 "Requests the coordinator refused, by reason (the status code)."),
       run_watchers_(WatchersFamily(metrics).Add({{"kind", "run"}})),

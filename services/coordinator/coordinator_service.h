@@ -59,8 +59,8 @@ struct RunStorage {
 class CoordinatorService final : public v1::CoordinatorService::CallbackService {
  public:
   // Registers dcs_worker_registrations_total{role}, dcs_leases_granted_total{kind},
-  // dcs_requests_rejected_total{reason} and dcs_watchers{kind} in `metrics`, which must outlive
-  // the service.
+  // dcs_runs_failed_total, dcs_requests_rejected_total{reason} and dcs_watchers{kind} in
+  // `metrics`, which must outlive the service.
   CoordinatorService(coordinator::WorkerRegistry& registry, RunStorage runs, BuildInfo build,
                      absl::Time start_time, prometheus::Registry& metrics);
 
@@ -254,6 +254,7 @@ class CoordinatorService final : public v1::CoordinatorService::CallbackService 
   prometheus::Counter& learner_leases_;
   prometheus::Counter& slot_leases_;
   prometheus::Counter& evaluation_leases_;
+  prometheus::Counter& runs_failed_;
   RefusalCounter rejected_;
   prometheus::Gauge& run_watchers_;
   prometheus::Gauge& sweep_watchers_;

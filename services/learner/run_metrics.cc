@@ -19,6 +19,9 @@ struct RunMetrics::Families {
                          "Training episodes finished, per run.")),
         episode_return(Gauge(registry, "dcs_episode_return_mean",
                              "Mean return of the last 100 training episodes, per run.")),
+        episode_length(Gauge(registry, "dcs_episode_length_mean",
+                             "Mean length in environment steps of the last 100 training "
+                             "episodes, per run (SB3's ep_len_mean).")),
         steps_per_second(Gauge(registry, "dcs_steps_per_second",
                                "Environment steps per second since the run came to this "
                                "learner, updates included.")),
@@ -33,6 +36,13 @@ struct RunMetrics::Families {
                             "Fraction of clipped ratios in the last update.")),
         explained_variance(Gauge(registry, "dcs_explained_variance",
                                  "Explained variance of the value function, last update.")),
+        learning_rate(Gauge(registry, "dcs_learning_rate", "Learning rate of the last update.")),
+        policy_std(Gauge(registry, "dcs_policy_std",
+                         "A Gaussian policy's mean standard deviation after the last update "
+                         "(no series for a categorical policy).")),
+        grad_norm(Gauge(registry, "dcs_grad_norm",
+                        "The gradient's norm before clipping, mean over the last update's "
+                        "gradient steps.")),
         evaluation_return(Gauge(registry, "dcs_evaluation_return",
                                 "Mean evaluation return of the latest evaluation, per run and "
                                 "split.")),
@@ -56,6 +66,7 @@ struct RunMetrics::Families {
   prometheus::Family<prometheus::Counter>& env_steps;
   prometheus::Family<prometheus::Counter>& episodes;
   prometheus::Family<prometheus::Gauge>& episode_return;
+  prometheus::Family<prometheus::Gauge>& episode_length;
   prometheus::Family<prometheus::Gauge>& steps_per_second;
   prometheus::Family<prometheus::Gauge>& policy_version;
   prometheus::Family<prometheus::Gauge>& policy_loss;
@@ -64,6 +75,9 @@ struct RunMetrics::Families {
   prometheus::Family<prometheus::Gauge>& approx_kl;
   prometheus::Family<prometheus::Gauge>& clip_fraction;
   prometheus::Family<prometheus::Gauge>& explained_variance;
+  prometheus::Family<prometheus::Gauge>& learning_rate;
+  prometheus::Family<prometheus::Gauge>& policy_std;
+  prometheus::Family<prometheus::Gauge>& grad_norm;
   prometheus::Family<prometheus::Gauge>& evaluation_return;
   prometheus::Family<prometheus::Gauge>& evaluation_context_return;
   prometheus::Family<prometheus::Histogram>& update_seconds;
@@ -87,9 +101,11 @@ RunMetrics::~RunMetrics() {
   families_->env_steps.Remove(&families_->env_steps.Add(labels_));
   families_->episodes.Remove(&families_->episodes.Add(labels_));
   for (prometheus::Family<prometheus::Gauge>* family :
-       {&families_->episode_return, &families_->steps_per_second, &families_->policy_version,
-        &families_->policy_loss, &families_->value_loss, &families_->entropy_loss,
-        &families_->approx_kl, &families_->clip_fraction, &families_->explained_variance}) {
+       {&families_->episode_return, &families_->episode_length, &families_->steps_per_second,
+        &families_->policy_version, &families_->policy_loss, &families_->value_loss,
+        &families_->entropy_loss, &families_->approx_kl, &families_->clip_fraction,
+        &families_->explained_variance, &families_->learning_rate, &families_->policy_std,
+        &families_->grad_norm}) {
     family->Remove(&family->Add(labels_));
   }
   for (const auto& [split, name] : actor::kSplitNames) {
@@ -116,6 +132,9 @@ void RunMetrics::Update(const learner::TrainingProgress& progress, int64_t steps
   if (!std::isnan(progress.recent_return)) {
     families_->episode_return.Add(labels_).Set(progress.recent_return);
   }
+  if (!std::isnan(progress.recent_episode_length)) {
+    families_->episode_length.Add(labels_).Set(progress.recent_episode_length);
+  }
   families_->steps_per_second.Add(labels_).Set(progress.steps_per_second);
   families_->policy_version.Add(labels_).Set(static_cast<double>(progress.updates));
   families_->policy_loss.Add(labels_).Set(progress.update.policy_loss);
@@ -124,6 +143,11 @@ void RunMetrics::Update(const learner::TrainingProgress& progress, int64_t steps
   families_->approx_kl.Add(labels_).Set(progress.update.approx_kl);
   families_->clip_fraction.Add(labels_).Set(progress.update.clip_fraction);
   families_->explained_variance.Add(labels_).Set(progress.update.explained_variance);
+  families_->learning_rate.Add(labels_).Set(progress.update.learning_rate);
+  if (progress.update.std.has_value()) {
+    families_->policy_std.Add(labels_).Set(*progress.update.std);
+  }
+  families_->grad_norm.Add(labels_).Set(progress.update.grad_norm);
   if (progress.evaluation != nullptr) {
     for (const auto& [split, name] : actor::kSplitNames) {
       families_->evaluation_return.Add(With({{"split", std::string(name)}}))

@@ -9,10 +9,11 @@
 // run's thread updates it while scrapes read its series (prometheus-cpp metrics allow that).
 //
 //   dcs_env_steps_total, dcs_episodes_total          counters
-//   dcs_episode_return_mean                          the last 100 training episodes
+//   dcs_episode_return_mean, dcs_episode_length_mean the last 100 training episodes
 //   dcs_steps_per_second, dcs_policy_version
 //   dcs_policy_loss, dcs_value_loss, dcs_entropy_loss, dcs_approx_kl, dcs_clip_fraction,
-//   dcs_explained_variance                           of the latest update
+//   dcs_explained_variance, dcs_learning_rate, dcs_grad_norm (before clipping),
+//   dcs_policy_std (a Gaussian policy's only)       of the latest update
 //   dcs_evaluation_return{split}                     the latest evaluation's split means
 //   dcs_evaluation_context_return{split, context}    its per-context means (context: the
 //                                                    varied feature's value)

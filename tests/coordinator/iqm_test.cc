@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -230,6 +231,17 @@ TEST(PercentileIntervalTest, ATailThatHoldsOneOrderStatisticOfTwoIsNotUsed) {
     EXPECT_EQ(interval.lo, *Quantile(estimates, tail));
     EXPECT_EQ(interval.hi, *Quantile(estimates, 1 - tail));
   }
+}
+
+TEST(HighestIqmTest, TheFirstGroupOfTheHighestIqmPassingOverEmptyAndNanGroups) {
+  EXPECT_EQ(HighestIqm({}), std::nullopt);
+  EXPECT_EQ(HighestIqm({{}, {std::nan("")}}), std::nullopt);
+  // IQMs: 15, none, 21 (of 12 and 30), 21 again, and a NaN group.
+  const std::optional<HighestIqmGroup> highest =
+      HighestIqm({{10, 20}, {}, {30, 12}, {21}, {std::nan(""), 99}});
+  ASSERT_TRUE(highest.has_value());
+  EXPECT_EQ(highest->index, 2u);
+  EXPECT_EQ(highest->iqm, 21);
 }
 
 }  // namespace

@@ -2,7 +2,9 @@
 #include "coordinator/run_files.h"
 
 #include <filesystem>
+#include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "gmock/gmock.h"
@@ -94,6 +96,43 @@ TEST_F(RunFilesTest, RefusesACorruptCheckpointAndStoresNothing) {
 TEST_F(RunFilesTest, AMissingRunHasNoFiles) {
   EXPECT_EQ(ReadRunFiles(RunDirectory(dir().string(), "run-9")).status().code(),
             absl::StatusCode::kNotFound);
+}
+
+TEST(ScoreEvaluationsTest, TheLatestIsTheHighestStepAndTheBestTheFirstHighestScore) {
+  EXPECT_EQ(ScoreEvaluations(v1::EvaluationLog()), std::nullopt);
+  v1::EvaluationLog log;
+  for (const auto& [step, score] :
+       {std::pair(512, 7.0), std::pair(256, 9.0), std::pair(768, 9.0), std::pair(1024, 3.0)}) {
+    v1::Evaluation& evaluation = *log.add_evaluations();
+    evaluation.set_step(step);
+    evaluation.set_avg_combined(score);
+    evaluation.mutable_id()->set_mean(score + 1);
+    evaluation.mutable_ood_low()->set_mean(score + 2);
+    evaluation.mutable_ood_high()->set_mean(score + 3);
+  }
+  const std::optional<EvaluationScores> scores = ScoreEvaluations(log);
+  ASSERT_TRUE(scores.has_value());
+  EXPECT_EQ(scores->latest_step, 1024);
+  EXPECT_EQ(scores->latest_avg_combined, 3);
+  EXPECT_EQ(scores->latest_id_return, 4);
+  EXPECT_EQ(scores->latest_ood_low_return, 5);
+  EXPECT_EQ(scores->latest_ood_high_return, 6);
+  EXPECT_EQ(scores->best_step, 256);
+  EXPECT_EQ(scores->best_avg_combined, 9);
+
+  log.mutable_evaluations(1)->set_avg_combined(std::nan(""));  // NaN is never the best
+  EXPECT_EQ(ScoreEvaluations(log)->best_step, 768);
+}
+
+TEST(DiskSpaceTest, MeasuresTheDataDirectorysFileSystemAndNamesAMissingOne) {
+  const std::string dir = testing::MakeTempDir();
+  absl::StatusOr<DiskSpace> space = DiskSpaceOf(dir);
+  ASSERT_TRUE(space.ok()) << space.status();
+  EXPECT_GT(space->capacity_bytes, 0);
+  EXPECT_LE(space->free_bytes, space->capacity_bytes);
+  const absl::StatusOr<DiskSpace> missing = DiskSpaceOf(dir + "/missing");
+  EXPECT_EQ(missing.status().code(), absl::StatusCode::kNotFound);
+  EXPECT_THAT(missing.status().message(), HasSubstr("missing"));
 }
 
 }  // namespace

@@ -85,7 +85,8 @@ class RunRemovalTest : public StudySweepFixture {
     EXPECT_TRUE(store_->runs().SubmitRun(Alone(request_id), kNow).ok());
     const LeaseKey key = Lease();
     WriteRunDirectory(key.run_id);
-    EXPECT_TRUE(store_->checkpoints().RecordCheckpoint(key, {"000000000256", 256, "abc"}, kNow)
+    EXPECT_TRUE(store_->checkpoints()
+                    .RecordCheckpoint(key, {"000000000256", 256, "abc"}, std::nullopt, kNow)
                     .ok());
     EXPECT_TRUE(store_->evaluations()
                     .SubmitEvaluation(key, {.policy_version = 1, .step = 256, .contexts = 1,

@@ -254,7 +254,9 @@ TEST_F(RunStoreTest, ProgressAndCheckpointsAreRecorded) {
                                   kStart)
                   .ok());
   ASSERT_TRUE(
-      store->checkpoints().RecordCheckpoint(lease.key, {"000000000256", 256, "abc"}, kStart).ok());
+      store->checkpoints()
+          .RecordCheckpoint(lease.key, {"000000000256", 256, "abc"}, std::nullopt, kStart)
+          .ok());
   absl::StatusOr<RunRecord> run = store->runs().GetRun("run-1");
   ASSERT_TRUE(run.ok());
   EXPECT_EQ(run->progress.timesteps, 256);
@@ -300,7 +302,9 @@ TEST_F(RunStoreTest, EverythingSurvivesAReopenAndHoldersGetAFullLease) {
     std::unique_ptr<Store> store = Open();
     key = SubmitAndAcquire(*store).key;
     ASSERT_TRUE(
-        store->checkpoints().RecordCheckpoint(key, {"000000000256", 256, "abc"}, kStart).ok());
+        store->checkpoints()
+            .RecordCheckpoint(key, {"000000000256", 256, "abc"}, std::nullopt, kStart)
+            .ok());
   }
   // The coordinator was down for longer than a lease.
   const absl::Time restart = kStart + absl::Seconds(60);
@@ -779,7 +783,16 @@ TEST_F(RunStoreTest, AVersionFiveDatabaseIsMigratedWithItsEvaluations) {
   }
   {
     SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READWRITE);
-    db.exec("DROP TABLE grid_evaluations; PRAGMA user_version = 5");
+    // Without what versions 6 and 7 added.
+    db.exec("DROP TABLE grid_evaluations; DROP INDEX runs_by_state;");
+    for (const char* column :
+         {"runs DROP COLUMN latest_evaluation_step", "runs DROP COLUMN latest_avg_combined",
+          "runs DROP COLUMN latest_id_return", "runs DROP COLUMN latest_ood_low_return",
+          "runs DROP COLUMN latest_ood_high_return", "runs DROP COLUMN best_evaluation_step",
+          "runs DROP COLUMN best_avg_combined", "leases DROP COLUMN granted_at"}) {
+      db.exec(std::string("ALTER TABLE ") + column);
+    }
+    db.exec("PRAGMA user_version = 5");
   }
   std::unique_ptr<Store> store = Open();
   ASSERT_NE(store, nullptr);
@@ -787,6 +800,7 @@ TEST_F(RunStoreTest, AVersionFiveDatabaseIsMigratedWithItsEvaluations) {
   ASSERT_TRUE(kept.ok()) << kept.status();
   EXPECT_THAT(kept->results[0].returns, ElementsAre(1, 2, 3));
   EXPECT_EQ(store->evaluations().SubmitGridEvaluation(Grid("grid-a"), kStart).value_or(0), -1);
+  EXPECT_TRUE(store->Counts().ok());  // the columns metrics read are there
   SQLite::Database db(Path("coordinator.db"), SQLite::OPEN_READONLY);
   EXPECT_EQ(db.execAndGet("PRAGMA user_version").getInt(), CurrentSchemaVersion());
 }

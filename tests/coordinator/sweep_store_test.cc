@@ -199,7 +199,7 @@ TEST_F(SweepStoreTest, ALearnerLeaseNamesTheRunsTrial) {
                                   std::pair("condition-1", "none")));
 }
 
-TEST_F(SweepStoreTest, CountsOnlySweepsWithWorkAhead) {
+TEST_F(SweepStoreTest, CountsEachSweepsRunsByStateAndStepsRemaining) {
   std::unique_ptr<Store> store = Open();
   ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("done", 1, 1), kStart).ok());  // run-1
   ASSERT_TRUE(store->sweeps().SubmitSweep(Sweep("busy", 1, 3), kStart).ok());  // runs 2 to 4
@@ -216,8 +216,11 @@ TEST_F(SweepStoreTest, CountsOnlySweepsWithWorkAhead) {
 
   absl::StatusOr<StoreCounts> counts = store->Counts();
   ASSERT_TRUE(counts.ok()) << counts.status();
-  ASSERT_EQ(counts->active_sweeps.size(), 1u);
-  const ActiveSweepCounts& busy = counts->active_sweeps[0];
+  ASSERT_EQ(counts->sweeps.size(), 2u);  // the ended one too: it is among the 20 most recent
+  EXPECT_THAT(counts->sweeps[0].runs_by_state[static_cast<int>(RunState::kCompleted)],
+              std::pair(RunState::kCompleted, 1));
+  EXPECT_EQ(counts->sweeps[0].steps_remaining, 0);
+  const SweepCounts& busy = counts->sweeps[1];
   EXPECT_EQ(busy.sweep_id, "sweep-2");
   EXPECT_THAT(busy.runs_by_state,
               ElementsAre(std::pair(RunState::kQueued, 2), std::pair(RunState::kRunning, 1),
@@ -226,7 +229,10 @@ TEST_F(SweepStoreTest, CountsOnlySweepsWithWorkAhead) {
   EXPECT_EQ(busy.steps_remaining, 2 * 1000 + 600);
 
   ASSERT_TRUE(store->sweeps().CancelSweep("sweep-2", kStart).ok());
-  EXPECT_THAT(store->Counts()->active_sweeps, ::testing::IsEmpty());
+  counts = store->Counts();
+  ASSERT_TRUE(counts.ok()) << counts.status();
+  ASSERT_EQ(counts->sweeps.size(), 2u);
+  EXPECT_EQ(counts->sweeps[1].steps_remaining, 0);
 }
 
 TEST_F(SweepStoreTest, UnknownSweepsAreNotFound) {

@@ -79,6 +79,51 @@ TEST_F(PpoLearnerTest, LearnsToPreferTheRewardedAction) {
   EXPECT_EQ(learner->updates(), 60);
 }
 
+TEST_F(PpoLearnerTest, GradNormIsTheNormGradientClippingSees) {
+  // One gradient step per update (one epoch of one minibatch), so the mean is that step's.
+  run::PpoConfig config = {.n_steps = kSteps, .batch_size = kSteps, .n_epochs = 1};
+  const auto update = [&](double max_grad_norm, const actor::Rollout& rollout,
+                          std::vector<float>& parameters) {
+    config.max_grad_norm = max_grad_norm;
+    std::unique_ptr<PpoLearner> learner = *PpoLearner::Create(BanditSpec(), config, 1, 3);
+    absl::StatusOr<UpdateStats> stats = learner->Update(rollout);
+    EXPECT_TRUE(stats.ok()) << stats.status();
+    parameters = learner->Parameters();
+    return stats.value_or(UpdateStats{});
+  };
+  const actor::Rollout rollout = BanditRollout(*NewLearner(3), 7);
+  std::vector<float> unclipped;
+  const double norm = update(1e9, rollout, unclipped).grad_norm;
+  ASSERT_GT(norm, 0);
+  // Clipping just above the norm leaves the step as it was; just below, it scales the
+  // gradient (Adam's eps makes that show in the weights). Both report the norm before.
+  std::vector<float> above;
+  std::vector<float> below;
+  EXPECT_EQ(update(norm * 1.01, rollout, above).grad_norm, norm);
+  EXPECT_EQ(update(norm * 0.99, rollout, below).grad_norm, norm);
+  EXPECT_EQ(above, unclipped);
+  EXPECT_NE(below, unclipped);
+}
+
+TEST_F(PpoLearnerTest, ReportsTheLearningRateAndAGaussianPolicysStdOnly) {
+  std::unique_ptr<PpoLearner> categorical = NewLearner(2);
+  absl::StatusOr<UpdateStats> stats = categorical->Update(BanditRollout(*categorical, 1));
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_EQ(stats->learning_rate, SmallConfig().learning_rate);
+  EXPECT_FALSE(stats->std.has_value());
+
+  run::PolicySpec gaussian = BanditSpec();
+  gaussian.num_actions = 0;  // one continuous action in [-1, 1]
+  gaussian.action_low = {-1};
+  gaussian.action_high = {1};
+  std::unique_ptr<PpoLearner> learner = *PpoLearner::Create(gaussian, SmallConfig(), 1, 2);
+  stats = learner->Update(BanditRollout(*learner, 1));
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  ASSERT_TRUE(stats->std.has_value());
+  EXPECT_NEAR(*stats->std, 1.0, 0.05);  // log_std starts at 0; one update moves it a little
+  EXPECT_NE(*stats->std, 1.0);
+}
+
 TEST_F(PpoLearnerTest, SameSeedAndRolloutsGiveTheSameWeightsBitForBit) {
   std::unique_ptr<PpoLearner> a = NewLearner(5);
   std::unique_ptr<PpoLearner> b = NewLearner(5);

@@ -5,6 +5,7 @@
 
 #include "learner/training_session.h"
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -162,6 +163,26 @@ TEST_F(TrainingSessionTest, ASessionFromItsCheckpointContinuesExactly) {
   }
   EXPECT_EQ(resumed->session().Parameters(), straight->session().Parameters());
   EXPECT_EQ(resumed->session().state().recent_returns, straight->session().state().recent_returns);
+  EXPECT_EQ(resumed->session().state().recent_lengths, straight->session().state().recent_lengths);
+}
+
+TEST_F(TrainingSessionTest, EpisodeLengthIsSb3sEpLenMeanOverTheLastHundredEpisodes) {
+  std::unique_ptr<Driver> driver = Driver::Make();
+  ASSERT_NE(driver, nullptr);
+  EXPECT_TRUE(std::isnan(driver->session().recent_episode_length()));
+  for (int i = 0; i < 6; ++i) {
+    ASSERT_TRUE(driver->Collect().ok());
+    ASSERT_TRUE(driver->session().Update().ok());
+  }
+  const run::RunState& state = driver->session().state();
+  ASSERT_EQ(state.recent_lengths.size(), state.recent_returns.size());
+  ASSERT_GT(state.recent_lengths.size(), 10u);
+  // CartPole pays 1 for every step, the terminating one included, so an episode's return is
+  // its length as SB3's Monitor counts it (ep_len_mean).
+  for (size_t i = 0; i < state.recent_lengths.size(); ++i) {
+    EXPECT_EQ(static_cast<double>(state.recent_lengths[i]), state.recent_returns[i]) << i;
+  }
+  EXPECT_EQ(driver->session().recent_episode_length(), driver->session().recent_return());
 }
 
 TEST_F(TrainingSessionTest, RefusesACheckpointOfAnotherRun) {

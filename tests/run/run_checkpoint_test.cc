@@ -34,6 +34,7 @@ RunState StateAt(int64_t timesteps) {
                         .episode_return = 3},
                        {.episode = 4, .reset_step = timesteps}},
           .recent_returns = {12.5, 1e-17},
+          .recent_lengths = {13, 2},
           .evaluations = {evaluation}};
 }
 
@@ -61,6 +62,7 @@ TEST(RunCheckpointTest, ReadsBackExactlyWhatWasWritten) {
   EXPECT_EQ(read->state.timesteps, 128);
   EXPECT_EQ(read->state.rollouts, 2);
   EXPECT_EQ(read->state.recent_returns, state.recent_returns);
+  EXPECT_THAT(read->state.recent_lengths, ElementsAre(13, 2));
   ASSERT_EQ(read->state.journals.size(), 2u);
   EXPECT_EQ(read->state.journals[0].episode, 7);
   EXPECT_EQ(read->state.journals[0].reset_step, 125);

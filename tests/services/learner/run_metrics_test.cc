@@ -61,9 +61,17 @@ TEST(RunMetricsTest, LabelsEverySeriesWithTheRunAndRemovesThemWithIt) {
   {
     RunMetrics metrics(families, kRun);
     EXPECT_THAT(Series(registry, "dcs_env_steps_total"), ElementsAre(Pair(IsEmpty(), 0)));
-    learner::TrainingProgress progress{.updates = 3, .recent_return = 42};
+    learner::TrainingProgress progress{
+        .updates = 3, .recent_return = 42, .recent_episode_length = std::nan("")};
     progress.update.approx_kl = 0.01;
     metrics.Update(progress, 256, 4, 0.1);
+    // No episode finished yet, and a categorical policy: no length, no std.
+    EXPECT_THAT(Series(registry, "dcs_episode_length_mean"), IsEmpty());
+    EXPECT_THAT(Series(registry, "dcs_policy_std"), IsEmpty());
+    progress.recent_episode_length = 21.5;
+    progress.update.learning_rate = 3e-4;
+    progress.update.grad_norm = 0.75;
+    progress.update.std = 0.9;
     progress.evaluation = &evaluation;
     metrics.Update(progress, 256, 2, 0.1);
 
@@ -71,6 +79,10 @@ TEST(RunMetricsTest, LabelsEverySeriesWithTheRunAndRemovesThemWithIt) {
     EXPECT_THAT(Series(registry, "dcs_episodes_total"), ElementsAre(Pair(IsEmpty(), 6)));
     EXPECT_THAT(Series(registry, "dcs_episode_return_mean"), ElementsAre(Pair(IsEmpty(), 42)));
     EXPECT_THAT(Series(registry, "dcs_approx_kl"), ElementsAre(Pair(IsEmpty(), 0.01)));
+    EXPECT_THAT(Series(registry, "dcs_episode_length_mean"), ElementsAre(Pair(IsEmpty(), 21.5)));
+    EXPECT_THAT(Series(registry, "dcs_learning_rate"), ElementsAre(Pair(IsEmpty(), 3e-4)));
+    EXPECT_THAT(Series(registry, "dcs_grad_norm"), ElementsAre(Pair(IsEmpty(), 0.75)));
+    EXPECT_THAT(Series(registry, "dcs_policy_std"), ElementsAre(Pair(IsEmpty(), 0.9)));
     using Labels = std::map<std::string, std::string>;
     EXPECT_THAT(Series(registry, "dcs_evaluation_return"),
                 UnorderedElementsAre(Pair(Labels{{"split", "id"}}, 150),
