@@ -591,7 +591,8 @@ for path in files:
     with open("deploy/prometheus/kubernetes.yml") as f:
         prometheus = yaml.safe_load(f)
     targets = [target for a in (prometheus.get("alerting") or {}).get("alertmanagers") or []
-               for static in a.get("static_configs") or [] for target in static.get("targets") or []]
+               for static in a.get("static_configs") or []
+               for target in static.get("targets") or []]
     serving = [f"{s['metadata']['name']}.{namespace}.svc:{p['port']}" for s in services
                if matches(s["spec"].get("selector"),
                           alertmanager["spec"]["template"]["metadata"]["labels"])
