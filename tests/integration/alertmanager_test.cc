@@ -37,6 +37,7 @@
 #include "common/atomic_file.h"
 #include "gtest/gtest.h"
 #include "services/cli/child_process.h"
+#include "tests/integration/test_util.h"
 #include "tests/testing/eventually.h"
 #include "tests/testing/net.h"
 #include "tests/testing/temp_dir.h"
@@ -52,25 +53,11 @@ const fs::path kDeploy = fs::path(DCS_SOURCE_DIR) / "deploy";
 // Alertmanager's route waits group_wait (30 s) before a group's first notification.
 constexpr absl::Duration kDelivery = absl::Minutes(2);
 
-absl::StatusOr<Value> ParseJson(const std::string& text) {
-  Value parsed;
-  const auto status = google::protobuf::util::JsonStringToMessage(text, &parsed);
-  if (!status.ok()) return absl::InvalidArgumentError(status.ToString());
-  return parsed;
-}
-
-const Value& Field(const Value& object, const std::string& name) {
-  static const Value kNull;
-  const auto& fields = object.struct_value().fields();
-  const auto found = fields.find(name);
-  return found == fields.end() ? kNull : found->second;
-}
-
 // An alert by its name, and its role if it has one: "DcsWorkerLost role=learner".
 std::string Describe(const Value& alert) {
-  const Value& labels = Field(alert, "labels");
-  const std::string role = Field(labels, "role").string_value();
-  return absl::StrCat(Field(labels, "alertname").string_value(),
+  const Value& labels = JsonField(alert, "labels");
+  const std::string role = JsonField(labels, "role").string_value();
+  return absl::StrCat(JsonField(labels, "alertname").string_value(),
                       role.empty() ? "" : absl::StrCat(" role=", role));
 }
 
@@ -98,10 +85,10 @@ class Webhook {
     std::multiset<std::string> received;
     absl::MutexLock lock(&mu_);
     for (const std::string& body : bodies_) {
-      absl::StatusOr<Value> notification = ParseJson(body);
+      absl::StatusOr<Value> notification = ParseJsonValue(body);
       EXPECT_TRUE(notification.ok()) << body;
       if (!notification.ok()) continue;
-      for (const Value& alert : Field(*notification, "alerts").list_value().values()) {
+      for (const Value& alert : JsonField(*notification, "alerts").list_value().values()) {
         received.insert(Describe(alert));
       }
     }
@@ -171,7 +158,7 @@ class Alertmanager {
     absl::StatusOr<std::string> body = testing::HttpGet(absl::StrCat("http://", web_,
                                                                      "/api/v2/alerts"));
     EXPECT_TRUE(body.ok()) << body.status();
-    absl::StatusOr<Value> list = ParseJson(body.value_or("[]"));
+    absl::StatusOr<Value> list = ParseJsonValue(body.value_or("[]"));
     EXPECT_TRUE(list.ok()) << list.status();
     if (!list.ok()) return {};
     return {list->list_value().values().begin(), list->list_value().values().end()};
@@ -276,7 +263,7 @@ class AlertmanagerTest : public ::testing::Test {
       if (Describe(held) != alert) continue;
       std::vector<std::string> by;
       for (const Value& fingerprint :
-           Field(Field(held, "status"), "inhibitedBy").list_value().values()) {
+           JsonField(JsonField(held, "status"), "inhibitedBy").list_value().values()) {
         by.push_back(fingerprint.string_value());
       }
       return absl::StrJoin(by, ",");
@@ -286,7 +273,7 @@ class AlertmanagerTest : public ::testing::Test {
 
   std::string Fingerprint(const std::string& alert) const {
     for (const Value& held : alertmanager_.Alerts()) {
-      if (Describe(held) == alert) return Field(held, "fingerprint").string_value();
+      if (Describe(held) == alert) return JsonField(held, "fingerprint").string_value();
     }
     return "";
   }
