@@ -245,7 +245,7 @@ while :; do
   fi
   [ "$SECONDS" -lt "$deadline" ] \
     || fail "Alertmanager lacks DcsCoordinatorDown firing and DcsWorkersCutOff held back by it:" \
-            "$held"
+            "$(tr '\n' ';' <<<"$held")"
   sleep 5
 done
 step "Alertmanager: $(tr '\n' ';' <<<"$held")"
