@@ -2,9 +2,10 @@
 # Checks the container files without a container engine:
 # docker-compose.yml as docker-compose parses it, Prometheus's compose scrape config
 # with promtool, the compose file against DCS's conventions (a token required, health checks,
-# loopback ports, named volumes) and the scrape config, docker-compose.tls.yml merged with it
-# (mutual TLS for every DCS service), and the Dockerfile against its own (two stages, non-root,
-# tini, exec-form CMD; by grep: hadolint is not packaged). Quick: no image is built.
+# loopback ports, named volumes) and the scrape config and its Alertmanager,
+# docker-compose.tls.yml merged with it (mutual TLS for every DCS service), and the Dockerfile
+# against its own (two stages, non-root, tini, exec-form CMD; by grep: hadolint is not
+# packaged). Quick: no image is built.
 #
 #   tests/deploy/check_compose.sh REPO_ROOT
 #
@@ -31,7 +32,7 @@ need python3 python3
 python3 -c 'import yaml' 2>/dev/null || fail "python3's yaml module is missing (Debian package python3-yaml)"
 
 for file in Dockerfile .dockerignore docker-compose.yml docker-compose.tls.yml .env \
-    deploy/prometheus/compose.yml; do
+    deploy/prometheus/compose.yml deploy/alertmanager/alertmanager.yml; do
   [ -f "$file" ] || fail "$file is missing"
 done
 
@@ -68,7 +69,7 @@ fi
 # Read as docker-compose resolves it (anchors merged, .env applied), plus the file as written
 # for the keys docker-compose drops or adds.
 step "docker-compose.yml: services, probes, start-up order, ports, volumes, metrics targets," \
-  "pinned kernels"
+  "Alertmanager, pinned kernels"
 resolved=$(docker-compose -f docker-compose.yml config)
 RESOLVED="$resolved" python3 - <<'EOF' || exit 1
 import os
@@ -98,7 +99,7 @@ with open(".env") as f:
 
 compose = yaml.safe_load(os.environ["RESOLVED"])
 services = compose.get("services", {})
-for name in ("coordinator", "learner", "actor", "prometheus", "grafana"):
+for name in ("coordinator", "learner", "actor", "prometheus", "alertmanager", "grafana"):
     if name not in services:
         fail(f"docker-compose.yml: no '{name}' service")
 
@@ -116,7 +117,7 @@ def port_of(address, what):
     return match.group(1), int(match.group(2))
 
 # Every service joins the one network; only user-facing ports are published, on loopback.
-published = {"coordinator", "prometheus", "grafana"}
+published = {"coordinator", "prometheus", "alertmanager", "grafana"}
 for name, service in services.items():
     if network not in (service.get("networks") or {}):
         fail(f"docker-compose.yml: service '{name}' is not on network '{network}'")
@@ -129,7 +130,8 @@ for name, service in services.items():
         if host_ip != "127.0.0.1":
             fail(f"docker-compose.yml: service '{name}' publishes {port} beyond 127.0.0.1")
     image = service.get("image", "")
-    if name in ("prometheus", "grafana") and (":" not in image or image.endswith(":latest")):
+    if name in ("prometheus", "alertmanager", "grafana") and \
+            (":" not in image or image.endswith(":latest")):
         fail(f"docker-compose.yml: service '{name}' image '{image}' has no pinned tag")
 
 # The DCS servers: the services that run a dcs-* program.
@@ -216,6 +218,22 @@ if config_file != "/etc/prometheus/compose.yml":
     fail(f"docker-compose.yml: prometheus --config.file={config_file}, want "
          "/etc/prometheus/compose.yml")
 
+# Alertmanager reads deploy/alertmanager/alertmanager.yml from the read-only mount of its
+# directory, keeps its state (silences, notifications sent) in a named volume, and runs alone.
+bind_ro("alertmanager", "deploy/alertmanager", "/etc/alertmanager")
+alertmanager_command = services["alertmanager"].get("command") or []
+config_file = flag(alertmanager_command, "config.file")
+if config_file != "/etc/alertmanager/alertmanager.yml":
+    fail(f"docker-compose.yml: alertmanager --config.file={config_file}, want "
+         "/etc/alertmanager/alertmanager.yml")
+storage = flag(alertmanager_command, "storage.path")
+if not any(kind == "volume" and source in named_volumes and target == storage
+           for kind, source, target, _ in mounts("alertmanager")):
+    fail(f"docker-compose.yml: alertmanager's --storage.path {storage} is not a named volume")
+if flag(alertmanager_command, "cluster.listen-address") != "":
+    fail("docker-compose.yml: alertmanager does not set --cluster.listen-address= (empty): one "
+         "instance needs no gossip, which would listen on 9094 and wait for peers")
+
 # Grafana: provisioning and dashboards read-only, anonymous viewers.
 bind_ro("grafana", "deploy/grafana/provisioning", "/etc/grafana/provisioning")
 bind_ro("grafana", "deploy/grafana/dashboards", "/var/lib/grafana/dashboards")
@@ -244,6 +262,20 @@ for name, port in sorted(metrics_ports.items()):
 jobs = {job.get("job_name"): job for job in prometheus.get("scrape_configs") or []}
 if not (jobs.get("actor") or {}).get("dns_sd_configs"):
     fail("deploy/prometheus/compose.yml: job 'actor' does not find the replicas by dns_sd_configs")
+# The rules' jobs are named coordinator, learner and actor (deploy/prometheus/rules.yml).
+if set(jobs) != {"coordinator", "learner", "actor"}:
+    fail(f"deploy/prometheus/compose.yml: jobs {sorted(jobs)}, want coordinator, learner, actor "
+         "(the names rules.yml and the dashboards select)")
+# Alerts go to the alertmanager service, at the port it listens on (its default, 9093, which
+# it publishes).
+alertmanagers = [target
+                 for alertmanager in (prometheus.get("alerting") or {}).get("alertmanagers") or []
+                 for static in alertmanager.get("static_configs") or []
+                 for target in static.get("targets") or []]
+alertmanager_port = flag(alertmanager_command, "web.listen-address") or ":9093"
+if alertmanagers != [f"alertmanager{alertmanager_port}"]:
+    fail(f"deploy/prometheus/compose.yml sends alerts to {alertmanagers}, want "
+         f"['alertmanager{alertmanager_port}'] (docker-compose.yml's alertmanager)")
 EOF
 
 # --- docker-compose.tls.yml, merged with docker-compose.yml as it is used -------------------

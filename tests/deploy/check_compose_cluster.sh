@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Starts docker-compose.yml's cluster for real and runs a small sweep through it: the image built
-# from ./Dockerfile, the coordinator, a learner and two actors, Prometheus scraping all four;
-# the sweep is submitted and watched to its end with the image's own `dcs`, then Prometheus must
-# see every process up and the learner's steps. Grafana is left out (not packaged in Debian, and
-# no registry may be reachable). An image that cannot be found locally or pulled is made from
-# Debian's packages: the Dockerfile's Debian 12 bases by scripts/debian-base-image, Prometheus
-# as a stand-in image of Debian's prometheus package (same flags).
+# from ./Dockerfile, the coordinator, a learner and two actors, Prometheus scraping all four,
+# Alertmanager; the sweep is submitted and watched to its end with the image's own `dcs`, then
+# Prometheus must see every process up and the learner's steps. Then the coordinator is
+# stopped: Alertmanager must receive DcsCoordinatorDown firing, and DcsWorkersCutOff (which
+# fires a minute later, as the workers lose it) held back by it. Grafana is left out (not
+# packaged in Debian, and no registry may be reachable). An image that cannot be found locally
+# or pulled is made from Debian's packages: the Dockerfile's Debian 12 bases by
+# scripts/debian-base-image, Prometheus and Alertmanager as stand-in images of Debian's
+# prometheus and prometheus-alertmanager packages (same flags).
 #
 #   tests/deploy/check_compose_cluster.sh REPO_ROOT [--tls]
 #
@@ -17,7 +20,7 @@
 # docker-compose; else exits 77 (skipped). It builds the image: the first time as long as the
 # programs' part of `make build`, then seconds while the sources are unchanged.
 # Uses its own compose project (dcs-check-<pid>) and removes it, volumes included, on exit; the
-# published ports (127.0.0.1:50051 and :9090) must be free.
+# published ports (127.0.0.1:50051, :9090 and :9093) must be free.
 set -euo pipefail
 
 root=${1:?usage: check_compose_cluster.sh REPO_ROOT [--tls]}
@@ -43,7 +46,7 @@ skip() {
 command -v docker >/dev/null 2>&1 || skip "no docker client"
 command -v docker-compose >/dev/null 2>&1 || skip "no docker-compose"
 docker info >/dev/null 2>&1 || skip "no container engine answers (docker info fails)"
-for port in 50051 9090; do
+for port in 50051 9090 9093; do
   if (exec 3<>"/dev/tcp/127.0.0.1/$port") 2>/dev/null; then
     fail "127.0.0.1:$port is in use; the compose cluster publishes it"
   fi
@@ -79,33 +82,44 @@ for base in $(sed -nE 's/^FROM ([^ ]+).*/\1/p' Dockerfile); do
   fi
 done
 
-# Prometheus: the pinned image if it is here or can be pulled, else Debian's package.
-prometheus_image=$(docker-compose -f docker-compose.yml config \
-                     | awk '/^  prometheus:/{p=1} p && /image:/{print $2; exit}')
-if docker image inspect "$prometheus_image" >/dev/null 2>&1 \
-   || docker pull -q "$prometheus_image" >/dev/null 2>&1; then
-  step "Prometheus from $prometheus_image"
-else
-  prometheus_image=dcs-check/prometheus-debian:latest
-  step "Prometheus from a stand-in of Debian's prometheus package ($prometheus_image)"
-  mkdir -p "$work/prometheus"
-  cat >"$work/prometheus/Dockerfile" <<'EOF'
+# Prometheus and Alertmanager: the pinned image if it is here or can be pulled, else a stand-in
+# of Debian's package, its program as the entry point (compose passes the same flags), run as
+# nobody with its data directory (the one compose mounts a volume at) nobody's.
+image_or_debian() {
+  local service=$1 package=$2 program=$3 data=$4 image
+  image=$(docker-compose -f docker-compose.yml config \
+            | awk -v s="  $service:" '$0 == s {p=1} p && /image:/ {print $2; exit}')
+  if docker image inspect "$image" >/dev/null 2>&1 || docker pull -q "$image" >/dev/null 2>&1
+  then
+    step "$service from $image" >&2
+    echo "$image"
+    return
+  fi
+  image=dcs-check/$service-debian:latest
+  step "$service from a stand-in of Debian's $package package ($image)" >&2
+  mkdir -p "$work/$service"
+  cat >"$work/$service/Dockerfile" <<EOF
 FROM debian:bookworm-slim
-RUN apt-get update \
- && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends prometheus \
- && rm -rf /var/lib/apt/lists/* \
- && install -d -o nobody -g nogroup /prometheus
+RUN apt-get update \\
+ && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $package \\
+ && rm -rf /var/lib/apt/lists/* \\
+ && install -d -o nobody -g nogroup $data
 USER nobody
-EXPOSE 9090
-ENTRYPOINT ["/usr/bin/prometheus"]
+ENTRYPOINT ["$program"]
 EOF
-  docker build -q -t "$prometheus_image" "$work/prometheus" >/dev/null \
-    || fail "could not build the Prometheus stand-in image"
-fi
+  docker build -q -t "$image" "$work/$service" >/dev/null \
+    || fail "could not build the $service stand-in image"
+  echo "$image"
+}
+prometheus_image=$(image_or_debian prometheus prometheus /usr/bin/prometheus /prometheus)
+alertmanager_image=$(image_or_debian alertmanager prometheus-alertmanager \
+                       /usr/bin/prometheus-alertmanager /alertmanager)
 cat >"$work/override.yml" <<EOF
 services:
   prometheus:
     image: $prometheus_image
+  alertmanager:
+    image: $alertmanager_image
 EOF
 
 step "building the DCS image (docker-compose build coordinator)"
@@ -116,8 +130,9 @@ if [ "$mode" = --tls ]; then
   step "certificates for the one server name in $DCS_TLS_DIR"
 fi
 
-step "up: coordinator, learner, 2 actors, prometheus (not grafana)${mode:+, over mutual TLS}"
-"${compose[@]}" up -d --scale actor=2 coordinator learner actor prometheus \
+step "up: coordinator, learner, 2 actors, prometheus, alertmanager (not grafana)${mode:+, over" \
+  "mutual TLS}"
+"${compose[@]}" up -d --scale actor=2 coordinator learner actor prometheus alertmanager \
   || fail "docker-compose up failed"
 
 # Every DCS container healthy (a worker is healthy once registered with the coordinator).
@@ -206,4 +221,33 @@ done
 step "Prometheus: sum(dcs_actor_env_steps_total) >= 6144: $steps"
 step "Prometheus: state:dcs_runs:sum{state=\"completed\"} == 4: $completed"
 
-step "the composed cluster ran a sweep"
+# Alerts, from the real rules to Alertmanager: the coordinator stopped, DcsCoordinatorDown
+# fires after its minute; the workers, cut off from it, fire DcsWorkersCutOff after two, which
+# Alertmanager holds back, naming DcsCoordinatorDown. The receiver is the config's placeholder,
+# so Alertmanager's own view is what is checked (delivery: tests/integration/alertmanager_test.cc).
+step "stopping the coordinator: Alertmanager must get DcsCoordinatorDown firing, and" \
+  "DcsWorkersCutOff held back by it"
+"${compose[@]}" stop coordinator >/dev/null || fail "docker-compose stop coordinator failed"
+alerts() {
+  python3 -c 'import json, urllib.request
+alerts = json.load(urllib.request.urlopen("http://127.0.0.1:9093/api/v2/alerts", timeout=5))
+names = {a["fingerprint"]: a["labels"]["alertname"] for a in alerts}
+for a in alerts:
+    by = ",".join(names.get(f, f) for f in a["status"]["inhibitedBy"])
+    print(a["labels"]["alertname"], a["status"]["state"], by or "-")'
+}
+deadline=$((SECONDS + 300))
+while :; do
+  held=$(alerts || true)
+  if grep -qx 'DcsCoordinatorDown active -' <<<"$held" \
+     && grep -qx 'DcsWorkersCutOff suppressed DcsCoordinatorDown' <<<"$held"; then
+    break
+  fi
+  [ "$SECONDS" -lt "$deadline" ] \
+    || fail "Alertmanager lacks DcsCoordinatorDown firing and DcsWorkersCutOff held back by it:" \
+            "$(tr '\n' ';' <<<"$held")"
+  sleep 5
+done
+step "Alertmanager: $(tr '\n' ';' <<<"$held")"
+
+step "the composed cluster ran a sweep and raised its alerts"

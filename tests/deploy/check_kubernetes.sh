@@ -4,7 +4,8 @@
 # schema (tests/deploy/kubernetes_schema/validate.js: types and values, and unknown fields),
 # and checks what DCS needs of the manifests (resources, probes and ports against the programs'
 # config files, the coordinator's volume, Services, disruption budgets, scrape annotations,
-# mutual TLS in overlays/cluster and none in overlays/local).
+# mutual TLS in overlays/cluster and none in overlays/local, Alertmanager with the config of
+# deploy/alertmanager where deploy/prometheus/kubernetes.yml sends the alerts).
 # `kubectl apply --dry-run=client` is no substitute: it needs an API server.
 #
 #   tests/deploy/check_kubernetes.sh REPO_ROOT
@@ -108,7 +109,7 @@ fi
 step "${out//$tmp\//}"
 
 # --- what DCS needs of the manifests ----------------------------------------------------
-step "DCS: kinds, coordinator StatefulSet and volume, Deployments, probes and ports against the config files, resources, Services, PodDisruptionBudgets, scrape annotations, security, mutual TLS, pinned kernels"
+step "DCS: kinds, coordinator StatefulSet and volume, Deployments, probes and ports against the config files, resources, Services, PodDisruptionBudgets, scrape annotations, security, mutual TLS, pinned kernels, Alertmanager"
 python3 - "${rendered[@]}" <<'EOF' || exit 1
 import os
 import re
@@ -164,6 +165,55 @@ def port_of(address):
 
 def matches(selector, labels):
     return bool(selector) and all(labels.get(k) == v for k, v in selector.items())
+
+
+def check_alertmanager(w, configmaps, fail):
+    """Checks the Alertmanager Deployment; returns it with its ports, as the Services need."""
+    where = "Deployment/dcs-alertmanager"
+    spec = w["spec"]
+    pod = spec["template"]["spec"]
+    if spec.get("replicas", 1) != 1:
+        fail(where, f"replicas {spec['replicas']}: the config runs one Alertmanager, without "
+             "the cluster gossip replicas would need")
+    if not matches(spec["selector"].get("matchLabels"), spec["template"]["metadata"]["labels"]):
+        fail(where, "spec.selector does not select the pod template's labels")
+    if (pod.get("securityContext") or {}).get("runAsNonRoot") is not True:
+        fail(where, "securityContext.runAsNonRoot is not true")
+    (c,) = pod["containers"]
+    with open("docker-compose.yml") as f:
+        pinned = yaml.safe_load(f)["services"]["alertmanager"]["image"]
+    if c["image"] != pinned:
+        fail(where, f"image {c['image']}, but docker-compose.yml pins {pinned}: one version")
+    context = c.get("securityContext") or {}
+    if context.get("readOnlyRootFilesystem") is not True or \
+            context.get("allowPrivilegeEscalation") is not False:
+        fail(where, "securityContext: want readOnlyRootFilesystem true, "
+             "allowPrivilegeEscalation false")
+    resources = c.get("resources") or {}
+    for kind in ("requests", "limits"):
+        for resource in ("cpu", "memory"):
+            if quantity((resources.get(kind) or {}).get(resource)) is None:
+                fail(where, f"resources.{kind}.{resource} is missing or not a quantity")
+    args = c.get("args") or []
+    if flag(args, "cluster.listen-address") != "":
+        fail(where, "no --cluster.listen-address= (empty): one Alertmanager needs no gossip")
+    volumes = {v["name"]: v for v in pod.get("volumes") or []}
+    mounts = {m["mountPath"]: m["name"] for m in c.get("volumeMounts") or []}
+    storage = volumes.get(mounts.get(flag(args, "storage.path")), {})
+    if "emptyDir" not in storage and "persistentVolumeClaim" not in storage:
+        fail(where, f"--storage.path={flag(args, 'storage.path')} is on no writable volume "
+             "(the root file system is read-only)")
+    # Its config is deploy/alertmanager/alertmanager.yml, as compose mounts it.
+    directory, file_name = os.path.split(flag(args, "config.file") or "")
+    configmap = configmaps.get((volumes.get(mounts.get(directory), {}).get("configMap") or {})
+                               .get("name"))
+    with open("deploy/alertmanager/alertmanager.yml") as f:
+        wanted = f.read()
+    if configmap is None or (configmap.get("data") or {}).get(file_name) != wanted:
+        fail(where, f"--config.file={directory}/{file_name} is not "
+             "deploy/alertmanager/alertmanager.yml from a mounted ConfigMap")
+    w["_ports"] = {p["containerPort"]: p.get("name") for p in c.get("ports") or []}
+    return w
 
 
 rendered_overlays = set()
@@ -481,6 +531,9 @@ for path in files:
                  f"({[p for p, n in container_ports.items() if n == 'metrics']})")
         w["_ports"] = container_ports
 
+    alertmanager = check_alertmanager(workload("Deployment", "dcs-alertmanager"), configmaps,
+                                      fail)
+
     if len(server_names) > 1:
         fail("DCS_TLS_SERVER_NAME", f"differs between containers ({sorted(server_names)}): every "
              "server holds a certificate for one cluster-wide name")
@@ -494,7 +547,7 @@ for path in files:
     # Services select a workload's pods and target ports they have.
     for s in services:
         where = f"Service/{s['metadata']['name']}"
-        selected = [w for w in workloads
+        selected = [w for w in workloads + [alertmanager]
                     if matches(s["spec"].get("selector"), w["spec"]["template"]["metadata"]["labels"])]
         if len(selected) != 1:
             fail(where, f"selects the pods of {len(selected)} workloads, want 1")
@@ -532,6 +585,21 @@ for path in files:
     tag = image.rsplit(":", 1)[1] if ":" in image.rsplit("/", 1)[-1] else ""
     if tag in ("", "latest") and "@" not in image:
         fail("images", f"{image} has no tag, or :latest (set one with kustomize images:)")
+
+    # Prometheus (deploy/prometheus/kubernetes.yml) sends alerts to the Alertmanager Service.
+    namespace = alertmanager["metadata"].get("namespace", "default")
+    with open("deploy/prometheus/kubernetes.yml") as f:
+        prometheus = yaml.safe_load(f)
+    targets = [target for a in (prometheus.get("alerting") or {}).get("alertmanagers") or []
+               for static in a.get("static_configs") or []
+               for target in static.get("targets") or []]
+    serving = [f"{s['metadata']['name']}.{namespace}.svc:{p['port']}" for s in services
+               if matches(s["spec"].get("selector"),
+                          alertmanager["spec"]["template"]["metadata"]["labels"])
+               for p in s["spec"]["ports"]]
+    if not targets or any(t not in serving for t in targets):
+        fail("deploy/prometheus/kubernetes.yml", f"sends alerts to {targets}, but the Services "
+             f"in front of Alertmanager are {serving}")
 
     security = f"mutual TLS as {server_names.pop()}" if tls else "token only"
     print(f"check_kubernetes: {name}: {len(objects)} objects as DCS needs them "

@@ -65,14 +65,6 @@ std::vector<google::protobuf::Value> JsonLines(std::vector<std::string> args) {
   return values;
 }
 
-const google::protobuf::Value& Field(const google::protobuf::Value& value,
-                                     const std::string& name) {
-  static const google::protobuf::Value kAbsent;
-  const auto& fields = value.struct_value().fields();
-  const auto it = fields.find(name);
-  return it == fields.end() ? kAbsent : it->second;
-}
-
 // The help of `dcs command...` and of each command under it, depth first, by command path.
 void CollectHelp(const std::vector<std::string>& command,
                  std::map<std::string, std::string>& help) {
@@ -132,36 +124,37 @@ TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
   const std::vector<google::protobuf::Value> submitted =
       JsonLines({"submit", spec, "--watch", addr});
   ASSERT_FALSE(submitted.empty());
-  EXPECT_EQ(Field(submitted[0], "sweep_id").string_value(), "sweep-1");
+  EXPECT_EQ(JsonField(submitted[0], "sweep_id").string_value(), "sweep-1");
 
   JsonLines({"submit", spec, "--dry-run", addr});
   const std::vector<google::protobuf::Value> status = JsonLines({"status", addr});
   ASSERT_FALSE(status.empty());
-  EXPECT_EQ(Field(status[0], "workers").list_value().values_size(), 3);
+  EXPECT_EQ(JsonField(status[0], "workers").list_value().values_size(), 3);
   const std::vector<google::protobuf::Value> runs = JsonLines({"runs", addr});
   ASSERT_FALSE(runs.empty());
-  ASSERT_EQ(Field(runs[0], "runs").list_value().values_size(), 8);
-  for (const google::protobuf::Value& run : Field(runs[0], "runs").list_value().values()) {
-    EXPECT_EQ(Field(run, "state").string_value(), "completed");
-    EXPECT_TRUE(Field(run, "seed").has_number_value()) << "a 64-bit integer as a number";
+  ASSERT_EQ(JsonField(runs[0], "runs").list_value().values_size(), 8);
+  for (const google::protobuf::Value& run : JsonField(runs[0], "runs").list_value().values()) {
+    EXPECT_EQ(JsonField(run, "state").string_value(), "completed");
+    EXPECT_TRUE(JsonField(run, "seed").has_number_value()) << "a 64-bit integer as a number";
   }
   // One sweep's runs: all 8 here, the cluster's only sweep (an unknown sweep is NOT_FOUND,
   // EachExitCodeOfTheTableComesFromWhatItNames).
   const std::vector<google::protobuf::Value> sweep_runs =
       JsonLines({"runs", "--sweep", "sweep-1", addr});
   ASSERT_FALSE(sweep_runs.empty());
-  EXPECT_EQ(Field(sweep_runs[0], "runs").list_value().values_size(), 8);
+  EXPECT_EQ(JsonField(sweep_runs[0], "runs").list_value().values_size(), 8);
   const std::vector<google::protobuf::Value> sweeps = JsonLines({"sweeps", addr});
   ASSERT_FALSE(sweeps.empty());
-  EXPECT_EQ(Field(Field(sweeps[0], "sweeps").list_value().values(0), "state").string_value(),
-            "completed");
+  EXPECT_EQ(
+      JsonField(JsonField(sweeps[0], "sweeps").list_value().values(0), "state").string_value(),
+      "completed");
   JsonLines({"report", "sweep-1", addr});
   // A sweep's verbs as a run's are spelt, and their first spelling.
   for (const std::vector<std::string>& watch : std::vector<std::vector<std::string>>{
            {"sweeps", "watch", "sweep-1", addr}, {"watch", "sweep-1", addr}}) {
     const std::vector<google::protobuf::Value> watched = JsonLines(watch);
     ASSERT_FALSE(watched.empty()) << watch[0];
-    EXPECT_EQ(Field(Field(watched.back(), "sweep"), "state").string_value(), "completed")
+    EXPECT_EQ(JsonField(JsonField(watched.back(), "sweep"), "state").string_value(), "completed")
         << watch[0];
   }
   const std::string run_dir = dir + "/run-1";
@@ -186,10 +179,12 @@ TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
            {"studies", "--store", store}, {"studies", "list", "--store", store}}) {
     const std::vector<google::protobuf::Value> studies = JsonLines(list);
     ASSERT_FALSE(studies.empty());
-    ASSERT_EQ(Field(studies[0], "studies").list_value().values_size(), 1);
-    EXPECT_EQ(Field(Field(Field(studies[0], "studies").list_value().values(0), "best"), "value")
-                  .number_value(),
-              0.5);
+    ASSERT_EQ(JsonField(studies[0], "studies").list_value().values_size(), 1);
+    EXPECT_EQ(
+        JsonField(JsonField(JsonField(studies[0], "studies").list_value().values(0), "best"),
+                  "value")
+            .number_value(),
+        0.5);
   }
   JsonLines({"studies", addr});
   JsonLines({"train", DCS_SOURCE_DIR "/configs/cartpole_length_pool7_static_blind.yaml", "--out",
@@ -217,20 +212,22 @@ TEST(CliConventionTest, EveryDataCommandPrintsJsonLines) {
   const std::vector<google::protobuf::Value> removed_run =
       JsonLines({"runs", "rm", "run-25", addr});
   ASSERT_FALSE(removed_run.empty());
-  EXPECT_EQ(Field(Field(removed_run[0], "runs").list_value().values(0), "state").string_value(),
-            "completed");
+  EXPECT_EQ(
+      JsonField(JsonField(removed_run[0], "runs").list_value().values(0), "state").string_value(),
+      "completed");
   const std::vector<google::protobuf::Value> removed =
       JsonLines({"sweeps", "rm", "sweep-1", "sweep-2", addr});
   ASSERT_FALSE(removed.empty());
-  ASSERT_EQ(Field(removed[0], "sweeps").list_value().values_size(), 2);
-  EXPECT_EQ(Field(Field(removed[0], "sweeps").list_value().values(0), "state").string_value(),
-            "completed");
-  EXPECT_EQ(Field(removed[0], "runs").list_value().values_size(), 16);
+  ASSERT_EQ(JsonField(removed[0], "sweeps").list_value().values_size(), 2);
+  EXPECT_EQ(
+      JsonField(JsonField(removed[0], "sweeps").list_value().values(0), "state").string_value(),
+      "completed");
+  EXPECT_EQ(JsonField(removed[0], "runs").list_value().values_size(), 16);
   const std::vector<google::protobuf::Value> left = JsonLines({"runs", addr});
   ASSERT_FALSE(left.empty());
-  ASSERT_EQ(Field(left[0], "runs").list_value().values_size(), 8);
-  for (const google::protobuf::Value& run : Field(left[0], "runs").list_value().values()) {
-    EXPECT_EQ(Field(run, "sweep_id").string_value(), "sweep-3");
+  ASSERT_EQ(JsonField(left[0], "runs").list_value().values_size(), 8);
+  for (const google::protobuf::Value& run : JsonField(left[0], "runs").list_value().values()) {
+    EXPECT_EQ(JsonField(run, "sweep_id").string_value(), "sweep-3");
   }
 
   // Every command that says it prints JSON ran above, but retry: it needs a failed run, which

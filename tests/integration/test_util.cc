@@ -5,6 +5,8 @@
 
 #include <filesystem>
 
+#include <google/protobuf/util/json_util.h>
+
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
@@ -72,6 +74,21 @@ double MetricValue(const std::string& exposition, const std::string& series) {
     }
   }
   return -1;
+}
+
+absl::StatusOr<google::protobuf::Value> ParseJsonValue(const std::string& text) {
+  google::protobuf::Value parsed;
+  const auto status = google::protobuf::util::JsonStringToMessage(text, &parsed);
+  if (!status.ok()) return absl::InvalidArgumentError(status.ToString());
+  return parsed;
+}
+
+const google::protobuf::Value& JsonField(const google::protobuf::Value& object,
+                                         const std::string& name) {
+  static const google::protobuf::Value kNull;
+  const auto& fields = object.struct_value().fields();
+  const auto found = fields.find(name);
+  return found == fields.end() ? kNull : found->second;
 }
 
 }  // namespace dcs::integration

@@ -5,9 +5,12 @@
 // Helpers for tests that run real DCS processes on loopback. Thread-compatible.
 // Temporary directories, HTTP GETs and free ports are in tests/testing/.
 
+#include <google/protobuf/struct.pb.h>
+
 #include <string>
 #include <vector>
 
+#include "absl/status/statusor.h"
 #include "absl/time/time.h"
 #include "tests/testing/scoped_variable.h"
 
@@ -55,6 +58,14 @@ std::vector<std::string> Lines(const std::string& text);
 
 // The value of the series `name{labels}` in a Prometheus exposition, or -1.
 double MetricValue(const std::string& exposition, const std::string& series);
+
+// `text` as JSON (an HTTP API's answer); INVALID_ARGUMENT with the parser's message if it is
+// not JSON.
+absl::StatusOr<google::protobuf::Value> ParseJsonValue(const std::string& text);
+
+// The field `name` of the JSON object `object`; a null value if it has none or is no object.
+const google::protobuf::Value& JsonField(const google::protobuf::Value& object,
+                                         const std::string& name);
 
 }  // namespace dcs::integration
 
