@@ -9,6 +9,8 @@
      exits 0 and prints that command's usage (`Usage: dcs COMMAND ...`; the client prints its own
      top-level usage for a command it does not know), a subcommand is one its command's help
      lists, and a word after a command that takes no arguments is an unknown subcommand.
+  3. No line is a merge's conflict marker (`<<<<<<< `, `=======`, `>>>>>>> `): a conflict
+     committed unresolved renders as text, which links and commands alone would not catch.
 
 Usage: tests/docs/check_docs.py REPO_ROOT DCS_PROGRAM
 Prints every problem, one a line with its file and line; exits 1 if there is any.
@@ -145,6 +147,16 @@ def check_commands(repo, dcs, path, checked):
     return problems
 
 
+CONFLICT_MARKER = re.compile(r"^(<{7} |={7}$|>{7} )")
+
+
+def check_conflict_markers(repo, path):
+    """A problem for each line of `path` that is a merge's conflict marker."""
+    return [f"{path.relative_to(repo)}:{number}: a merge's conflict marker: {line.strip()}"
+            for number, line in enumerate(path.read_text().splitlines(), start=1)
+            if CONFLICT_MARKER.match(line)]
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -154,6 +166,7 @@ def main():
     links, commands = [], []
     problems = [p for path in docs for p in check_links(repo, path, links)]
     problems += [p for path in docs for p in check_commands(repo, dcs, path, commands)]
+    problems += [p for path in docs for p in check_conflict_markers(repo, path)]
     for problem in problems:
         print(problem)
     print(f"check_docs: {len(problems)} problem(s) in {len(links)} links of "
